@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// Environment maps: Radiance .hdr images in one of three mappings, turned into radiance as a
+// function of a world-space direction (glTF frame, +Y up). The direction convention of each
+// mapping is normative and written in formats/SPEC.md §Environment maps.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "prt/baker/context.hpp"
+
+namespace prt::bake {
+
+enum class EnvMapping {
+  Auto,           // detect from the image shape: 2:1 lat-long, 3:4 vertical cross, 1:1 angular
+  LatLong,        // equirectangular
+  VerticalCross,  // six square faces in a 3 wide x 4 high cross; the padding is ignored
+  AngularProbe,   // Debevec's angular light-probe mapping (a disc in a square)
+};
+
+// Parses "auto" | "latlong" | "cross" | "probe"; throws Error on anything else.
+EnvMapping parse_env_mapping(const std::string& name);
+const char* env_mapping_name(EnvMapping mapping);
+
+class EnvMap {
+ public:
+  // Linear RGB, row-major from the top row, width*height*3 floats.
+  EnvMap(int width, int height, std::vector<float> rgb, EnvMapping mapping, std::string source);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  EnvMapping mapping() const { return mapping_; }
+  const std::string& source() const { return source_; }
+  const std::vector<float>& pixels() const { return rgb_; }
+
+  // Radiance arriving from world direction dir (unit): bilinear within a face/region.
+  glm::vec3 radiance(const glm::vec3& dir) const;
+
+  // Texel (x, y): its centre direction and the solid angle it covers. Returns false for texels
+  // that are not part of the mapping (cross padding, outside the probe disc).
+  bool texel(int x, int y, glm::vec3* dir, float* solid_angle) const;
+  // The texel a direction falls in (nearest).
+  void texel_of(const glm::vec3& dir, int* x, int* y) const;
+  glm::vec3 texel_value(int x, int y) const;
+
+ private:
+  int width_, height_;
+  std::vector<float> rgb_;
+  EnvMapping mapping_;
+  std::string source_;
+};
+
+// Reads a Radiance .hdr file. NaN, Inf and negative texels are replaced by 0 and counted in one
+// warning through ctx. Throws Error naming the file when it is not a readable .hdr image or its
+// shape fits no mapping.
+EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx);
+
+// A constant environment of the given radiance (lat-long, tiny): for furnace tests.
+EnvMap constant_envmap(const glm::vec3& radiance);
+
+}  // namespace prt::bake

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+// The raw scene: what the importers (glTF, OBJ) produce and every bake stage reads.
+//
+// World frame: glTF's, right-handed, +Y up, metres (formats/SPEC.md §Frames). OBJ files are
+// taken to be in the same frame. Every mesh's positions/normals/tangents are in world space;
+// the mesh-local originals are kept for the techniques that animate (skinning, rigid motion).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "prt/baker/context.hpp"
+
+namespace prt::bake {
+
+struct Material {
+  std::string name;
+  glm::vec4 base_color{1.0f};    // linear RGBA factor (glTF baseColorFactor)
+  int base_color_texture = -1;   // index into Scene::images, -1 = none
+  int base_color_texcoord = 0;   // which TEXCOORD_n the texture uses
+  bool double_sided = false;
+};
+
+// A decoded texture image, RGBA8 as stored (sRGB for base colour).
+struct Image {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // width*height*4
+};
+
+struct Node {
+  std::string name;
+  int parent = -1;
+  std::vector<int> children;
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+  glm::vec3 scale{1.0f};
+  glm::mat4 local{1.0f};  // T*R*S, or the node's matrix
+  glm::mat4 world{1.0f};  // parent world * local
+  int mesh = -1;          // glTF mesh index, -1 = none
+  int skin = -1;          // index into Scene::skins, -1 = none
+};
+
+struct Skin {
+  std::string name;
+  std::vector<int> joints;                 // node indices
+  std::vector<glm::mat4> inverse_bind;     // one per joint (identity where the file has none)
+  int skeleton = -1;                       // root node, -1 = none given
+};
+
+struct AnimationChannel {
+  enum class Path { Translation, Rotation, Scale, Weights };
+  enum class Interpolation { Linear, Step, CubicSpline };
+  int node = -1;
+  Path path = Path::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;   // seconds, ascending
+  std::vector<float> values;  // times.size() * components (x3 for CubicSpline: in, value, out)
+  int components = 3;         // 3 (T, S), 4 (R as x,y,z,w), or the morph-target count
+};
+
+struct Animation {
+  std::string name;
+  std::vector<AnimationChannel> channels;
+  float duration = 0.0f;  // seconds
+};
+
+// One triangle list (a glTF primitive, or an OBJ object) in world space.
+struct Mesh {
+  std::string name;
+  int node = -1;       // node that places it (-1 for OBJ)
+  int material = -1;   // index into Scene::materials, -1 = default (white)
+  int skin = -1;       // index into Scene::skins, -1 = not skinned
+
+  // World space. For a skinned mesh: the bind pose placed by the skin's joints at their rest
+  // transforms (glTF ignores the mesh node's own transform then).
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // unit length; generated (area-weighted) where the file has none
+  std::vector<glm::vec4> tangents;  // xyz unit, w = handedness; empty where no UVs to derive them
+  // Mesh-local attributes as stored in the file (before any node or skin transform).
+  std::vector<glm::vec3> local_positions;
+  std::vector<glm::vec3> local_normals;
+
+  std::vector<glm::vec2> texcoords0;  // empty if absent
+  std::vector<glm::vec4> colors0;     // linear RGBA, empty if absent
+  std::vector<glm::u16vec4> joints0;  // empty if not skinned
+  std::vector<glm::vec4> weights0;    // empty if not skinned
+
+  std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
+
+  bool normals_generated = false;
+  bool tangents_generated = false;
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct Scene {
+  std::string source;  // the file it came from
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Image> images;
+  std::vector<Node> nodes;
+  std::vector<Skin> skins;
+  std::vector<Animation> animations;
+
+  // Vertices are numbered by concatenating meshes in order: this is "the order of the imported
+  // mesh" used by every per-vertex output (e.g. prt-bake reference --vertex-out).
+  std::size_t vertex_count() const;
+  std::size_t triangle_count() const;
+  // World-space bounds of all mesh positions.
+  void bounds(glm::vec3& lo, glm::vec3& hi) const;
+  // Linear RGB albedo of a mesh vertex: material base colour x vertex colour x texture (sampled
+  // at the vertex UV, sRGB decoded), clamped to [0,1].
+  glm::vec3 vertex_albedo(const Mesh& mesh, std::size_t vertex) const;
+};
+
+// Reads .gltf / .glb (with KHR_draco_mesh_compression) or .obj, chosen by the file extension.
+// Throws Error naming the file and what is wrong. Warnings (e.g. generated normals) go to ctx.
+Scene import_scene(const std::string& path, const Context& ctx);
+
+}  // namespace prt::bake

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+// What every prt-bake subcommand shares: global flags, the terminal context, the exit code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "prt/baker/context.hpp"
+
+namespace prt::bake::cli {
+
+struct CommandEnv {
+  unsigned threads = 0;  // --threads N (0 = all cores), shared by every command
+  bool quiet = false;    // --quiet: errors only, no progress
+  int exit_code = 0;     // set by the command that ran
+  // A context that logs to stderr and draws progress when stderr is a terminal.
+  Context context() const;
+};
+
+// Each command file registers one subcommand; its callback runs the command, throws Error on
+// failure, and sets env.exit_code when it has something other than 0 to say.
+void add_reference_command(CLI::App& app, CommandEnv& env);
+void add_inspect_command(CLI::App& app, CommandEnv& env);
+void add_demo_scene_command(CLI::App& app, CommandEnv& env);
+
+}  // namespace prt::bake::cli

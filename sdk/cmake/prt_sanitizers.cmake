@@ -1,0 +1,5 @@
+# PRT_SANITIZE: AddressSanitizer + UndefinedBehaviorSanitizer on everything this build compiles.
+if(PRT_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
