@@ -24,10 +24,18 @@ enum class EnvMapping {
 // Parses "auto" | "latlong" | "cross" | "probe"; throws Error on anything else.
 EnvMapping parse_env_mapping(const std::string& name);
 const char* env_mapping_name(EnvMapping mapping);
+// The mapping an image of this shape has (2:1, 3:4, 1:1); Auto when the shape fits none.
+EnvMapping detect_env_mapping(int width, int height);
+
+// Replaces every NaN, infinite or negative channel value by 0 and returns how many texels (RGB
+// triples) had at least one such value. Every EnvMap goes through it on construction.
+std::size_t sanitize_radiance(std::vector<float>& rgb);
 
 class EnvMap {
  public:
-  // Linear RGB, row-major from the top row, width*height*3 floats.
+  // Linear RGB, row-major from the top row, width*height*3 floats. Auto detects the mapping from
+  // the shape. Throws Error naming source when the size or the shape does not fit the mapping.
+  // Bad texels are sanitised (sanitize_radiance); sanitized_texels() says how many there were.
   EnvMap(int width, int height, std::vector<float> rgb, EnvMapping mapping, std::string source);
 
   int width() const { return width_; }
@@ -35,6 +43,9 @@ class EnvMap {
   EnvMapping mapping() const { return mapping_; }
   const std::string& source() const { return source_; }
   const std::vector<float>& pixels() const { return rgb_; }
+  std::size_t sanitized_texels() const { return sanitized_; }
+  // Edge length of a cube face (VerticalCross only, else 0).
+  int face_size() const { return mapping_ == EnvMapping::VerticalCross ? width_ / 3 : 0; }
 
   // Radiance arriving from world direction dir (unit): bilinear within a face/region.
   glm::vec3 radiance(const glm::vec3& dir) const;
@@ -51,6 +62,7 @@ class EnvMap {
   std::vector<float> rgb_;
   EnvMapping mapping_;
   std::string source_;
+  std::size_t sanitized_ = 0;
 };
 
 // Reads a Radiance .hdr file. NaN, Inf and negative texels are replaced by 0 and counted in one

@@ -19,9 +19,11 @@ namespace prt::bake {
 
 struct Material {
   std::string name;
-  glm::vec4 base_color{1.0f};    // linear RGBA factor (glTF baseColorFactor)
-  int base_color_texture = -1;   // index into Scene::images, -1 = none
-  int base_color_texcoord = 0;   // which TEXCOORD_n the texture uses
+  glm::vec4 base_color{1.0f};   // linear RGBA factor (glTF baseColorFactor)
+  int base_color_texture = -1;  // index into Scene::images, -1 = none
+  int base_color_texcoord = 0;  // which TEXCOORD_n the texture uses
+  // KHR_texture_transform of the base colour texture: uv' = (M * vec3(uv, 1)).xy.
+  glm::mat3 base_color_uv_transform{1.0f};
   bool double_sided = false;
 };
 
@@ -47,9 +49,9 @@ struct Node {
 
 struct Skin {
   std::string name;
-  std::vector<int> joints;                 // node indices
-  std::vector<glm::mat4> inverse_bind;     // one per joint (identity where the file has none)
-  int skeleton = -1;                       // root node, -1 = none given
+  std::vector<int> joints;              // node indices
+  std::vector<glm::mat4> inverse_bind;  // one per joint (identity where the file has none)
+  int skeleton = -1;                    // root node, -1 = none given
 };
 
 struct AnimationChannel {
@@ -72,14 +74,14 @@ struct Animation {
 // One triangle list (a glTF primitive, or an OBJ object) in world space.
 struct Mesh {
   std::string name;
-  int node = -1;       // node that places it (-1 for OBJ)
-  int material = -1;   // index into Scene::materials, -1 = default (white)
-  int skin = -1;       // index into Scene::skins, -1 = not skinned
+  int node = -1;      // node that places it (-1 for OBJ)
+  int material = -1;  // index into Scene::materials, -1 = default (white)
+  int skin = -1;      // index into Scene::skins, -1 = not skinned
 
   // World space. For a skinned mesh: the bind pose placed by the skin's joints at their rest
   // transforms (glTF ignores the mesh node's own transform then).
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;   // unit length; generated (area-weighted) where the file has none
+  std::vector<glm::vec3> normals;  // unit length; generated (area-weighted) where the file has none
   std::vector<glm::vec4> tangents;  // xyz unit, w = handedness; empty where no UVs to derive them
   // Mesh-local attributes as stored in the file (before any node or skin transform).
   std::vector<glm::vec3> local_positions;
@@ -118,6 +120,14 @@ struct Scene {
   // at the vertex UV, sRGB decoded), clamped to [0,1].
   glm::vec3 vertex_albedo(const Mesh& mesh, std::size_t vertex) const;
 };
+
+// Recomputes a mesh's world-space normals, area-weighted from positions and indices (vertices
+// no triangle touches get +Y), and flags them generated.
+void generate_normals(Mesh& mesh);
+// Recomputes world-space tangents from TEXCOORD_0 (per-triangle dP/du accumulated by area,
+// orthogonalised against the normal; w = +1 when cross(n, t) points to decreasing v, glTF's
+// convention), and flags them generated. Clears them when the mesh has no UVs or normals.
+void generate_tangents(Mesh& mesh);
 
 // Reads .gltf / .glb (with KHR_draco_mesh_compression) or .obj, chosen by the file extension.
 // Throws Error naming the file and what is wrong. Warnings (e.g. generated normals) go to ctx.

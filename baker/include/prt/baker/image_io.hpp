@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// Writing the reference renderer's outputs: per-vertex radiance as NumPy .npy, images as
+// tone-mapped sRGB PNG or linear Radiance .hdr.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace prt::bake {
+
+// Linear RGB radiance, row-major from the top row.
+struct LinearImage {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> pixels;
+};
+
+// Writes float32 little-endian, C order, shape [values.size(), 3] (.npy format 1.0).
+// Throws Error naming the file if it cannot be written.
+void write_npy_vec3(const std::string& path, const std::vector<glm::vec3>& values);
+
+// Exposure (in EV, a scale of 2^EV) that maps the image's log-average luminance to middle grey
+// 0.18 (Reinhard et al. 2002's key value). Pixels with zero or non-finite luminance are ignored;
+// 0 for an image that has none left.
+float auto_exposure_ev(const LinearImage& image);
+
+// Filmic tone map (the ACES fit of K. Narkowicz, 2015) of radiance x 2^exposure_ev, then sRGB
+// encoding: RGB8, width*height*3 bytes.
+std::vector<std::uint8_t> tone_map_srgb8(const LinearImage& image, float exposure_ev);
+
+// Writes `image` by the file extension: .png -> tone-mapped sRGB (exposure_ev as above), .hdr ->
+// linear radiance (no exposure). Throws Error naming the file on any other extension or failure.
+void write_image(const std::string& path, const LinearImage& image, float exposure_ev);
+
+}  // namespace prt::bake

@@ -1,0 +1,427 @@
+// SPDX-License-Identifier: MIT
+// Environment maps: the three mappings of formats/SPEC.md §Environment maps. World frame: glTF,
+// +Y up, the "front" of every mapping (lat-long and probe image centre, cross centre face) at -Z,
+// image right = +X, image up = +Y.
+#include "prt/baker/envmap.hpp"
+
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "prt/baker/context.hpp"
+
+namespace prt::bake {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Vertical cross (HDRShop): face [col,row] in the 3x4 grid, and the world direction of face
+// coordinates (u right, v up, both in [-1,1]) as the image shows them.
+enum CubeFace { kPosX, kNegX, kPosY, kNegY, kPosZ, kNegZ, kNoFace };
+
+CubeFace cross_face_at(int col, int row) {
+  if (col == 1) {
+    switch (row) {
+      case 0:
+        return kPosY;
+      case 1:
+        return kNegZ;
+      case 2:
+        return kNegY;
+      case 3:
+        return kPosZ;
+      default:
+        return kNoFace;
+    }
+  }
+  if (row == 1) return col == 0 ? kNegX : (col == 2 ? kPosX : kNoFace);
+  return kNoFace;
+}
+
+void cross_face_cell(CubeFace face, int* col, int* row) {
+  static const int kCells[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 3}, {1, 1}};
+  *col = kCells[face][0];
+  *row = kCells[face][1];
+}
+
+glm::dvec3 cross_face_direction(CubeFace face, double u, double v) {
+  switch (face) {
+    case kPosX:
+      return {1.0, v, u};
+    case kNegX:
+      return {-1.0, v, -u};
+    case kPosY:
+      return {u, 1.0, v};
+    case kNegY:
+      return {u, -1.0, -v};
+    case kPosZ:
+      return {u, -v, 1.0};  // the back face is stored upside down
+    case kNegZ:
+      return {u, v, -1.0};
+    default:
+      return {0.0, 0.0, 0.0};
+  }
+}
+
+// Inverse of cross_face_direction: the face dir falls on and its (u, v).
+CubeFace cross_face_of(const glm::dvec3& d, double* u, double* v) {
+  const double ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+  if (ax >= ay && ax >= az) {
+    if (d.x > 0) {
+      *u = d.z / ax;
+      *v = d.y / ax;
+      return kPosX;
+    }
+    *u = -d.z / ax;
+    *v = d.y / ax;
+    return kNegX;
+  }
+  if (ay >= az) {
+    if (d.y > 0) {
+      *u = d.x / ay;
+      *v = d.z / ay;
+      return kPosY;
+    }
+    *u = d.x / ay;
+    *v = -d.z / ay;
+    return kNegY;
+  }
+  if (d.z > 0) {
+    *u = d.x / az;
+    *v = -d.y / az;
+    return kPosZ;
+  }
+  *u = d.x / az;
+  *v = d.y / az;
+  return kNegZ;
+}
+
+// Solid angle of the cube-face rectangle [0,x]x[0,y] at distance 1 (signed, exact).
+double cube_corner_solid_angle(double x, double y) {
+  return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
+
+double cube_texel_solid_angle(double u0, double v0, double u1, double v1) {
+  return std::abs(cube_corner_solid_angle(u1, v1) - cube_corner_solid_angle(u0, v1) -
+                  cube_corner_solid_angle(u1, v0) + cube_corner_solid_angle(u0, v0));
+}
+
+glm::vec3 normalised(const glm::dvec3& d) {
+  return glm::vec3(glm::normalize(d));
+}
+
+}  // namespace
+
+EnvMapping parse_env_mapping(const std::string& name) {
+  if (name == "auto") return EnvMapping::Auto;
+  if (name == "latlong") return EnvMapping::LatLong;
+  if (name == "cross") return EnvMapping::VerticalCross;
+  if (name == "probe") return EnvMapping::AngularProbe;
+  throw Error("unknown environment mapping '" + name +
+              "' (expected auto, latlong, cross or probe)");
+}
+
+const char* env_mapping_name(EnvMapping mapping) {
+  switch (mapping) {
+    case EnvMapping::Auto:
+      return "auto";
+    case EnvMapping::LatLong:
+      return "latlong";
+    case EnvMapping::VerticalCross:
+      return "cross";
+    case EnvMapping::AngularProbe:
+      return "probe";
+  }
+  return "?";
+}
+
+EnvMapping detect_env_mapping(int width, int height) {
+  if (width <= 0 || height <= 0) return EnvMapping::Auto;
+  if (width == 2 * height) return EnvMapping::LatLong;
+  if (width % 3 == 0 && height % 4 == 0 && width / 3 == height / 4)
+    return EnvMapping::VerticalCross;
+  if (width == height) return EnvMapping::AngularProbe;
+  return EnvMapping::Auto;
+}
+
+std::size_t sanitize_radiance(std::vector<float>& rgb) {
+  std::size_t bad_texels = 0;
+  for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) {
+    bool bad = false;
+    for (std::size_t c = 0; c < 3; ++c) {
+      float& value = rgb[i + c];
+      if (!std::isfinite(value) || value < 0.0f) {
+        value = 0.0f;
+        bad = true;
+      }
+    }
+    if (bad) ++bad_texels;
+  }
+  return bad_texels;
+}
+
+EnvMap::EnvMap(int width, int height, std::vector<float> rgb, EnvMapping mapping,
+               std::string source)
+    : width_(width),
+      height_(height),
+      rgb_(std::move(rgb)),
+      mapping_(mapping),
+      source_(std::move(source)) {
+  const std::string shape = std::to_string(width) + "x" + std::to_string(height);
+  if (width <= 0 || height <= 0 ||
+      rgb_.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
+    throw Error(source_ + ": environment map of " + shape + " texels needs " +
+                "width*height*3 floats, got " + std::to_string(rgb_.size()));
+  }
+  const EnvMapping detected = detect_env_mapping(width, height);
+  if (mapping_ == EnvMapping::Auto) {
+    if (detected == EnvMapping::Auto) {
+      throw Error(source_ + ": cannot tell the environment mapping from the image shape " + shape +
+                  " (expected 2:1 lat-long, 3:4 vertical cross or 1:1 angular probe)");
+    }
+    mapping_ = detected;
+  }
+  const bool fits =
+      (mapping_ == EnvMapping::LatLong && width >= 2 && height >= 1) ||
+      (mapping_ == EnvMapping::VerticalCross && detected == EnvMapping::VerticalCross) ||
+      (mapping_ == EnvMapping::AngularProbe && width == height);
+  if (!fits) {
+    throw Error(source_ + ": image shape " + shape + " does not fit the " +
+                env_mapping_name(mapping_) + " mapping");
+  }
+  sanitized_ = sanitize_radiance(rgb_);
+}
+
+glm::vec3 EnvMap::texel_value(int x, int y) const {
+  const std::size_t i = (static_cast<std::size_t>(y) * width_ + x) * 3;
+  return {rgb_[i], rgb_[i + 1], rgb_[i + 2]};
+}
+
+bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return false;
+  switch (mapping_) {
+    case EnvMapping::LatLong: {
+      // u = 0.5 + atan2(d.x, -d.z)/(2 pi), v = acos(d.y)/pi.
+      const double phi0 = (static_cast<double>(x) / width_ - 0.5) * 2.0 * kPi;
+      const double dphi = 2.0 * kPi / width_;
+      const double theta0 = kPi * y / height_, theta1 = kPi * (y + 1) / height_;
+      const double phi = phi0 + 0.5 * dphi, theta = 0.5 * (theta0 + theta1);
+      if (dir) {
+        *dir = normalised(
+            {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)});
+      }
+      if (solid_angle)
+        *solid_angle = static_cast<float>(dphi * (std::cos(theta0) - std::cos(theta1)));
+      return true;
+    }
+    case EnvMapping::VerticalCross: {
+      const int f = face_size();
+      const CubeFace face = cross_face_at(x / f, y / f);
+      if (face == kNoFace) return false;
+      const int i = x % f, j = y % f;
+      const double u0 = 2.0 * i / f - 1.0, u1 = 2.0 * (i + 1) / f - 1.0;
+      const double v0 = 1.0 - 2.0 * (j + 1) / f, v1 = 1.0 - 2.0 * j / f;
+      if (dir) *dir = normalised(cross_face_direction(face, 0.5 * (u0 + u1), 0.5 * (v0 + v1)));
+      if (solid_angle) *solid_angle = static_cast<float>(cube_texel_solid_angle(u0, v0, u1, v1));
+      return true;
+    }
+    case EnvMapping::AngularProbe: {
+      const double half = 0.5 * width_;
+      const double u = (x + 0.5 - half) / half, v = (half - y - 0.5) / half;
+      const double r = std::sqrt(u * u + v * v);
+      if (r > 1.0) return false;
+      const double theta = kPi * r, phi = std::atan2(v, u);
+      // Probe frame d' = (sin t cos p, sin t sin p, cos t); world = (d'.x, d'.y, -d'.z).
+      if (dir) {
+        *dir = normalised(
+            {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta)});
+      }
+      if (solid_angle) {
+        const double texel = 2.0 * kPi / width_;
+        const double sinc = theta > 1e-12 ? std::sin(theta) / theta : 1.0;
+        *solid_angle = static_cast<float>(texel * texel * sinc);
+      }
+      return true;
+    }
+    case EnvMapping::Auto:
+      break;
+  }
+  return false;
+}
+
+namespace {
+
+// Continuous texel coordinates (texel centres at integers + 0.5 removed: centre of texel x is x).
+struct LatLongCoord {
+  double x, y;
+};
+
+LatLongCoord latlong_coord(const glm::dvec3& d, int width, int height) {
+  const double u = 0.5 + std::atan2(d.x, -d.z) / (2.0 * kPi);
+  const double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
+  return {u * width - 0.5, v * height - 0.5};
+}
+
+void probe_coord(const glm::dvec3& d, int width, double* x, double* y) {
+  const double theta = std::acos(std::clamp(-d.z, -1.0, 1.0));
+  const double r = theta / kPi;
+  const double phi = std::atan2(d.y, d.x);
+  const double half = 0.5 * width;
+  *x = r * std::cos(phi) * half + half - 0.5;
+  *y = half - r * std::sin(phi) * half - 0.5;
+}
+
+}  // namespace
+
+void EnvMap::texel_of(const glm::vec3& dir_in, int* x, int* y) const {
+  const glm::dvec3 d = glm::normalize(glm::dvec3(dir_in));
+  int tx = 0, ty = 0;
+  switch (mapping_) {
+    case EnvMapping::LatLong: {
+      const LatLongCoord c = latlong_coord(d, width_, height_);
+      tx = static_cast<int>(std::floor(c.x + 0.5));
+      ty = static_cast<int>(std::floor(c.y + 0.5));
+      tx = ((tx % width_) + width_) % width_;
+      break;
+    }
+    case EnvMapping::VerticalCross: {
+      const int f = face_size();
+      double u = 0.0, v = 0.0;
+      const CubeFace face = cross_face_of(d, &u, &v);
+      int col = 0, row = 0;
+      cross_face_cell(face, &col, &row);
+      const int i = std::clamp(static_cast<int>(std::floor((u + 1.0) * 0.5 * f)), 0, f - 1);
+      const int j = std::clamp(static_cast<int>(std::floor((1.0 - v) * 0.5 * f)), 0, f - 1);
+      tx = col * f + i;
+      ty = row * f + j;
+      break;
+    }
+    case EnvMapping::AngularProbe: {
+      double cx = 0.0, cy = 0.0;
+      probe_coord(d, width_, &cx, &cy);
+      tx = static_cast<int>(std::floor(cx + 0.5));
+      ty = static_cast<int>(std::floor(cy + 0.5));
+      if (!texel(tx, ty, nullptr, nullptr)) {
+        // Near the rim the nearest texel centre can lie just outside the disc: take the nearest
+        // neighbour that is inside.
+        double best = 1e300;
+        const int cx0 = tx, cy0 = ty;
+        for (int j = cy0 - 1; j <= cy0 + 1; ++j) {
+          for (int i = cx0 - 1; i <= cx0 + 1; ++i) {
+            const double dist = (i - cx) * (i - cx) + (j - cy) * (j - cy);
+            if (dist < best && texel(i, j, nullptr, nullptr)) {
+              best = dist;
+              tx = i;
+              ty = j;
+            }
+          }
+        }
+      }
+      break;
+    }
+    case EnvMapping::Auto:
+      break;
+  }
+  *x = std::clamp(tx, 0, width_ - 1);
+  *y = std::clamp(ty, 0, height_ - 1);
+}
+
+glm::vec3 EnvMap::radiance(const glm::vec3& dir_in) const {
+  const glm::dvec3 d = glm::normalize(glm::dvec3(dir_in));
+  switch (mapping_) {
+    case EnvMapping::LatLong: {
+      // Bilinear, wrapping around in longitude and clamped at the poles.
+      const LatLongCoord c = latlong_coord(d, width_, height_);
+      const double fx = std::floor(c.x), fy = std::floor(c.y);
+      const double ax = c.x - fx, ay = c.y - fy;
+      const int x0 = ((static_cast<int>(fx) % width_) + width_) % width_;
+      const int x1 = (x0 + 1) % width_;
+      const int y0 = std::clamp(static_cast<int>(fy), 0, height_ - 1);
+      const int y1 = std::clamp(static_cast<int>(fy) + 1, 0, height_ - 1);
+      const glm::vec3 top = glm::mix(texel_value(x0, y0), texel_value(x1, y0), float(ax));
+      const glm::vec3 bottom = glm::mix(texel_value(x0, y1), texel_value(x1, y1), float(ax));
+      return glm::mix(top, bottom, float(ay));
+    }
+    case EnvMapping::VerticalCross: {
+      // Bilinear within the face, clamped at its edges (the padding is never read).
+      const int f = face_size();
+      double u = 0.0, v = 0.0;
+      const CubeFace face = cross_face_of(d, &u, &v);
+      int col = 0, row = 0;
+      cross_face_cell(face, &col, &row);
+      const double px = std::clamp((u + 1.0) * 0.5 * f - 0.5, 0.0, f - 1.0);
+      const double py = std::clamp((1.0 - v) * 0.5 * f - 0.5, 0.0, f - 1.0);
+      const int i0 = static_cast<int>(px), j0 = static_cast<int>(py);
+      const int i1 = std::min(i0 + 1, f - 1), j1 = std::min(j0 + 1, f - 1);
+      const float ax = float(px - i0), ay = float(py - j0);
+      const int ox = col * f, oy = row * f;
+      const glm::vec3 top =
+          glm::mix(texel_value(ox + i0, oy + j0), texel_value(ox + i1, oy + j0), ax);
+      const glm::vec3 bottom =
+          glm::mix(texel_value(ox + i0, oy + j1), texel_value(ox + i1, oy + j1), ax);
+      return glm::mix(top, bottom, ay);
+    }
+    case EnvMapping::AngularProbe: {
+      // Bilinear over the texels inside the disc, weights renormalised at the rim.
+      double cx = 0.0, cy = 0.0;
+      probe_coord(d, width_, &cx, &cy);
+      const double fx = std::floor(cx), fy = std::floor(cy);
+      const double ax = cx - fx, ay = cy - fy;
+      glm::dvec3 sum(0.0);
+      double weight = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const int x = static_cast<int>(fx) + (k & 1), y = static_cast<int>(fy) + (k >> 1);
+        if (!texel(x, y, nullptr, nullptr)) continue;
+        const double w = ((k & 1) ? ax : 1.0 - ax) * ((k >> 1) ? ay : 1.0 - ay);
+        sum += w * glm::dvec3(texel_value(x, y));
+        weight += w;
+      }
+      if (weight > 0.0) return glm::vec3(sum / weight);
+      int x = 0, y = 0;
+      texel_of(dir_in, &x, &y);
+      return texel_value(x, y);
+    }
+    case EnvMapping::Auto:
+      break;
+  }
+  return glm::vec3(0.0f);
+}
+
+EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx) {
+  if (!std::ifstream(path, std::ios::binary)) throw Error(path + ": cannot open file");
+  if (!stbi_is_hdr(path.c_str())) {
+    throw Error(path + ": not a Radiance .hdr image (no #?RADIANCE / #?RGBE signature)");
+  }
+  int width = 0, height = 0, channels = 0;
+  float* data = stbi_loadf(path.c_str(), &width, &height, &channels, 3);
+  if (!data) {
+    const char* reason = stbi_failure_reason();
+    throw Error(path + ": cannot decode the .hdr image (" + (reason ? reason : "unknown") + ")");
+  }
+  std::vector<float> rgb(data, data + static_cast<std::size_t>(width) * height * 3);
+  stbi_image_free(data);
+  EnvMap map(width, height, std::move(rgb), mapping, path);
+  if (map.sanitized_texels() > 0) {
+    ctx.warn(path + ": replaced " + std::to_string(map.sanitized_texels()) +
+             " texels holding NaN, infinite or negative values by 0");
+  }
+  ctx.message(LogLevel::Debug, path + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                                   " " + env_mapping_name(map.mapping()) + " environment map");
+  return map;
+}
+
+EnvMap constant_envmap(const glm::vec3& radiance) {
+  constexpr int kWidth = 8, kHeight = 4;
+  std::vector<float> rgb(kWidth * kHeight * 3);
+  for (std::size_t i = 0; i < rgb.size(); i += 3) {
+    rgb[i] = radiance.r;
+    rgb[i + 1] = radiance.g;
+    rgb[i + 2] = radiance.b;
+  }
+  return EnvMap(kWidth, kHeight, std::move(rgb), EnvMapping::LatLong, "constant environment");
+}
+
+}  // namespace prt::bake

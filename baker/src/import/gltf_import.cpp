@@ -1,0 +1,521 @@
+// SPDX-License-Identifier: MIT
+// glTF 2.0 → Scene: images, materials, the node hierarchy, skins, animations and one Mesh per
+// primitive instance (a primitive reached through two nodes gives two meshes), in world space.
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/gtx/matrix_decompose.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "gltf_model.hpp"
+#include "import_detail.hpp"
+
+namespace prt::bake::detail {
+namespace {
+
+// ---- images and materials -------------------------------------------------------------------
+
+Image convert_image(const tinygltf::Image& source, std::size_t index) {
+  Image image;
+  image.name = source.name.empty() ? source.uri : source.name;
+  if (source.width <= 0 || source.height <= 0 || source.component < 1 || source.component > 4 ||
+      (source.bits != 8 && source.bits != 16)) {
+    image.name += " (image " + std::to_string(index) + " not decoded)";
+    return image;
+  }
+  const std::size_t pixels = static_cast<std::size_t>(source.width) * source.height;
+  const std::size_t bytes_per_channel = source.bits / 8;
+  if (source.image.size() < pixels * source.component * bytes_per_channel) return image;
+  image.width = source.width;
+  image.height = source.height;
+  image.rgba.assign(pixels * 4, 255);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (int c = 0; c < source.component; ++c) {
+      const std::size_t at = (p * source.component + c) * bytes_per_channel;
+      // 16-bit PNG data is stored little-endian by tinygltf: keep the high byte.
+      const std::uint8_t value = bytes_per_channel == 1 ? source.image[at] : source.image[at + 1];
+      if (source.component <= 2 && c == 0) {
+        image.rgba[p * 4] = image.rgba[p * 4 + 1] = image.rgba[p * 4 + 2] = value;  // grey
+      } else if (source.component == 2) {
+        image.rgba[p * 4 + 3] = value;  // grey + alpha
+      } else {
+        image.rgba[p * 4 + c] = value;
+      }
+    }
+  }
+  return image;
+}
+
+double number_at(const tinygltf::Value& array, int i, double fallback) {
+  if (!array.IsArray() || i >= static_cast<int>(array.ArrayLen())) return fallback;
+  const tinygltf::Value& v = array.Get(i);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+// KHR_texture_transform on the base colour texture: uv' = T * R * S * uv.
+glm::mat3 texture_transform(const tinygltf::ExtensionMap& extensions, int* texcoord) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
+  const tinygltf::Value& ext = it->second;
+  const tinygltf::Value offset = ext.Get("offset"), scale = ext.Get("scale");
+  const tinygltf::Value rotation = ext.Get("rotation");
+  const float r = rotation.IsNumber() ? static_cast<float>(rotation.GetNumberAsDouble()) : 0.0f;
+  if (ext.Has("texCoord") && ext.Get("texCoord").IsInt())
+    *texcoord = ext.Get("texCoord").Get<int>();
+  glm::mat3 t(1.0f), rot(1.0f), s(1.0f);
+  t[2] = glm::vec3(number_at(offset, 0, 0.0), number_at(offset, 1, 0.0), 1.0f);
+  rot[0] = glm::vec3(std::cos(r), -std::sin(r), 0.0f);
+  rot[1] = glm::vec3(std::sin(r), std::cos(r), 0.0f);
+  s[0][0] = static_cast<float>(number_at(scale, 0, 1.0));
+  s[1][1] = static_cast<float>(number_at(scale, 1, 1.0));
+  return t * rot * s;
+}
+
+Material convert_material(const tinygltf::Model& model, const tinygltf::Material& source) {
+  Material material;
+  material.name = source.name;
+  const auto& pbr = source.pbrMetallicRoughness;
+  for (int c = 0; c < 4 && c < static_cast<int>(pbr.baseColorFactor.size()); ++c) {
+    material.base_color[c] = static_cast<float>(pbr.baseColorFactor[c]);
+  }
+  material.double_sided = source.doubleSided;
+  const int texture = pbr.baseColorTexture.index;
+  if (texture >= 0 && static_cast<std::size_t>(texture) < model.textures.size()) {
+    const int image = model.textures[texture].source;
+    if (image >= 0 && static_cast<std::size_t>(image) < model.images.size()) {
+      material.base_color_texture = image;
+      material.base_color_texcoord = pbr.baseColorTexture.texCoord;
+      material.base_color_uv_transform =
+          texture_transform(pbr.baseColorTexture.extensions, &material.base_color_texcoord);
+    }
+  }
+  return material;
+}
+
+// ---- nodes -----------------------------------------------------------------------------------
+
+Node convert_node(const tinygltf::Node& source) {
+  Node node;
+  node.name = source.name;
+  node.mesh = source.mesh;
+  node.skin = source.skin;
+  node.children = source.children;
+  if (source.matrix.size() == 16) {
+    double m[16];
+    std::copy(source.matrix.begin(), source.matrix.end(), m);
+    node.local = glm::mat4(glm::make_mat4(m));
+    glm::vec3 skew;
+    glm::vec4 perspective;
+    glm::decompose(node.local, node.scale, node.rotation, node.translation, skew, perspective);
+  } else {
+    if (source.translation.size() == 3) {
+      node.translation =
+          glm::vec3(source.translation[0], source.translation[1], source.translation[2]);
+    }
+    if (source.rotation.size() == 4) {  // glTF stores x, y, z, w
+      node.rotation = glm::normalize(glm::quat(
+          static_cast<float>(source.rotation[3]), static_cast<float>(source.rotation[0]),
+          static_cast<float>(source.rotation[1]), static_cast<float>(source.rotation[2])));
+    }
+    if (source.scale.size() == 3) {
+      node.scale = glm::vec3(source.scale[0], source.scale[1], source.scale[2]);
+    }
+    node.local = glm::translate(glm::mat4(1.0f), node.translation) * glm::mat4_cast(node.rotation) *
+                 glm::scale(glm::mat4(1.0f), node.scale);
+  }
+  return node;
+}
+
+void link_nodes(std::vector<Node>& nodes, const std::string& file) {
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    for (int child : nodes[i].children) {
+      if (child < 0 || static_cast<std::size_t>(child) >= nodes.size()) {
+        throw Error(file + ": node " + std::to_string(i) + " has a child " + std::to_string(child) +
+                    " that does not exist");
+      }
+      if (nodes[child].parent >= 0 || static_cast<std::size_t>(child) == i) {
+        throw Error(file + ": node " + std::to_string(child) +
+                    " has more than one parent (the node graph is not a tree)");
+      }
+      nodes[child].parent = static_cast<int>(i);
+    }
+  }
+  // World transforms, parents first; a cycle leaves nodes unvisited.
+  std::vector<bool> done(nodes.size(), false);
+  std::function<void(int)> visit = [&](int n) {
+    nodes[n].world =
+        nodes[n].parent >= 0 ? nodes[nodes[n].parent].world * nodes[n].local : nodes[n].local;
+    done[n] = true;
+    for (int child : nodes[n].children) visit(child);
+  };
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].parent < 0) visit(static_cast<int>(i));
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (!done[i]) throw Error(file + ": node " + std::to_string(i) + " is part of a cycle");
+  }
+}
+
+// ---- skins and animations ---------------------------------------------------------------------
+
+Skin convert_skin(const tinygltf::Model& model, const tinygltf::Skin& source, std::size_t index,
+                  const std::string& file) {
+  Skin skin;
+  skin.name = source.name;
+  skin.skeleton = source.skeleton;
+  const std::string id = "skin " + std::to_string(index);
+  for (int joint : source.joints) {
+    if (joint < 0 || static_cast<std::size_t>(joint) >= model.nodes.size()) {
+      throw Error(file + ": " + id + " names joint node " + std::to_string(joint) +
+                  ", which does not exist");
+    }
+  }
+  if (skin.skeleton >= static_cast<int>(model.nodes.size())) {
+    throw Error(file + ": " + id + " has a skeleton node that does not exist");
+  }
+  skin.joints = source.joints;
+  skin.inverse_bind.assign(skin.joints.size(), glm::mat4(1.0f));
+  if (source.inverseBindMatrices >= 0) {
+    const AccessorData data = read_accessor(model, source.inverseBindMatrices, true, file,
+                                            id + " inverseBindMatrices", {16});
+    if (data.count < skin.joints.size()) {
+      throw Error(file + ": " + id + " has " + std::to_string(data.count) +
+                  " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
+    }
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      skin.inverse_bind[j] = glm::mat4(glm::make_mat4(data.element(j)));
+    }
+  }
+  return skin;
+}
+
+AnimationChannel::Path channel_path(const std::string& path, bool* known) {
+  *known = true;
+  if (path == "translation") return AnimationChannel::Path::Translation;
+  if (path == "rotation") return AnimationChannel::Path::Rotation;
+  if (path == "scale") return AnimationChannel::Path::Scale;
+  if (path == "weights") return AnimationChannel::Path::Weights;
+  *known = false;
+  return AnimationChannel::Path::Translation;
+}
+
+Animation convert_animation(const tinygltf::Model& model, const tinygltf::Animation& source,
+                            std::size_t index, const std::string& file, const Context& ctx) {
+  Animation animation;
+  animation.name = source.name;
+  const std::string id = "animation " + std::to_string(index);
+  for (std::size_t c = 0; c < source.channels.size(); ++c) {
+    const tinygltf::AnimationChannel& channel = source.channels[c];
+    const std::string what = id + " channel " + std::to_string(c);
+    bool known = false;
+    AnimationChannel out;
+    out.path = channel_path(channel.target_path, &known);
+    if (!known) {
+      ctx.warn(file + ": " + what + " animates '" + channel.target_path + "'; ignored");
+      continue;
+    }
+    if (channel.target_node < 0 ||
+        static_cast<std::size_t>(channel.target_node) >= model.nodes.size()) {
+      throw Error(file + ": " + what + " targets a node that does not exist");
+    }
+    if (channel.sampler < 0 ||
+        static_cast<std::size_t>(channel.sampler) >= source.samplers.size()) {
+      throw Error(file + ": " + what + " uses a sampler that does not exist");
+    }
+    const tinygltf::AnimationSampler& sampler = source.samplers[channel.sampler];
+    out.node = channel.target_node;
+    if (sampler.interpolation == "STEP") {
+      out.interpolation = AnimationChannel::Interpolation::Step;
+    } else if (sampler.interpolation == "CUBICSPLINE") {
+      out.interpolation = AnimationChannel::Interpolation::CubicSpline;
+    } else {
+      out.interpolation = AnimationChannel::Interpolation::Linear;
+    }
+    const AccessorData times =
+        read_accessor(model, sampler.input, true, file, what + " input", {1});
+    const AccessorData values = read_accessor(model, sampler.output, true, file, what + " output");
+    out.times.assign(times.values.begin(), times.values.end());
+    out.values.assign(values.values.begin(), values.values.end());
+    const std::size_t keys = out.times.size();
+    const std::size_t per_key =
+        out.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1;
+    if (keys == 0 || out.values.size() % (keys * per_key) != 0) {
+      throw Error(file + ": " + what + ": " + std::to_string(out.values.size()) +
+                  " output values do not fit " + std::to_string(keys) + " keyframes");
+    }
+    out.components = static_cast<int>(out.values.size() / (keys * per_key));
+    const int expected = out.path == AnimationChannel::Path::Rotation ? 4 : 3;
+    if (out.path != AnimationChannel::Path::Weights && out.components != expected) {
+      throw Error(file + ": " + what + " has " + std::to_string(out.components) +
+                  " components per key, expected " + std::to_string(expected));
+    }
+    if (!std::is_sorted(out.times.begin(), out.times.end())) {
+      throw Error(file + ": " + what + ": keyframe times are not ascending");
+    }
+    animation.duration = std::max(animation.duration, out.times.back());
+    animation.channels.push_back(std::move(out));
+  }
+  return animation;
+}
+
+// ---- meshes ------------------------------------------------------------------------------------
+
+std::vector<std::uint32_t> triangle_indices(const std::vector<std::uint32_t>& raw, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return raw;
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i + 2 < raw.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // keep the winding of every other triangle
+      out.insert(out.end(), {raw[i], raw[i + 1 + i % 2], raw[i + 2 - i % 2]});
+    } else {  // TRIANGLE_FAN
+      out.insert(out.end(), {raw[i + 1], raw[i + 2], raw[0]});
+    }
+  }
+  return out;
+}
+
+template <typename T, int N>
+std::vector<T> to_vectors(const AccessorData& data) {
+  std::vector<T> out(data.count, T(0));
+  for (std::size_t i = 0; i < data.count; ++i) {
+    for (int c = 0; c < N && c < data.components; ++c) {
+      out[i][c] = static_cast<typename T::value_type>(data.element(i)[c]);
+    }
+  }
+  return out;
+}
+
+struct PrimitiveRef {
+  int mesh, primitive;
+  std::string what;  // "mesh 0 'Fox' primitive 0"
+};
+
+// Reads the primitive's attributes (mesh-local) and indices.
+Mesh read_primitive(const tinygltf::Model& model, const PrimitiveRef& ref,
+                    const std::string& file) {
+  const tinygltf::Primitive& primitive = model.meshes[ref.mesh].primitives[ref.primitive];
+  const auto attribute = [&](const char* name) {
+    const auto it = primitive.attributes.find(name);
+    return it == primitive.attributes.end() ? -1 : it->second;
+  };
+  Mesh mesh;
+  mesh.name = model.meshes[ref.mesh].name;
+  if (model.meshes[ref.mesh].primitives.size() > 1)
+    mesh.name += "#" + std::to_string(ref.primitive);
+  const int position = attribute("POSITION");
+  if (position < 0) throw Error(file + ": " + ref.what + " has no POSITION attribute");
+  mesh.local_positions = to_vectors<glm::vec3, 3>(
+      read_accessor(model, position, true, file, ref.what + " POSITION", {3}));
+  const std::size_t n = mesh.local_positions.size();
+  auto read = [&](const char* name, std::vector<int> components) {
+    return read_accessor(model, attribute(name), true, file, ref.what + " " + name, components);
+  };
+  if (attribute("NORMAL") >= 0) mesh.local_normals = to_vectors<glm::vec3, 3>(read("NORMAL", {3}));
+  if (attribute("TANGENT") >= 0) mesh.tangents = to_vectors<glm::vec4, 4>(read("TANGENT", {4}));
+  if (attribute("TEXCOORD_0") >= 0) {
+    mesh.texcoords0 = to_vectors<glm::vec2, 2>(read("TEXCOORD_0", {2}));
+  }
+  if (attribute("COLOR_0") >= 0) {
+    const AccessorData colors = read("COLOR_0", {3, 4});
+    mesh.colors0 = to_vectors<glm::vec4, 4>(colors);
+    if (colors.components == 3) {
+      for (glm::vec4& c : mesh.colors0) c.a = 1.0f;
+    }
+  }
+  if (attribute("JOINTS_0") >= 0 && attribute("WEIGHTS_0") >= 0) {
+    const AccessorData joints =
+        read_accessor(model, attribute("JOINTS_0"), false, file, ref.what + " JOINTS_0", {4});
+    mesh.joints0.resize(joints.count);
+    for (std::size_t i = 0; i < joints.count; ++i) {
+      for (int c = 0; c < 4; ++c) {
+        const double j = joints.element(i)[c];
+        if (j < 0 || j > 65535) throw Error(file + ": " + ref.what + " JOINTS_0 out of range");
+        mesh.joints0[i][c] = static_cast<std::uint16_t>(j);
+      }
+    }
+    mesh.weights0 = to_vectors<glm::vec4, 4>(read("WEIGHTS_0", {4}));
+  }
+  const auto check_count = [&](std::size_t size, const char* name) {
+    if (size != 0 && size != n) {
+      throw Error(file + ": " + ref.what + ": " + name + " has " + std::to_string(size) +
+                  " entries but POSITION has " + std::to_string(n));
+    }
+  };
+  check_count(mesh.local_normals.size(), "NORMAL");
+  check_count(mesh.tangents.size(), "TANGENT");
+  check_count(mesh.texcoords0.size(), "TEXCOORD_0");
+  check_count(mesh.colors0.size(), "COLOR_0");
+  check_count(mesh.joints0.size(), "JOINTS_0");
+  check_count(mesh.weights0.size(), "WEIGHTS_0");
+  std::vector<std::uint32_t> raw;
+  if (primitive.indices >= 0) {
+    const AccessorData indices =
+        read_accessor(model, primitive.indices, false, file, ref.what + " indices", {1});
+    raw.resize(indices.count);
+    for (std::size_t i = 0; i < indices.count; ++i) {
+      const double v = indices.values[i];
+      if (v < 0 || v >= static_cast<double>(n)) {
+        throw Error(file + ": " + ref.what + ": index " +
+                    std::to_string(static_cast<long long>(v)) + " at position " +
+                    std::to_string(i) + " is out of range (" + std::to_string(n) + " vertices)");
+      }
+      raw[i] = static_cast<std::uint32_t>(v);
+    }
+  } else {
+    raw.resize(n);
+    for (std::size_t i = 0; i < n; ++i) raw[i] = static_cast<std::uint32_t>(i);
+  }
+  mesh.indices = triangle_indices(raw, primitive.mode);
+  if (mesh.local_normals.size() != 0) mesh.normals = mesh.local_normals;
+  return mesh;
+}
+
+// World placement: the node's transform, or for a skinned mesh each vertex blended by its joints
+// at their rest (node default) transforms.
+void place_in_world(Mesh& mesh, const Scene& scene, const glm::mat4& node_world) {
+  const bool skinned = mesh.skin >= 0;
+  std::vector<glm::mat4> joint_matrices;
+  if (skinned) {
+    const Skin& skin = scene.skins[mesh.skin];
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      joint_matrices.push_back(scene.nodes[skin.joints[j]].world * skin.inverse_bind[j]);
+    }
+  }
+  const std::size_t n = mesh.local_positions.size();
+  mesh.positions.resize(n);
+  if (!mesh.local_normals.empty()) mesh.normals.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::mat4 m = node_world;
+    if (skinned) {
+      const glm::vec4 w = mesh.weights0[i];
+      const float total = w.x + w.y + w.z + w.w;
+      if (total > 0.0f) {
+        m = glm::mat4(0.0f);
+        for (int k = 0; k < 4; ++k) {
+          const std::size_t joint = mesh.joints0[i][k];
+          if (w[k] != 0.0f && joint < joint_matrices.size())
+            m += (w[k] / total) * joint_matrices[joint];
+        }
+      }
+    }
+    mesh.positions[i] = glm::vec3(m * glm::vec4(mesh.local_positions[i], 1.0f));
+    const glm::mat3 linear(m);
+    if (!mesh.local_normals.empty()) {
+      mesh.normals[i] = glm::inverseTranspose(linear) * mesh.local_normals[i];
+    }
+    if (!mesh.tangents.empty()) {
+      const glm::vec3 t = linear * glm::vec3(mesh.tangents[i]);
+      const float len = glm::length(t);
+      const float sign = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
+      mesh.tangents[i] = glm::vec4(len > 0.0f ? t / len : t, mesh.tangents[i].w * sign);
+    }
+  }
+  // A mirroring transform turns the winding around: glTF asks to flip it back.
+  if (!skinned && glm::determinant(glm::mat3(node_world)) < 0.0f) {
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    }
+  }
+}
+
+void add_node_meshes(const tinygltf::Model& model, int node_index, Scene& scene,
+                     const std::string& file, const Context& ctx) {
+  const Node& node = scene.nodes[node_index];
+  if (node.mesh >= 0) {
+    if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
+      throw Error(file + ": node " + std::to_string(node_index) + " refers to mesh " +
+                  std::to_string(node.mesh) + ", which does not exist");
+    }
+    const tinygltf::Mesh& source = model.meshes[node.mesh];
+    for (std::size_t p = 0; p < source.primitives.size(); ++p) {
+      const tinygltf::Primitive& primitive = source.primitives[p];
+      PrimitiveRef ref{node.mesh, static_cast<int>(p),
+                       "mesh " + std::to_string(node.mesh) + " '" + source.name + "' primitive " +
+                           std::to_string(p)};
+      if (primitive.mode != TINYGLTF_MODE_TRIANGLES &&
+          primitive.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          primitive.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        ctx.warn(file + ": " + ref.what + " draws points or lines (mode " +
+                 std::to_string(primitive.mode) + "); skipped, only triangles are imported");
+        continue;
+      }
+      Mesh mesh = read_primitive(model, ref, file);
+      mesh.node = node_index;
+      if (primitive.material >= 0) {
+        if (static_cast<std::size_t>(primitive.material) >= scene.materials.size()) {
+          throw Error(file + ": " + ref.what + " uses material " +
+                      std::to_string(primitive.material) + ", which does not exist");
+        }
+        mesh.material = primitive.material;
+      }
+      if (node.skin >= 0 && !mesh.joints0.empty()) {
+        if (static_cast<std::size_t>(node.skin) >= scene.skins.size()) {
+          throw Error(file + ": node " + std::to_string(node_index) +
+                      " uses a skin that does not exist");
+        }
+        mesh.skin = node.skin;
+      }
+      if (!primitive.targets.empty()) {
+        ctx.info(file + ": " + ref.what + " has morph targets; the base shape is imported");
+      }
+      place_in_world(mesh, scene, node.world);
+      validate_mesh(mesh, file, ref.what);
+      complete_mesh_attributes(mesh);
+      if (mesh.normals_generated) {
+        ctx.warn(file + ": " + ref.what + " has no NORMAL; generated area-weighted normals");
+      }
+      scene.meshes.push_back(std::move(mesh));
+    }
+  }
+  for (int child : node.children) add_node_meshes(model, child, scene, file, ctx);
+}
+
+}  // namespace
+
+Scene import_gltf(const std::string& path, const Context& ctx) {
+  const tinygltf::Model model = load_gltf_model(path, ctx);
+  Scene scene;
+  scene.source = path;
+  for (std::size_t i = 0; i < model.images.size(); ++i) {
+    scene.images.push_back(convert_image(model.images[i], i));
+  }
+  for (const tinygltf::Material& material : model.materials) {
+    scene.materials.push_back(convert_material(model, material));
+  }
+  for (const tinygltf::Node& node : model.nodes) scene.nodes.push_back(convert_node(node));
+  link_nodes(scene.nodes, path);
+  for (std::size_t i = 0; i < model.skins.size(); ++i) {
+    scene.skins.push_back(convert_skin(model, model.skins[i], i, path));
+  }
+  for (std::size_t i = 0; i < model.animations.size(); ++i) {
+    scene.animations.push_back(convert_animation(model, model.animations[i], i, path, ctx));
+  }
+
+  // The default scene's root nodes, or every root node when the file names no scene.
+  std::vector<int> roots;
+  if (model.defaultScene >= 0 &&
+      static_cast<std::size_t>(model.defaultScene) < model.scenes.size()) {
+    roots = model.scenes[model.defaultScene].nodes;
+  } else if (model.scenes.size() == 1) {
+    roots = model.scenes[0].nodes;
+  } else {
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+      if (scene.nodes[i].parent < 0) roots.push_back(static_cast<int>(i));
+    }
+  }
+  for (int root : roots) {
+    if (root < 0 || static_cast<std::size_t>(root) >= scene.nodes.size()) {
+      throw Error(path + ": the scene lists node " + std::to_string(root) +
+                  ", which does not exist");
+    }
+    add_node_meshes(model, root, scene, path, ctx);
+  }
+  if (scene.meshes.empty()) {
+    throw Error(path + ": the scene has no triangle meshes (empty mesh, no triangles)");
+  }
+  return scene;
+}
+
+}  // namespace prt::bake::detail

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+#include "path_estimator.hpp"
+
+#include <cmath>
+
+namespace prt::bake::render {
+namespace {
+
+constexpr float kInvPi = 0.318309886183790671538f;
+
+bool usable_normal(const glm::vec3& n) {
+  const float len2 = glm::dot(n, n);
+  return std::isfinite(len2) && len2 > 1e-12f;
+}
+
+// Power heuristic (beta = 2) weight of a strategy with density `a` against one with density `b`.
+float power_heuristic(float a, float b) {
+  const float a2 = a * a, b2 = b * b;
+  return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+}  // namespace
+
+PathEstimator::PathEstimator(const Scene& scene, const EmbreeScene& rays, const EnvMap& env,
+                             const EnvDistribution& env_distribution,
+                             const std::vector<glm::vec3>& vertex_albedo, int bounces)
+    : scene_(scene),
+      rays_(rays),
+      env_(env),
+      env_distribution_(env_distribution),
+      vertex_albedo_(vertex_albedo),
+      bounces_(bounces) {
+  std::size_t offset = 0;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    first_vertex_.push_back(offset);
+    offset += scene.meshes[m].vertex_count();
+    vertex_mesh_.resize(offset, static_cast<std::uint32_t>(m));
+  }
+}
+
+glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& stream,
+                                std::uint32_t index, std::uint32_t first_pair,
+                                std::uint64_t* rays) const {
+  glm::vec3 radiance(0.0f), throughput(1.0f);
+  SurfacePoint x = point;
+  for (int depth = 0;; ++depth) {
+    const bool at_vertex = glm::dot(x.geometric_normal, x.geometric_normal) == 0.0f;
+    const glm::vec3 origin = rays_.offset_origin(x.position, at_vertex ? x.normal : x.geometric_normal);
+    // A direction under the triangle's plane would start inside the surface: it gets nothing.
+    auto leaves_surface = [&](const glm::vec3& w) {
+      return at_vertex || glm::dot(w, x.geometric_normal) > 0.0f;
+    };
+    const std::uint32_t pair = first_pair + 2u * static_cast<std::uint32_t>(depth);
+
+    // Strategy 1: a direction from the environment's importance distribution.
+    if (env_distribution_.valid()) {
+      float env_pdf = 0.0f;
+      const glm::vec3 w = env_distribution_.sample(stream.get_2d(index, pair), &env_pdf);
+      const float cos_w = glm::dot(x.normal, w);
+      if (cos_w > 0.0f && env_pdf > 0.0f && leaves_surface(w)) {
+        ++*rays;
+        if (!rays_.occluded(origin, w)) {
+          const float weight = power_heuristic(env_pdf, cos_w * kInvPi);
+          radiance += throughput * x.albedo * env_.radiance(w) * (kInvPi * cos_w / env_pdf * weight);
+        }
+      }
+    }
+
+    // Strategy 2: a cosine-weighted direction (f cos / pdf = albedo); continues the path.
+    const Frame frame(x.normal);
+    const glm::vec3 w = frame.to_world(cosine_hemisphere(stream.get_2d(index, pair + 1)));
+    const float cos_w = glm::dot(x.normal, w);
+    if (!(cos_w > 0.0f) || !leaves_surface(w)) break;
+    const float weight =
+        env_distribution_.valid() ? power_heuristic(cos_w * kInvPi, env_distribution_.pdf(w)) : 1.0f;
+    ++*rays;
+    if (depth == bounces_) {
+      if (!rays_.occluded(origin, w)) radiance += throughput * x.albedo * env_.radiance(w) * weight;
+      break;
+    }
+    RayHit hit;
+    if (!rays_.intersect(origin, w, &hit)) {
+      radiance += throughput * x.albedo * env_.radiance(w) * weight;
+      break;
+    }
+    throughput *= x.albedo;
+    x = surface_at(hit, w);
+  }
+  return radiance;
+}
+
+SurfacePoint PathEstimator::surface_at(const RayHit& hit, const glm::vec3& dir) const {
+  const Mesh& mesh = scene_.meshes[hit.mesh];
+  const std::uint32_t i0 = mesh.indices[3 * hit.triangle], i1 = mesh.indices[3 * hit.triangle + 1],
+                      i2 = mesh.indices[3 * hit.triangle + 2];
+  const float w0 = 1.0f - hit.u - hit.v;
+  const glm::vec3 &p0 = mesh.positions[i0], &p1 = mesh.positions[i1], &p2 = mesh.positions[i2];
+  SurfacePoint point;
+  point.position = w0 * p0 + hit.u * p1 + hit.v * p2;
+  glm::vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
+  point.geometric_normal = ng;
+  glm::vec3 ns = ng;
+  if (mesh.normals.size() == mesh.positions.size()) {
+    const glm::vec3 n = w0 * mesh.normals[i0] + hit.u * mesh.normals[i1] + hit.v * mesh.normals[i2];
+    if (usable_normal(n)) ns = glm::normalize(n);
+  }
+  point.normal = glm::dot(ns, ng) < 0.0f ? -ns : ns;
+  const std::size_t first = first_vertex_[hit.mesh];
+  point.albedo = w0 * vertex_albedo_[first + i0] + hit.u * vertex_albedo_[first + i1] +
+                 hit.v * vertex_albedo_[first + i2];
+  return point;
+}
+
+bool PathEstimator::vertex_point(std::size_t vertex, SurfacePoint* point) const {
+  const std::uint32_t m = vertex_mesh_[vertex];
+  const Mesh& mesh = scene_.meshes[m];
+  const std::size_t local = vertex - first_vertex_[m];
+  if (local >= mesh.normals.size() || !usable_normal(mesh.normals[local])) return false;
+  const glm::vec3 p = mesh.positions[local];
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+  point->position = p;
+  point->normal = glm::normalize(mesh.normals[local]);
+  point->geometric_normal = glm::vec3(0.0f);
+  point->albedo = vertex_albedo_[vertex];
+  return true;
+}
+
+}  // namespace prt::bake::render

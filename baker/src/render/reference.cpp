@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: MIT
+#include "prt/baker/reference.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include "path_estimator.hpp"
+#include "tracing_thread.hpp"
+
+namespace prt::bake {
+namespace {
+
+// Stream keys: the two halves of a vertex's samples and an image pixel never share a stream.
+enum StreamTag : std::uint64_t { kVertexHalfA = 0, kVertexHalfB = 1, kPixel = 2 };
+
+constexpr std::size_t kVerticesPerTask = 64;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void validate(const ReferenceSettings& settings) {
+  if (settings.bounces < 0) throw Error("reference renderer: --bounces must be >= 0");
+  if (settings.spp < 2) {
+    throw Error("reference renderer: --spp must be >= 2 (two halves for the noise estimate)");
+  }
+  if (settings.image_spp < 1) throw Error("reference renderer: --image-spp must be >= 1");
+  const glm::vec3& a = settings.albedo;
+  if (settings.override_albedo &&
+      !(a.r >= 0.0f && a.r <= 1.0f && a.g >= 0.0f && a.g <= 1.0f && a.b >= 0.0f && a.b <= 1.0f)) {
+    throw Error("reference renderer: --albedo must lie in [0,1]");
+  }
+}
+
+// Runs body(task) for task in [0, tasks) on `threads` threads and reports progress; every task
+// writes only its own outputs, so the result does not depend on scheduling.
+template <typename Body>
+void parallel_tasks(std::size_t tasks, const Context& ctx, const std::string& stage, Body body) {
+  std::atomic<std::size_t> done{0};
+  std::atomic<bool> cancelled{false};
+  std::mutex progress_mutex;
+  tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        render::TracingThreadScope fp_mode;  // FTZ/DAZ for Embree
+                        for (std::size_t task = range.begin(); task != range.end(); ++task) {
+                          if (cancelled.load(std::memory_order_relaxed)) return;
+                          body(task);
+                          const std::size_t finished = ++done;
+                          if (ctx.progress) {
+                            std::lock_guard<std::mutex> lock(progress_mutex);
+                            if (!ctx.progress(static_cast<double>(finished) / tasks, stage)) {
+                              cancelled = true;
+                            }
+                          }
+                        }
+                      });
+  });
+  if (cancelled) throw Error("cancelled");
+}
+
+}  // namespace
+
+struct ReferenceRenderer::Impl {
+  const Scene& scene;
+  const EnvMap& env;
+  ReferenceSettings settings;
+  EmbreeScene rays;
+  EnvDistribution env_distribution;
+  std::vector<glm::vec3> vertex_albedo;
+  render::PathEstimator estimator;
+
+  Impl(const Scene& scene_in, const EnvMap& env_in, const ReferenceSettings& settings_in,
+       const Context& ctx)
+      : scene(scene_in),
+        env(env_in),
+        settings(settings_in),
+        rays(scene_in, ctx),
+        env_distribution(env_in),
+        vertex_albedo(albedo_per_vertex(scene_in, settings_in)),
+        estimator(scene, rays, env, env_distribution, vertex_albedo, settings_in.bounces) {}
+
+  static std::vector<glm::vec3> albedo_per_vertex(const Scene& scene,
+                                                  const ReferenceSettings& settings) {
+    std::vector<glm::vec3> albedo;
+    albedo.reserve(scene.vertex_count());
+    for (const Mesh& mesh : scene.meshes) {
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        albedo.push_back(settings.override_albedo ? settings.albedo : scene.vertex_albedo(mesh, v));
+      }
+    }
+    return albedo;
+  }
+};
+
+ReferenceRenderer::ReferenceRenderer(const Scene& scene, const EnvMap& env,
+                                     const ReferenceSettings& settings, const Context& ctx) {
+  validate(settings);
+  tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+  arena.execute([&] { impl_ = std::make_unique<Impl>(scene, env, settings, ctx); });
+  if (!impl_->env_distribution.valid()) {
+    ctx.warn(env.source() + ": the environment is black everywhere; every radiance will be 0");
+  }
+}
+
+ReferenceRenderer::~ReferenceRenderer() = default;
+
+const EmbreeScene& ReferenceRenderer::embree_scene() const { return impl_->rays; }
+const ReferenceSettings& ReferenceRenderer::settings() const { return impl_->settings; }
+
+VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
+  const auto start = std::chrono::steady_clock::now();
+  const render::PathEstimator& estimator = impl_->estimator;
+  const ReferenceSettings& settings = impl_->settings;
+  const std::size_t vertices = estimator.vertex_count();
+  const std::uint32_t spp_a = (settings.spp + 1) / 2, spp_b = settings.spp / 2;
+
+  VertexRadiance result;
+  result.radiance.assign(vertices, glm::vec3(0.0f));
+  std::vector<glm::vec3> difference(vertices, glm::vec3(0.0f));  // mean of A - mean of B
+  std::vector<unsigned char> has_normal(vertices, 0);
+  const std::size_t tasks = (vertices + kVerticesPerTask - 1) / kVerticesPerTask;
+  std::vector<std::uint64_t> task_rays(tasks, 0);
+
+  parallel_tasks(tasks, ctx, "reference: vertices", [&](std::size_t task) {
+    const std::size_t end = std::min(vertices, (task + 1) * kVerticesPerTask);
+    for (std::size_t v = task * kVerticesPerTask; v < end; ++v) {
+      render::SurfacePoint point;
+      if (!estimator.vertex_point(v, &point)) continue;
+      has_normal[v] = 1;
+      const SampleStream half_a(hash_key(settings.seed, v, kVertexHalfA));
+      const SampleStream half_b(hash_key(settings.seed, v, kVertexHalfB));
+      glm::dvec3 sum_a(0.0), sum_b(0.0);
+      for (std::uint32_t i = 0; i < spp_a; ++i) {
+        sum_a += glm::dvec3(estimator.sample(point, half_a, i, 0, &task_rays[task]));
+      }
+      for (std::uint32_t i = 0; i < spp_b; ++i) {
+        sum_b += glm::dvec3(estimator.sample(point, half_b, i, 0, &task_rays[task]));
+      }
+      result.radiance[v] = glm::vec3((sum_a + sum_b) / static_cast<double>(settings.spp));
+      difference[v] = glm::vec3(sum_a / static_cast<double>(spp_a) - sum_b / static_cast<double>(spp_b));
+    }
+  });
+
+  // Reductions in vertex order, after the parallel part: deterministic.
+  double difference_sq = 0.0, radiance_sq = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    if (!has_normal[v]) {
+      ++result.vertices_without_normal;
+      continue;
+    }
+    const glm::dvec3 d(difference[v]), l(result.radiance[v]);
+    difference_sq += glm::dot(d, d);
+    radiance_sq += glm::dot(l, l);
+    ++counted;
+  }
+  if (counted > 0 && radiance_sq > 0.0) {
+    // Var(full) / Var(A - B) = (1/n) / (1/nA + 1/nB) = nA nB / n^2.
+    const double rmse = std::sqrt(difference_sq / (3.0 * counted) * spp_a * spp_b) / settings.spp;
+    result.relative_rmse = rmse / std::sqrt(radiance_sq / (3.0 * counted));
+  }
+  if (result.vertices_without_normal > 0) {
+    ctx.warn("reference: " + std::to_string(result.vertices_without_normal) +
+             " vertices have no usable normal; their radiance is 0");
+  }
+  for (std::uint64_t r : task_rays) result.stats.rays += r;
+  result.stats.seconds = seconds_since(start);
+  return result;
+}
+
+LinearImage ReferenceRenderer::render_image(const Camera& camera, int width, int height,
+                                            const Context& ctx, RenderStats* stats) const {
+  if (width <= 0 || height <= 0) throw Error("reference renderer: image size must be positive");
+  const auto start = std::chrono::steady_clock::now();
+  const render::PathEstimator& estimator = impl_->estimator;
+  const ReferenceSettings& settings = impl_->settings;
+  LinearImage image;
+  image.width = width;
+  image.height = height;
+  image.pixels.assign(static_cast<std::size_t>(width) * height, glm::vec3(0.0f));
+  std::vector<std::uint64_t> row_rays(height, 0);
+
+  parallel_tasks(static_cast<std::size_t>(height), ctx, "reference: image", [&](std::size_t y) {
+    for (int x = 0; x < width; ++x) {
+      const std::size_t pixel = y * static_cast<std::size_t>(width) + x;
+      const SampleStream stream(hash_key(settings.seed, pixel, kPixel));
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t i = 0; i < settings.image_spp; ++i) {
+        const glm::vec2 jitter = stream.get_2d(i, 0);
+        const glm::vec3 dir = camera.direction((x + jitter.x) / width, (y + jitter.y) / height);
+        ++row_rays[y];
+        RayHit hit;
+        if (impl_->rays.intersect(camera.eye, dir, &hit)) {
+          const render::SurfacePoint point = estimator.surface_at(hit, dir);
+          sum += glm::dvec3(estimator.sample(point, stream, i, 1, &row_rays[y]));
+        } else {
+          sum += glm::dvec3(impl_->env.radiance(dir));
+        }
+      }
+      image.pixels[pixel] = glm::vec3(sum / static_cast<double>(settings.image_spp));
+    }
+  });
+
+  if (stats) {
+    stats->rays = 0;
+    for (std::uint64_t r : row_rays) stats->rays += r;
+    stats->seconds = seconds_since(start);
+  }
+  return image;
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,107 @@
+/* SPDX-License-Identifier: MIT */
+/* Backend query: which backends are compiled in and usable; SIMD ISA detection at run time. */
+#include "internal.h"
+
+prt_simd_isa prt_internal_detect_simd_isa(void) {
+#if defined(PRT_NO_SIMD)
+  return PRT_SIMD_ISA_NONE;
+#elif (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+  __builtin_cpu_init();
+  /* gcc returns a non-zero bit mask, not 1, for a supported feature. */
+  if (__builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("fma") != 0)
+    return PRT_SIMD_ISA_AVX2;
+  if (__builtin_cpu_supports("sse4.1") != 0) return PRT_SIMD_ISA_SSE41;
+  return PRT_SIMD_ISA_NONE;
+#else
+  return PRT_SIMD_ISA_NONE;
+#endif
+}
+
+static int backend_allowed(const prt_context* context, prt_backend backend) {
+  return context->backend_limit == PRT_BACKEND_AUTO || backend <= context->backend_limit;
+}
+
+prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
+                                prt_backend_info* out) {
+  if (!context || !out) return PRT_ERROR_INVALID_ARGUMENT;
+  out->backend = backend;
+  out->isa = PRT_SIMD_ISA_NONE;
+  out->name = prt_backend_name(backend);
+  switch (backend) {
+    case PRT_BACKEND_CPU:
+      out->compiled = 1;
+      out->usable = 1; /* the reference is never limited away */
+      out->note = "scalar reference";
+      return PRT_OK;
+    case PRT_BACKEND_SIMD:
+#if defined(PRT_NO_SIMD)
+      out->compiled = 0;
+      out->usable = 0;
+      out->note = "compiled out (PRT_ENABLE_SIMD=OFF)";
+#else
+      out->compiled = 1;
+      out->usable = 0;
+      if (!backend_allowed(context, backend)) {
+        out->note = "disabled by the context's backend limit";
+      } else if (context->simd_isa < PRT_SIMD_ISA_SSE41) {
+        out->note = "no SSE4.1 on this CPU, or disabled by the SIMD ISA limit";
+      } else {
+        out->usable = 1;
+        out->isa = context->simd_isa;
+        out->note = prt_simd_isa_name(context->simd_isa);
+      }
+#endif
+      return PRT_OK;
+    case PRT_BACKEND_GL:
+#if defined(PRT_HAS_GL)
+      out->compiled = 1;
+      out->note = "compiled in; no GL evaluator in this version";
+#else
+      out->compiled = 0;
+      out->note = "compiled out (PRT_ENABLE_GL=OFF)";
+#endif
+      out->usable = 0;
+      return PRT_OK;
+    case PRT_BACKEND_AUTO:
+      break;
+  }
+  out->name = "unknown";
+  out->compiled = out->usable = 0;
+  out->note = "not a concrete backend";
+  return PRT_ERROR_INVALID_ARGUMENT;
+}
+
+prt_backend prt_context_backend(const prt_context* context) {
+  prt_backend_info info;
+  if (context && prt_backend_get_info(context, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable)
+    return PRT_BACKEND_SIMD;
+  return PRT_BACKEND_CPU;
+}
+
+const char* prt_backend_name(prt_backend backend) {
+  switch (backend) {
+    case PRT_BACKEND_AUTO:
+      return "auto";
+    case PRT_BACKEND_CPU:
+      return "cpu";
+    case PRT_BACKEND_SIMD:
+      return "simd";
+    case PRT_BACKEND_GL:
+      return "gl";
+  }
+  return "unknown";
+}
+
+const char* prt_simd_isa_name(prt_simd_isa isa) {
+  switch (isa) {
+    case PRT_SIMD_ISA_AUTO:
+      return "auto";
+    case PRT_SIMD_ISA_NONE:
+      return "none";
+    case PRT_SIMD_ISA_SSE41:
+      return "sse4.1";
+    case PRT_SIMD_ISA_AVX2:
+      return "avx2";
+  }
+  return "unknown";
+}

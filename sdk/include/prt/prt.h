@@ -1,0 +1,16 @@
+/* SPDX-License-Identifier: MIT */
+/* prtkit runtime C API, umbrella header: include this one. C99 and C++.
+ *
+ * Conventions: every fallible call returns a prt_result (PRT_OK = 0); handles are opaque; the
+ * caller may supply the allocator and a message callback per context; the runtime has no global
+ * mutable state and never prints. Each header states the thread safety of its functions. */
+#ifndef PRT_H
+#define PRT_H
+
+#include <prt/prt_asset.h>
+#include <prt/prt_backend.h>
+#include <prt/prt_context.h>
+#include <prt/prt_types.h>
+#include <prt/prt_version.h>
+
+#endif /* PRT_H */
