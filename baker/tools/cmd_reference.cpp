@@ -95,7 +95,8 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
     const EmbreeScene& rays = renderer.embree_scene();
     const Camera camera =
         Camera::auto_frame(rays.bounds_lo(), rays.bounds_hi(), static_cast<float>(width) / height);
-    const LinearImage image = renderer.render_image(camera, width, height, ctx, &report.image_stats);
+    const LinearImage image =
+        renderer.render_image(camera, width, height, ctx, &report.image_stats);
     const float ev = options.exposure_given ? options.exposure_ev : auto_exposure_ev(image);
     write_image(options.image_out, image, ev);
     ctx.info("wrote " + options.image_out + " (" + std::to_string(width) + "x" +
@@ -124,8 +125,9 @@ void add_reference_command(CLI::App& app, CommandEnv& env) {
                   "Environment map (.hdr); default: constant white of radiance 1");
   cmd->add_option("--env-mapping", options->env_mapping, "auto|latlong|cross|probe")
       ->capture_default_str();
-  cmd->add_option("--albedo", options->albedo, "Diffuse albedo r,g,b for every surface "
-                                               "(default: from the materials)");
+  cmd->add_option("--albedo", options->albedo,
+                  "Diffuse albedo r,g,b for every surface "
+                  "(default: from the materials)");
   cmd->add_option("--bounces", s.bounces, "Indirect bounces (0 = direct light with visibility)")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();

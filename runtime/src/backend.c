@@ -17,9 +17,11 @@ prt_simd_isa prt_internal_detect_simd_isa(void) {
 #endif
 }
 
+#if !defined(PRT_NO_SIMD)
 static int backend_allowed(const prt_context* context, prt_backend backend) {
   return context->backend_limit == PRT_BACKEND_AUTO || backend <= context->backend_limit;
 }
+#endif
 
 prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
                                 prt_backend_info* out) {

@@ -10,8 +10,8 @@
 #include <xmmintrin.h>
 
 #include <chrono>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <thread>
@@ -109,10 +109,9 @@ const Workload& workload() {
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     for (std::size_t i = 0; i < kPoints; ++i) {
       const double pick = uniform(rng) * total;
-      const std::size_t k =
-          std::min<std::size_t>(std::lower_bound(area_cdf.begin(), area_cdf.end(), pick) -
-                                    area_cdf.begin(),
-                                triangles.size() - 1);
+      const std::size_t k = std::min<std::size_t>(
+          std::lower_bound(area_cdf.begin(), area_cdf.end(), pick) - area_cdf.begin(),
+          triangles.size() - 1);
       const Mesh& mesh = w.scene.meshes[triangles[k].first];
       const std::size_t t = triangles[k].second;
       const glm::vec3 p0 = mesh.positions[mesh.indices[3 * t]],
@@ -204,73 +203,74 @@ void BM_EmbreeOccluded1(benchmark::State& state) {
     rays += 4096;
   }
   benchmark::DoNotOptimize(occluded);
-  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
   state.counters["occluded"] = static_cast<double>(occluded) / rays;
   g_figures.occluded1_rays_per_second = rays / seconds;
 }
 BENCHMARK(BM_EmbreeOccluded1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-template <int W, typename Packet, typename Trace>
-std::size_t trace_packets(const Workload& w, std::size_t* next, int packets, Trace trace) {
-  std::size_t occluded = 0;
-  alignas(64) int valid[W];
-  for (int k = 0; k < W; ++k) valid[k] = -1;
-  for (int p = 0; p < packets; ++p) {
-    // One packet = W rays from one surface point (kRaysPerPoint is a multiple of W).
-    alignas(64) Packet packet;
-    for (int k = 0; k < W; ++k, *next = (*next + 1) % w.directions.size()) {
-      const glm::vec3 o = w.origins[*next / kRaysPerPoint], d = w.directions[*next];
-      packet.org_x[k] = o.x, packet.org_y[k] = o.y, packet.org_z[k] = o.z;
-      packet.dir_x[k] = d.x, packet.dir_y[k] = d.y, packet.dir_z[k] = d.z;
-      packet.tnear[k] = 0.0f, packet.tfar[k] = INFINITY, packet.time[k] = 0.0f;
-      packet.mask[k] = 0xFFFFFFFFu, packet.id[k] = 0, packet.flags[k] = 0;
-    }
-    trace(valid, &packet);
-    for (int k = 0; k < W; ++k) occluded += packet.tfar[k] < 0.0f;
+// Fills `width` rays of a packet from one surface point (kRaysPerPoint is a multiple of width).
+template <typename Packet>
+void fill_packet(const Workload& w, int width, std::size_t* next, Packet* packet) {
+  for (int k = 0; k < width; ++k, *next = (*next + 1) % w.directions.size()) {
+    const glm::vec3 o = w.origins[*next / kRaysPerPoint], d = w.directions[*next];
+    packet->org_x[k] = o.x, packet->org_y[k] = o.y, packet->org_z[k] = o.z;
+    packet->dir_x[k] = d.x, packet->dir_y[k] = d.y, packet->dir_z[k] = d.z;
+    packet->tnear[k] = 0.0f, packet->tfar[k] = INFINITY, packet->time[k] = 0.0f;
+    packet->mask[k] = 0xFFFFFFFFu, packet->id[k] = 0, packet->flags[k] = 0;
   }
+}
+
+int count_occluded(const float* tfar, int width) {
+  int occluded = 0;
+  for (int k = 0; k < width; ++k) occluded += tfar[k] < 0.0f;
   return occluded;
 }
 
 void BM_EmbreeOccludedPacket(benchmark::State& state) {
   const Workload& w = workload();
   const RawEmbree& raw = raw_embree();
-  const int width = raw.widest_packet();
+  const int width = std::max(raw.widest_packet(), 4);
   set_ftz_daz();
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  std::size_t next = 0, occluded = 0;
-  std::int64_t rays = 0;
+  alignas(64) int valid[16];
+  for (int& v : valid) v = -1;
+  alignas(64) RTCRay16 packet16;
+  alignas(64) RTCRay8 packet8;
+  alignas(64) RTCRay4 packet4;
+  std::size_t next = 0;
+  std::int64_t rays = 0, occluded = 0;
   double seconds = 0.0;
   const int per_iteration = 4096;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    switch (width) {
-      case 16:
-        occluded += trace_packets<16, RTCRay16>(w, &next, per_iteration / 16, [&](int* v, RTCRay16* r) {
-          rtcOccluded16(v, raw.scene, &context, r);
-        });
-        break;
-      case 8:
-        occluded += trace_packets<8, RTCRay8>(w, &next, per_iteration / 8, [&](int* v, RTCRay8* r) {
-          rtcOccluded8(v, raw.scene, &context, r);
-        });
-        break;
-      default:
-        occluded += trace_packets<4, RTCRay4>(w, &next, per_iteration / 4, [&](int* v, RTCRay4* r) {
-          rtcOccluded4(v, raw.scene, &context, r);
-        });
-        break;
+    for (int p = 0; p < per_iteration / width; ++p) {
+      if (width == 16) {
+        fill_packet(w, 16, &next, &packet16);
+        rtcOccluded16(valid, raw.scene, &context, &packet16);
+        occluded += count_occluded(packet16.tfar, 16);
+      } else if (width == 8) {
+        fill_packet(w, 8, &next, &packet8);
+        rtcOccluded8(valid, raw.scene, &context, &packet8);
+        occluded += count_occluded(packet8.tfar, 8);
+      } else {
+        fill_packet(w, 4, &next, &packet4);
+        rtcOccluded4(valid, raw.scene, &context, &packet4);
+        occluded += count_occluded(packet4.tfar, 4);
+      }
     }
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     rays += per_iteration;
   }
-  benchmark::DoNotOptimize(occluded);
-  state.SetLabel("rtcOccluded" + std::to_string(width < 4 ? 4 : width));
-  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
-  state.counters["occluded"] = static_cast<double>(occluded) / rays;
+  state.SetLabel("rtcOccluded" + std::to_string(width));
+  state.counters["rays/s"] =
+      benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["occluded"] = static_cast<double>(occluded) / static_cast<double>(rays);
   g_figures.packet_rays_per_second = rays / seconds;
-  g_figures.packet_width = width < 4 ? 4 : width;
+  g_figures.packet_width = width;
 }
 BENCHMARK(BM_EmbreeOccludedPacket)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -298,7 +298,8 @@ void BM_ReferenceRendererVertices(benchmark::State& state) {
     rays += result.stats.rays;
     seconds += result.stats.seconds;
   }
-  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
   if (settings.bounces == 0) g_figures.renderer_rays_per_second = rays / seconds;
 }
 BENCHMARK(BM_ReferenceRendererVertices)

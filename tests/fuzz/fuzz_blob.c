@@ -26,8 +26,8 @@ static unsigned touch_sections(const prt_asset* asset) {
   return sum;
 }
 
-static void load_and_touch(prt_context* context, const void* data, size_t size,
-                           prt_validation level, int borrowed) {
+static prt_result load_and_touch(prt_context* context, const void* data, size_t size,
+                                 prt_validation level, int borrowed) {
   prt_asset* asset = NULL;
   prt_result r = borrowed ? prt_asset_load_memory_borrowed(context, data, size, level, &asset)
                           : prt_asset_load_memory(context, data, size, level, &asset);
@@ -38,12 +38,13 @@ static void load_and_touch(prt_context* context, const void* data, size_t size,
     abort(); /* a failed load must not hand out an asset */
   }
   prt_asset_destroy(asset);
+  return r;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   prt_context_desc desc;
   prt_context* context = NULL;
-  prt_result quick, full;
+  prt_result quick, full, loaded;
   uint8_t* copy;
   char message[256];
   memset(&desc, 0, sizeof desc);
@@ -54,7 +55,10 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   full = prt_asset_validate(context, data, size, PRT_VALIDATE_FULL, message, sizeof message);
   if (full == PRT_OK && quick != PRT_OK) abort(); /* full validation includes quick */
   load_and_touch(context, data, size, PRT_VALIDATE_QUICK, 0);
-  load_and_touch(context, data, size, PRT_VALIDATE_FULL, 0);
+  /* Full validation and a fully validated load agree (short of running out of memory). */
+  loaded = load_and_touch(context, data, size, PRT_VALIDATE_FULL, 0);
+  if (loaded != full && loaded != PRT_ERROR_OUT_OF_MEMORY && full != PRT_ERROR_OUT_OF_MEMORY)
+    abort();
 
   /* Borrowed loading needs 16-byte aligned bytes: an exact-size copy (so the sanitizer sees any
    * over-read), used when malloc happens to align it to 16, as glibc and ASan do. */

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "../format/blob_test_util.hpp"
@@ -169,6 +170,32 @@ TEST_F(Asset, ValidateOnlyReportsAMessage) {
   prt_asset_validate(ctx.ctx, bad.data(), bad.size(), PRT_VALIDATE_QUICK, tiny, 5);
   EXPECT_EQ(tiny[4], '\0');
   EXPECT_EQ(tiny[5], 'x');
+}
+
+// Queries on one asset from several threads at once (the header promises they are safe): all
+// threads see the same bytes. Run under the sanitizer builds too.
+TEST_F(Asset, ConcurrentQueries) {
+  prt_asset* asset = nullptr;
+  ASSERT_EQ(prt_asset_load_memory(ctx.ctx, golden.data(), golden.size(), PRT_VALIDATE_FULL, &asset),
+            PRT_OK);
+  std::vector<unsigned> sums(4, 0);
+  std::vector<std::thread> threads;
+  for (size_t t = 0; t < sums.size(); ++t)
+    threads.emplace_back([asset, &sums, t] {
+      for (int round = 0; round < 200; ++round)
+        for (uint32_t i = 0; i < prt_asset_section_count(asset); ++i) {
+          prt_section_info info;
+          const void* data;
+          size_t size;
+          if (prt_asset_get_section_info(asset, i, &info) != PRT_OK) return;
+          if (prt_asset_section_data(asset, info.tag, &data, &size) != PRT_OK) return;
+          for (size_t k = 0; k < size; ++k) sums[t] += static_cast<const uint8_t*>(data)[k];
+        }
+    });
+  for (auto& thread : threads) thread.join();
+  EXPECT_NE(sums[0], 0u);
+  for (unsigned sum : sums) EXPECT_EQ(sum, sums[0]);
+  prt_asset_destroy(asset);
 }
 
 // Every allocation failing in turn gives OUT_OF_MEMORY and leaks nothing.

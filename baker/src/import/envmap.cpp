@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 
+#include "hdr_stream.hpp"
 #include "prt/baker/context.hpp"
 
 namespace prt::bake {
@@ -391,12 +393,18 @@ glm::vec3 EnvMap::radiance(const glm::vec3& dir_in) const {
 }
 
 EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx) {
-  if (!std::ifstream(path, std::ios::binary)) throw Error(path + ": cannot open file");
-  if (!stbi_is_hdr(path.c_str())) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(path + ": cannot open file");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
+                                         std::istreambuf_iterator<char>());
+  if (!detail::has_radiance_signature(bytes) ||
+      !stbi_is_hdr_from_memory(bytes.data(), static_cast<int>(bytes.size()))) {
     throw Error(path + ": not a Radiance .hdr image (no #?RADIANCE / #?RGBE signature)");
   }
+  detail::check_radiance_stream(path, bytes);
   int width = 0, height = 0, channels = 0;
-  float* data = stbi_loadf(path.c_str(), &width, &height, &channels, 3);
+  float* data = stbi_loadf_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
+                                       &height, &channels, 3);
   if (!data) {
     const char* reason = stbi_failure_reason();
     throw Error(path + ": cannot decode the .hdr image (" + (reason ? reason : "unknown") + ")");

@@ -55,8 +55,7 @@ bool is_degenerate_triangle(const Mesh& mesh, std::size_t triangle) {
   if (!finite(p0) || !finite(p1) || !finite(p2)) return true;
   const glm::dvec3 e1 = glm::dvec3(p1) - glm::dvec3(p0), e2 = glm::dvec3(p2) - glm::dvec3(p0);
   const double twice_area = glm::length(glm::cross(e1, e2));
-  const double longest = std::max({glm::dot(e1, e1), glm::dot(e2, e2),
-                                   glm::dot(e2 - e1, e2 - e1)});
+  const double longest = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e2 - e1, e2 - e1)});
   // Zero area up to float rounding: the vertices are collinear or coincide.
   return !(twice_area > 1e-7 * longest);
 }
@@ -65,7 +64,7 @@ struct EmbreeScene::Impl {
   DeviceErrors errors;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::vector<std::uint32_t> geometry_mesh;               // geomID -> mesh index
+  std::vector<std::uint32_t> geometry_mesh;                // geomID -> mesh index
   std::vector<std::vector<std::uint32_t>> geometry_prims;  // geomID, primID -> triangle index
 
   ~Impl() {
@@ -102,12 +101,12 @@ EmbreeScene::EmbreeScene(const Scene& scene, const Context& ctx) : impl_(std::ma
     if (kept.empty()) continue;
 
     RTCGeometry geometry = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-        mesh.positions.size()));
-    auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t),
-        kept.size()));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(std::uint32_t), kept.size()));
     if (!vertices || !indices) {
       rtcReleaseGeometry(geometry);
       im.check("allocating Embree buffers");
@@ -144,8 +143,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const Context& ctx) : impl_(std::ma
   im.check("building the Embree BVH");
 
   if (triangle_count_ == 0) lo_ = hi_ = glm::vec3(0.0f);
-  const float extent = std::max({std::abs(lo_.x), std::abs(lo_.y), std::abs(lo_.z),
-                                 std::abs(hi_.x), std::abs(hi_.y), std::abs(hi_.z)});
+  const float extent = std::max({std::abs(lo_.x), std::abs(lo_.y), std::abs(lo_.z), std::abs(hi_.x),
+                                 std::abs(hi_.y), std::abs(hi_.z)});
   const float radius = 0.5f * glm::length(hi_ - lo_);
   epsilon_ = 1e-5f * std::max(extent + radius, 1e-6f);
   if (dropped_triangles_ > 0) {
@@ -166,8 +165,8 @@ bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float 
   return ray.tfar < 0.0f;  // Embree sets tfar = -inf on occlusion
 }
 
-bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& dir, RayHit* hit,
-                            float tnear, float tfar) const {
+bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& dir, RayHit* hit, float tnear,
+                            float tfar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayhit;

@@ -23,7 +23,9 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float luminance(const glm::vec3& c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
 
 float aces_filmic(float x) {
   const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
@@ -31,8 +33,8 @@ float aces_filmic(float x) {
 }
 
 std::uint8_t srgb8(float linear) {
-  const float v = linear <= 0.0031308f ? 12.92f * linear
-                                       : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+  const float v =
+      linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
@@ -68,18 +70,38 @@ void write_npy_vec3(const std::string& path, const std::vector<glm::vec3>& value
   }
 }
 
-float auto_exposure_ev(const LinearImage& image) {
+namespace {
+
+// Log-average luminance of the pixels `use` accepts; false if none has a positive luminance.
+template <typename Use>
+bool log_average_luminance(const LinearImage& image, Use use, double* log_average) {
   double log_sum = 0.0;
   std::size_t count = 0;
-  for (const glm::vec3& p : image.pixels) {
-    const float y = luminance(p);
-    if (!(y > 0.0f) || !std::isfinite(y)) continue;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const float y = luminance(image.pixels[i]);
+    if (!use(i) || !(y > 0.0f) || !std::isfinite(y)) continue;
     log_sum += std::log(static_cast<double>(y));
     ++count;
   }
-  if (count == 0) return 0.0f;
-  const double log_average = log_sum / static_cast<double>(count);
-  return static_cast<float>(std::log2(0.18) - log_average / std::log(2.0));
+  if (count == 0) return false;
+  *log_average = log_sum / static_cast<double>(count);
+  return true;
+}
+
+}  // namespace
+
+float auto_exposure_ev(const LinearImage& image) {
+  constexpr double kSubjectKey = 0.35, kSceneKey = 0.18;
+  double log_average = 0.0;
+  const bool has_coverage = image.coverage.size() == image.pixels.size();
+  auto covered = [&](std::size_t i) { return has_coverage && image.coverage[i] >= 0.5f; };
+  if (log_average_luminance(image, covered, &log_average)) {
+    return static_cast<float>(std::log2(kSubjectKey) - log_average / std::log(2.0));
+  }
+  if (log_average_luminance(image, [](std::size_t) { return true; }, &log_average)) {
+    return static_cast<float>(std::log2(kSceneKey) - log_average / std::log(2.0));
+  }
+  return 0.0f;
 }
 
 std::vector<std::uint8_t> tone_map_srgb8(const LinearImage& image, float exposure_ev) {

@@ -45,7 +45,8 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
   SurfacePoint x = point;
   for (int depth = 0;; ++depth) {
     const bool at_vertex = glm::dot(x.geometric_normal, x.geometric_normal) == 0.0f;
-    const glm::vec3 origin = rays_.offset_origin(x.position, at_vertex ? x.normal : x.geometric_normal);
+    const glm::vec3 origin =
+        rays_.offset_origin(x.position, at_vertex ? x.normal : x.geometric_normal);
     // A direction under the triangle's plane would start inside the surface: it gets nothing.
     auto leaves_surface = [&](const glm::vec3& w) {
       return at_vertex || glm::dot(w, x.geometric_normal) > 0.0f;
@@ -61,7 +62,8 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
         ++*rays;
         if (!rays_.occluded(origin, w)) {
           const float weight = power_heuristic(env_pdf, cos_w * kInvPi);
-          radiance += throughput * x.albedo * env_.radiance(w) * (kInvPi * cos_w / env_pdf * weight);
+          radiance +=
+              throughput * x.albedo * env_.radiance(w) * (kInvPi * cos_w / env_pdf * weight);
         }
       }
     }
@@ -71,8 +73,9 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
     const glm::vec3 w = frame.to_world(cosine_hemisphere(stream.get_2d(index, pair + 1)));
     const float cos_w = glm::dot(x.normal, w);
     if (!(cos_w > 0.0f) || !leaves_surface(w)) break;
-    const float weight =
-        env_distribution_.valid() ? power_heuristic(cos_w * kInvPi, env_distribution_.pdf(w)) : 1.0f;
+    const float weight = env_distribution_.valid()
+                             ? power_heuristic(cos_w * kInvPi, env_distribution_.pdf(w))
+                             : 1.0f;
     ++*rays;
     if (depth == bounces_) {
       if (!rays_.occluded(origin, w)) radiance += throughput * x.albedo * env_.radiance(w) * weight;

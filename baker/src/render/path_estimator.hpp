@@ -27,8 +27,8 @@ class PathEstimator {
  public:
   // All references must outlive the estimator. vertex_albedo holds one entry per scene vertex.
   PathEstimator(const Scene& scene, const EmbreeScene& rays, const EnvMap& env,
-                const EnvDistribution& env_distribution, const std::vector<glm::vec3>& vertex_albedo,
-                int bounces);
+                const EnvDistribution& env_distribution,
+                const std::vector<glm::vec3>& vertex_albedo, int bounces);
 
   // One sample of the outgoing radiance at `point`: point `index` of `stream`, using dimension
   // pairs first_pair, first_pair+1, ... (two per path vertex). Adds the rays traced to *rays.
@@ -49,8 +49,8 @@ class PathEstimator {
   const EnvDistribution& env_distribution_;
   const std::vector<glm::vec3>& vertex_albedo_;
   int bounces_;
-  std::vector<std::size_t> first_vertex_;    // per mesh: its first vertex in Scene order
-  std::vector<std::uint32_t> vertex_mesh_;   // per scene vertex: its mesh
+  std::vector<std::size_t> first_vertex_;   // per mesh: its first vertex in Scene order
+  std::vector<std::uint32_t> vertex_mesh_;  // per scene vertex: its mesh
 };
 
 }  // namespace prt::bake::render

@@ -112,8 +112,12 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene, const EnvMap& env,
 
 ReferenceRenderer::~ReferenceRenderer() = default;
 
-const EmbreeScene& ReferenceRenderer::embree_scene() const { return impl_->rays; }
-const ReferenceSettings& ReferenceRenderer::settings() const { return impl_->settings; }
+const EmbreeScene& ReferenceRenderer::embree_scene() const {
+  return impl_->rays;
+}
+const ReferenceSettings& ReferenceRenderer::settings() const {
+  return impl_->settings;
+}
 
 VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
   const auto start = std::chrono::steady_clock::now();
@@ -145,7 +149,8 @@ VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
         sum_b += glm::dvec3(estimator.sample(point, half_b, i, 0, &task_rays[task]));
       }
       result.radiance[v] = glm::vec3((sum_a + sum_b) / static_cast<double>(settings.spp));
-      difference[v] = glm::vec3(sum_a / static_cast<double>(spp_a) - sum_b / static_cast<double>(spp_b));
+      difference[v] =
+          glm::vec3(sum_a / static_cast<double>(spp_a) - sum_b / static_cast<double>(spp_b));
     }
   });
 
@@ -186,6 +191,7 @@ LinearImage ReferenceRenderer::render_image(const Camera& camera, int width, int
   image.width = width;
   image.height = height;
   image.pixels.assign(static_cast<std::size_t>(width) * height, glm::vec3(0.0f));
+  image.coverage.assign(image.pixels.size(), 0.0f);
   std::vector<std::uint64_t> row_rays(height, 0);
 
   parallel_tasks(static_cast<std::size_t>(height), ctx, "reference: image", [&](std::size_t y) {
@@ -193,12 +199,14 @@ LinearImage ReferenceRenderer::render_image(const Camera& camera, int width, int
       const std::size_t pixel = y * static_cast<std::size_t>(width) + x;
       const SampleStream stream(hash_key(settings.seed, pixel, kPixel));
       glm::dvec3 sum(0.0);
+      std::uint32_t hits = 0;
       for (std::uint32_t i = 0; i < settings.image_spp; ++i) {
         const glm::vec2 jitter = stream.get_2d(i, 0);
         const glm::vec3 dir = camera.direction((x + jitter.x) / width, (y + jitter.y) / height);
         ++row_rays[y];
         RayHit hit;
         if (impl_->rays.intersect(camera.eye, dir, &hit)) {
+          ++hits;
           const render::SurfacePoint point = estimator.surface_at(hit, dir);
           sum += glm::dvec3(estimator.sample(point, stream, i, 1, &row_rays[y]));
         } else {
@@ -206,6 +214,7 @@ LinearImage ReferenceRenderer::render_image(const Camera& camera, int width, int
         }
       }
       image.pixels[pixel] = glm::vec3(sum / static_cast<double>(settings.image_spp));
+      image.coverage[pixel] = static_cast<float>(hits) / static_cast<float>(settings.image_spp);
     }
   });
 

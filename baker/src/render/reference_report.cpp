@@ -20,16 +20,18 @@ void write_reference_report(const std::string& path, const ReferenceReport& repo
   const ReferenceSettings& s = report.settings;
   nlohmann::json json = {
       {"command", "reference"},
-      {"scene", {{"file", report.scene},
-                 {"vertices", report.vertices},
-                 {"triangles", report.triangles},
-                 {"dropped_triangles", report.dropped_triangles}}},
+      {"scene",
+       {{"file", report.scene},
+        {"vertices", report.vertices},
+        {"triangles", report.triangles},
+        {"dropped_triangles", report.dropped_triangles}}},
       {"environment", {{"file", report.env}, {"mapping", report.env_mapping}}},
-      {"settings", {{"bounces", s.bounces},
-                    {"spp", s.spp},
-                    {"image_spp", s.image_spp},
-                    {"seed", s.seed},
-                    {"threads", report.threads}}},
+      {"settings",
+       {{"bounces", s.bounces},
+        {"spp", s.spp},
+        {"image_spp", s.image_spp},
+        {"seed", s.seed},
+        {"threads", report.threads}}},
   };
   if (s.override_albedo) json["settings"]["albedo"] = {s.albedo.r, s.albedo.g, s.albedo.b};
   if (report.has_vertices) {

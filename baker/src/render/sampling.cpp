@@ -42,18 +42,41 @@ std::uint32_t nested_uniform_scramble(std::uint32_t x, std::uint32_t seed) {
 }
 
 // Sobol dimension 0 is the bit-reversed index (van der Corput); dimension 1 uses the direction
-// numbers of the primitive polynomial x + 1: v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1).
-std::uint32_t sobol_dimension1(std::uint32_t index) {
-  std::uint32_t x = 0, v = 0x80000000u;
-  for (; index != 0; index >>= 1, v ^= v >> 1) {
-    if (index & 1u) x ^= v;
+// numbers of the primitive polynomial x + 1: v_0 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1). The
+// XOR of the v_k of an index's set bits is looked up one byte of the index at a time.
+struct SobolDimension1Table {
+  std::uint32_t byte_xor[4][256];
+  constexpr SobolDimension1Table() : byte_xor{} {
+    std::uint32_t v[32] = {};
+    v[0] = 0x80000000u;
+    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+    for (int b = 0; b < 4; ++b) {
+      for (int byte = 0; byte < 256; ++byte) {
+        std::uint32_t x = 0;
+        for (int j = 0; j < 8; ++j) {
+          if (byte & (1 << j)) x ^= v[8 * b + j];
+        }
+        byte_xor[b][byte] = x;
+      }
+    }
   }
-  return x;
+};
+constexpr SobolDimension1Table kSobolDimension1;
+
+std::uint32_t sobol_dimension1(std::uint32_t index) {
+  return kSobolDimension1.byte_xor[0][index & 0xffu] ^
+         kSobolDimension1.byte_xor[1][(index >> 8) & 0xffu] ^
+         kSobolDimension1.byte_xor[2][(index >> 16) & 0xffu] ^
+         kSobolDimension1.byte_xor[3][index >> 24];
 }
 
-float to_unit_float(std::uint32_t x) { return static_cast<float>(x >> 8) * (1.0f / 16777216.0f); }
+float to_unit_float(std::uint32_t x) {
+  return static_cast<float>(x >> 8) * (1.0f / 16777216.0f);
+}
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float luminance(const glm::vec3& c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
 
 constexpr int kColumnGuide = 64;  // guide entries per row (see build_guide)
 

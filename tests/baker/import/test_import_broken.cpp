@@ -206,9 +206,26 @@ TEST(ImportBroken, TruncatedAndMisshapenHdr) {
   const std::string odd = dir.file("odd_shape.hdr");
   ASSERT_NE(stbi_write_hdr(odd.c_str(), 10, 7, 3, rgb.data()), 0);
   expect_envmap_error(odd, {"cannot tell the environment mapping", "10x7"});
-  // Only the header of a valid file: no pixels.
+  // Only the start of the header of a valid file.
   const std::string cut = dir.write("header_only.hdr", read_bytes(odd).substr(0, 40));
-  expect_envmap_error(cut, {});
+  expect_envmap_error(cut, {"truncated .hdr", "header"});
+  // Run-length encoded pixel data cut short (stb alone would spin forever on it).
+  std::vector<float> wide(64 * 32 * 3);
+  for (std::size_t i = 0; i < wide.size(); ++i) wide[i] = float(i % 11) + 0.5f;
+  const std::string full = dir.file("full.hdr");
+  ASSERT_NE(stbi_write_hdr(full.c_str(), 64, 32, 3, wide.data()), 0);
+  const std::string bytes = read_bytes(full);
+  const std::string half = dir.write("half.hdr", bytes.substr(0, bytes.size() / 2));
+  expect_envmap_error(half, {"truncated .hdr", "scanline"});
+}
+
+TEST(ImportBroken, TruncatedCopyOfSharedProbe) {
+  const std::string source = shared_asset("envmaps/rnl_probe.hdr");
+  if (source.empty()) GTEST_SKIP() << "shared assets not found";
+  const TempDir dir("broken_probe");
+  const std::string bytes = read_bytes(source);
+  expect_envmap_error(dir.write("rnl_probe_cut.hdr", bytes.substr(0, bytes.size() - 1000)),
+                      {"truncated .hdr", "scanline"});
 }
 
 }  // namespace

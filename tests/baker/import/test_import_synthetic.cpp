@@ -90,6 +90,23 @@ TEST(ImportGltf, NodeMatrixAndMirroringKeepFrontFaces) {
   }
 }
 
+// A node matrix T(1,2,3) R(90° about Y) S(2,3,4), written out by hand (column-major): its
+// decomposition must give back those factors.
+TEST(ImportGltf, NodeMatrixIsDecomposedIntoTrs) {
+  const TempDir dir("gltf_decompose");
+  GltfBuilder b = triangle_builder();
+  // R maps x -> -z and z -> x: columns R*S = (0,0,-2), (0,3,0), (4,0,0).
+  b.doc["nodes"] = nlohmann::json::array(
+      {{{"mesh", 0}, {"matrix", {0, 0, -2, 0, 0, 3, 0, 0, 4, 0, 0, 0, 1, 2, 3, 1}}}});
+  const Scene scene = import_scene(dir.write("decompose.glb", b.glb()), Context{});
+  const Node& node = scene.nodes[0];
+  expect_vec3(node.translation, {1, 2, 3});
+  expect_vec3(node.scale, {2, 3, 4});
+  const float s = std::sqrt(0.5f);
+  EXPECT_NEAR(std::abs(glm::dot(node.rotation, glm::quat(s, 0, s, 0))), 1.0f, 1e-5f);
+  expect_vec3(scene.meshes.at(0).positions[1], {1, 2, 1});  // (1,0,0) -> (2,0,0) -> (0,0,-2) + T
+}
+
 TEST(ImportGltf, ReadsInterleavedStridesAndNormalisedIntegers) {
   const TempDir dir("gltf_components");
   GltfBuilder b;

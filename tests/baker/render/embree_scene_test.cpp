@@ -39,14 +39,14 @@ TEST(EmbreeScene, HitReportsMeshTriangleAndDistance) {
   EXPECT_EQ(hit.mesh, 0u);
   EXPECT_TRUE(rays.occluded(origin, down));
   EXPECT_FALSE(rays.occluded(origin, -down));
-  EXPECT_FALSE(rays.occluded(origin, down, 0.0f, 3.9f));  // stops short of y = 1
+  EXPECT_FALSE(rays.occluded(origin, down, 0.0f, 3.9f));                  // stops short of y = 1
   EXPECT_FALSE(rays.intersect(glm::vec3(3.0f, 5.0f, 0.0f), down, &hit));  // beside both planes
 }
 
 TEST(EmbreeScene, DegenerateTrianglesAreDroppedAndCounted) {
   Mesh mesh = make_plane(1.0f, 1);  // 4 vertices, 2 good triangles
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  mesh.positions.push_back(glm::vec3(nan, 0.0f, 0.0f));                          // 4: NaN
+  mesh.positions.push_back(glm::vec3(nan, 0.0f, 0.0f));                         // 4: NaN
   mesh.positions.push_back(glm::vec3(std::numeric_limits<float>::infinity()));  // 5: Inf
   mesh.positions.push_back(glm::vec3(0.0f, 0.0f, 0.0f));                        // 6, 7, 8:
   mesh.positions.push_back(glm::vec3(0.5f, 0.0f, 0.0f));                        // collinear

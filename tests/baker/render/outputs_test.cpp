@@ -103,11 +103,16 @@ TEST(ImageIo, HdrKeepsLinearRadiance) {
   stbi_image_free(data);
 }
 
-TEST(ImageIo, AutoExposureMapsTheLogAverageToMiddleGrey) {
+TEST(ImageIo, AutoExposureMetersTheSubjectOrTheWholeImage) {
   LinearImage image;
   image.width = 2;
   image.height = 1;
   image.pixels = {glm::vec3(0.5f), glm::vec3(2.0f)};  // log-average luminance 1
+  EXPECT_NEAR(auto_exposure_ev(image), std::log2(0.18f), 1e-5f);
+  // With coverage, only the pixels mostly covered by surfaces are metered, against 0.35.
+  image.coverage = {0.0f, 1.0f};
+  EXPECT_NEAR(auto_exposure_ev(image), std::log2(0.35f / 2.0f), 1e-5f);
+  image.coverage = {0.0f, 0.25f};  // no covered pixel: back to the whole image
   EXPECT_NEAR(auto_exposure_ev(image), std::log2(0.18f), 1e-5f);
 }
 

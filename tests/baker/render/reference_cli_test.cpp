@@ -33,7 +33,8 @@ void write_obj(const Mesh& mesh, const fs::path& path) {
   for (const glm::vec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
   for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
     out << 'f';
-    for (int k = 0; k < 3; ++k) out << ' ' << mesh.indices[i + k] + 1 << "//" << mesh.indices[i + k] + 1;
+    for (int k = 0; k < 3; ++k)
+      out << ' ' << mesh.indices[i + k] + 1 << "//" << mesh.indices[i + k] + 1;
     out << '\n';
   }
 }
@@ -119,7 +120,8 @@ TEST(ReferenceCommand, BadArgumentsFailWithNonZeroExit) {
   write_obj(test::make_icosphere(1), dir / "small.obj");
   const std::string scene = "\"" + (dir / "small.obj").string() + "\"";
   EXPECT_NE(run("reference " + scene + " --albedo 0.5,0.5 --quiet 2>/dev/null"), 0);
-  EXPECT_NE(run("reference " + scene + " --image-out x.png --image-size 10 --quiet 2>/dev/null"), 0);
+  EXPECT_NE(run("reference " + scene + " --image-out x.png --image-size 10 --quiet 2>/dev/null"),
+            0);
   EXPECT_NE(run("reference " + scene + " --env \"" + (dir / "missing.hdr").string() +
                 "\" --quiet 2>/dev/null"),
             0);

@@ -38,7 +38,8 @@ TEST_P(WhiteFurnace, EveryVertexReflectsItsAlbedo) {
   const auto [rho, bounces] = GetParam();
   const Scene scene = test::scene_of({test::make_icosphere(3, 2.0f)});
   const EnvMap env = constant_envmap(glm::vec3(1.0f));
-  const ReferenceRenderer renderer(scene, env, settings_with(bounces, 1024, glm::vec3(rho)), Context{});
+  const ReferenceRenderer renderer(scene, env, settings_with(bounces, 1024, glm::vec3(rho)),
+                                   Context{});
   const VertexRadiance result = renderer.render_vertices(Context{});
   ASSERT_EQ(result.radiance.size(), scene.vertex_count());
   for (std::size_t v = 0; v < result.radiance.size(); ++v) {
@@ -49,7 +50,8 @@ TEST_P(WhiteFurnace, EveryVertexReflectsItsAlbedo) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AlbedoAndBounces, WhiteFurnace,
-                         ::testing::Combine(::testing::Values(0.5f, 0.8f), ::testing::Values(0, 3)));
+                         ::testing::Combine(::testing::Values(0.5f, 0.8f),
+                                            ::testing::Values(0, 3)));
 
 // Form factor from a point to a parallel a x b rectangle at distance c with one corner above the
 // point (Howell, A Catalog of Radiation Heat Transfer Configuration Factors, B-3).
@@ -85,7 +87,8 @@ TEST(ReferenceRenderer, ImportanceSamplingOfAFewBrightTexelsGivesTheirIrradiance
       glm::vec3 dir;
       float omega = 0.0f;
       ASSERT_TRUE(env.texel(x, y, &dir, &omega));
-      irradiance += glm::dvec3(env.texel_value(x, y)) * std::max(0.0, double(dir.y)) * double(omega);
+      irradiance +=
+          glm::dvec3(env.texel_value(x, y)) * std::max(0.0, double(dir.y)) * double(omega);
     }
   }
   ASSERT_GT(irradiance.r, 0.0);
@@ -155,10 +158,10 @@ TEST(ReferenceRenderer, StatedNoiseMatchesTheDifferenceBetweenSeeds) {
     const double measured = std::sqrt(diff_sq / 2.0 / radiance_sq);
     const double stated = 0.5 * (a.relative_rmse + b.relative_rmse);
     EXPECT_GT(stated, 0.0);
-    EXPECT_GT(measured / stated, 0.5) << "bounces " << bounces << " measured " << measured
-                                      << " stated " << stated;
-    EXPECT_LT(measured / stated, 2.0) << "bounces " << bounces << " measured " << measured
-                                      << " stated " << stated;
+    EXPECT_GT(measured / stated, 0.5)
+        << "bounces " << bounces << " measured " << measured << " stated " << stated;
+    EXPECT_LT(measured / stated, 2.0)
+        << "bounces " << bounces << " measured " << measured << " stated " << stated;
   }
 }
 
@@ -174,12 +177,32 @@ TEST(ReferenceRenderer, ImageShowsTheEnvironmentWhereRaysMissAndTheObjectWhereTh
   const LinearImage image = renderer.render_image(camera, 32, 32, Context{}, &stats);
   ASSERT_EQ(image.pixels.size(), 32u * 32u);
   EXPECT_NEAR(image.pixels[0].g, 1.0f, 1e-6f);  // corner: background
-  double centre = 0.0;                           // the central 8x8 pixels: the sphere
+  double centre = 0.0;                          // the central 8x8 pixels: the sphere
   for (int y = 12; y < 20; ++y) {
     for (int x = 12; x < 20; ++x) centre += image.pixels[y * 32 + x].g / 64.0;
   }
   EXPECT_NEAR(centre, 0.5, 0.5 * 0.02);
   EXPECT_GT(stats.rays, 32u * 32u * 64u);
+}
+
+TEST(Camera, AutoFrameKeepsTheBoundsInViewFromAboveAndFront) {
+  const glm::vec3 lo(-3.0f, 1.0f, 2.0f), hi(5.0f, 2.0f, 4.0f);
+  for (const float aspect : {0.5f, 1.0f, 16.0f / 9.0f}) {
+    const Camera camera = Camera::auto_frame(lo, hi, aspect);
+    EXPECT_NEAR(glm::distance(camera.direction(0.5f, 0.5f), camera.forward), 0.0f, 1e-6f);
+    EXPECT_GT(camera.eye.z, hi.z);  // in front (+Z) ...
+    EXPECT_GT(camera.eye.y, hi.y);  // ... and above
+    const float tan_half = std::tan(glm::radians(camera.vertical_fov_degrees) * 0.5f);
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 q((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                        (corner & 4) ? hi.z : lo.z);
+      const glm::vec3 d = q - camera.eye;
+      const float depth = glm::dot(d, camera.forward);
+      ASSERT_GT(depth, 0.0f);
+      EXPECT_LE(std::abs(glm::dot(d, camera.right) / depth), tan_half * aspect) << corner;
+      EXPECT_LE(std::abs(glm::dot(d, camera.up) / depth), tan_half) << corner;
+    }
+  }
 }
 
 TEST(ReferenceRenderer, RejectsBadSettings) {

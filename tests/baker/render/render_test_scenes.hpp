@@ -20,13 +20,14 @@ namespace prt::bake::test {
 // normals are the exact sphere normals. level 3: 642 vertices, level 4: 2562.
 inline Mesh make_icosphere(int level, float radius = 1.0f, glm::vec3 centre = glm::vec3(0.0f)) {
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-  std::vector<glm::vec3> p = {{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0},
-                              {0, -1, t}, {0, 1, t},  {0, -1, -t}, {0, 1, -t},
-                              {t, 0, -1}, {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<glm::vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                              {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                              {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (auto& v : p) v = glm::normalize(v);
-  std::vector<std::uint32_t> f = {0, 11, 5, 0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-                                  4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9,  4, 3,  4,  2, 3, 2, 6, 3,
-                                  6, 8,  3, 8,  9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8,  6, 7, 9, 8, 1};
+  std::vector<std::uint32_t> f = {0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7, 10, 0, 10, 11,
+                                  1, 5,  9, 5, 11, 4,  11, 10, 2,  10, 7, 6,  7, 1,  8,
+                                  3, 9,  4, 3, 4,  2,  3,  2,  6,  3,  6, 8,  3, 8,  9,
+                                  4, 9,  5, 2, 4,  11, 6,  2,  10, 8,  6, 7,  9, 8,  1};
   for (int l = 0; l < level; ++l) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoint;
     auto mid = [&](std::uint32_t a, std::uint32_t b) {
@@ -88,8 +89,8 @@ inline Mesh make_open_box(float height) {
   const std::uint32_t centre = add({0, 0, 0}, up);
   const std::uint32_t c0 = add({-1, 0, -1}, up), c1 = add({1, 0, -1}, up), c2 = add({1, 0, 1}, up),
                       c3 = add({-1, 0, 1}, up);
-  mesh.indices.insert(mesh.indices.end(), {centre, c1, c0, centre, c2, c1, centre, c3, c2,
-                                           centre, c0, c3});
+  mesh.indices.insert(mesh.indices.end(),
+                      {centre, c1, c0, centre, c2, c1, centre, c3, c2, centre, c0, c3});
   const glm::vec3 corners[4] = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}};
   for (int w = 0; w < 4; ++w) {
     const glm::vec3 a = corners[w], b = corners[(w + 1) % 4];

@@ -15,15 +15,20 @@ namespace prt::bake {
 struct LinearImage {
   int width = 0, height = 0;
   std::vector<glm::vec3> pixels;
+  // Per pixel, the fraction of its samples that hit a surface (empty when not known).
+  std::vector<float> coverage;
 };
 
 // Writes float32 little-endian, C order, shape [values.size(), 3] (.npy format 1.0).
 // Throws Error naming the file if it cannot be written.
 void write_npy_vec3(const std::string& path, const std::vector<glm::vec3>& values);
 
-// Exposure (in EV, a scale of 2^EV) that maps the image's log-average luminance to middle grey
-// 0.18 (Reinhard et al. 2002's key value). Pixels with zero or non-finite luminance are ignored;
-// 0 for an image that has none left.
+// Exposure (in EV, a scale of 2^EV) for a tone-mapped image, metered on the subject: the
+// log-average luminance of the pixels mostly covered by surfaces (coverage >= 0.5) maps to 0.35,
+// so a white diffuse object comes out light grey with its shading intact, whatever the
+// background. Without such pixels, the log-average of all pixels maps to middle grey 0.18
+// (Reinhard et al. 2002's key value). Zero and non-finite luminances are ignored; 0 EV for an
+// image that has none left.
 float auto_exposure_ev(const LinearImage& image);
 
 // Filmic tone map (the ACES fit of K. Narkowicz, 2015) of radiance x 2^exposure_ev, then sRGB

@@ -30,8 +30,8 @@
 namespace prt::bake {
 
 struct ReferenceSettings {
-  int bounces = 0;           // indirect bounces; 0 = direct environment light with visibility
-  std::uint32_t spp = 1024;  // samples per vertex (>= 2: two halves for the noise estimate)
+  int bounces = 0;               // indirect bounces; 0 = direct environment light with visibility
+  std::uint32_t spp = 1024;      // samples per vertex (>= 2: two halves for the noise estimate)
   std::uint32_t image_spp = 64;  // samples per pixel
   std::uint32_t seed = 0;
   bool override_albedo = false;  // true: every surface has `albedo`; false: from the materials
@@ -41,7 +41,9 @@ struct ReferenceSettings {
 struct RenderStats {
   std::uint64_t rays = 0;  // rays traced (occlusion and closest-hit)
   double seconds = 0.0;
-  double rays_per_second() const { return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0; }
+  double rays_per_second() const {
+    return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0;
+  }
 };
 
 struct VertexRadiance {

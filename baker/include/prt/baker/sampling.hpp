@@ -42,7 +42,9 @@ class SampleStream {
 struct Frame {
   glm::vec3 t, b, n;
   explicit Frame(const glm::vec3& normal);
-  glm::vec3 to_world(const glm::vec3& local) const { return t * local.x + b * local.y + n * local.z; }
+  glm::vec3 to_world(const glm::vec3& local) const {
+    return t * local.x + b * local.y + n * local.z;
+  }
 };
 
 // Cosine-weighted direction about +Z from u in [0,1)^2 (concentric disc mapping, which keeps the

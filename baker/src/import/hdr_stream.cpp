@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+#include "hdr_stream.hpp"
+
+#include <cstdlib>
+#include <cstring>
+
+#include "prt/baker/context.hpp"
+
+namespace prt::bake::detail {
+namespace {
+
+class ByteReader {
+ public:
+  ByteReader(const std::string& path, const std::vector<unsigned char>& bytes)
+      : path_(path), bytes_(bytes) {}
+
+  bool at_end() const { return pos_ >= bytes_.size(); }
+  std::size_t remaining() const { return bytes_.size() - pos_; }
+
+  // One header line without its '\n' (stb reads tokens the same way).
+  std::string line() {
+    std::string text;
+    while (pos_ < bytes_.size() && bytes_[pos_] != '\n') text += static_cast<char>(bytes_[pos_++]);
+    if (pos_ < bytes_.size()) ++pos_;
+    return text;
+  }
+  unsigned byte(const char* what, long scanline) {
+    if (pos_ >= bytes_.size()) {
+      throw Error(path_ + ": truncated .hdr: the pixel data ends in scanline " +
+                  std::to_string(scanline) + " (" + what + ")");
+    }
+    return bytes_[pos_++];
+  }
+  void skip(std::size_t n, const char* what, long scanline) {
+    if (n > remaining()) {
+      throw Error(path_ + ": truncated .hdr: the pixel data ends in scanline " +
+                  std::to_string(scanline) + " (" + what + ")");
+    }
+    pos_ += n;
+  }
+
+ private:
+  const std::string& path_;
+  const std::vector<unsigned char>& bytes_;
+  std::size_t pos_ = 0;
+};
+
+// Flat RGBE from the current position: texels x 4 bytes.
+void check_flat(ByteReader& in, std::size_t texels, long width) {
+  if (texels * 4 > in.remaining()) {
+    in.skip(texels * 4, "flat RGBE texels", static_cast<long>(in.remaining() / 4 / width));
+  }
+}
+
+}  // namespace
+
+bool has_radiance_signature(const std::vector<unsigned char>& bytes) {
+  auto starts = [&](const char* sig) {
+    const std::size_t n = std::strlen(sig);
+    return bytes.size() >= n && std::memcmp(bytes.data(), sig, n) == 0 &&
+           (bytes.size() == n || bytes[n] == '\n' || bytes[n] == '\r');
+  };
+  return starts("#?RADIANCE") || starts("#?RGBE");
+}
+
+void check_radiance_stream(const std::string& path, const std::vector<unsigned char>& bytes) {
+  ByteReader in(path, bytes);
+  in.line();  // signature, checked by has_radiance_signature
+  bool rgbe = false;
+  for (;;) {
+    if (in.at_end()) throw Error(path + ": truncated .hdr: the header does not end");
+    const std::string line = in.line();
+    if (line.empty()) break;
+    if (line == "FORMAT=32-bit_rle_rgbe") rgbe = true;
+  }
+  if (!rgbe) throw Error(path + ": unsupported .hdr format (expected FORMAT=32-bit_rle_rgbe)");
+  const std::string size = in.line();
+  const char* p = size.c_str();
+  char* end = nullptr;
+  if (std::strncmp(p, "-Y ", 3) != 0) {
+    throw Error(path + ": unsupported .hdr layout '" + size + "' (expected '-Y H +X W')");
+  }
+  const long height = std::strtol(p + 3, &end, 10);
+  while (*end == ' ') ++end;
+  if (std::strncmp(end, "+X ", 3) != 0) {
+    throw Error(path + ": unsupported .hdr layout '" + size + "' (expected '-Y H +X W')");
+  }
+  const long width = std::strtol(end + 3, nullptr, 10);
+  if (width <= 0 || height <= 0 || width > (1L << 24) || height > (1L << 24)) {
+    throw Error(path + ": .hdr image size " + std::to_string(width) + "x" + std::to_string(height) +
+                " is invalid");
+  }
+  const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (width < 8 || width >= 32768) return check_flat(in, texels, width);
+  for (long y = 0; y < height; ++y) {
+    const unsigned c1 = in.byte("scanline header", y), c2 = in.byte("scanline header", y);
+    unsigned length = in.byte("scanline header", y);
+    if (c1 != 2 || c2 != 2 || (length & 0x80)) {
+      // Not run-length encoded: stb reads the whole image as flat texels from here, the
+      // three bytes just read being the first texel's.
+      in.byte("flat RGBE texel", y);
+      return check_flat(in, texels - 1, width);
+    }
+    length = (length << 8) | in.byte("scanline header", y);
+    if (static_cast<long>(length) != width) {
+      throw Error(path + ": corrupt .hdr: scanline " + std::to_string(y) + " has length " +
+                  std::to_string(length) + ", the image is " + std::to_string(width) + " wide");
+    }
+    for (int channel = 0; channel < 4; ++channel) {
+      long x = 0;
+      while (x < width) {
+        unsigned count = in.byte("run length", y);
+        if (count > 128) {
+          count -= 128;
+          in.byte("run value", y);
+        } else {
+          in.skip(count, "literal run", y);
+        }
+        if (static_cast<long>(count) > width - x) {
+          throw Error(path + ": corrupt .hdr: a run in scanline " + std::to_string(y) +
+                      " is longer than the scanline");
+        }
+        x += count;
+      }
+    }
+  }
+}
+
+}  // namespace prt::bake::detail

@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""A second, independent reader of prtkit blobs written from formats/SPEC.md alone (no code shared
+with the C reader), used as a cross-check: it validates a blob by the rules of SPEC.md §8 (quick
+checks, checksums, padding, contents of uncompressed known kinds; zstd frames are not decoded,
+the standard library has no zstd) and prints the section table.
+
+usage: spec_reader.py FILE.prtk   -> exit 0 if valid, 1 with the failed rule otherwise
+"""
+import struct
+import sys
+
+KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"TRIS", 1): 12}
+
+
+def crc32c(data, crc=0):
+    """CRC-32C, bit by bit (SPEC.md §6)."""
+    crc ^= 0xFFFFFFFF
+    for byte in data:
+        crc ^= byte
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0x82F63B78 if crc & 1 else crc >> 1
+    return crc ^ 0xFFFFFFFF
+
+
+def align16(x):
+    return (x + 15) & ~15
+
+
+class Invalid(Exception):
+    pass
+
+
+def require(condition, rule):
+    if not condition:
+        raise Invalid(rule)
+
+
+def read(blob):
+    size = len(blob)
+    require(size >= 4, "TRUNCATED: fewer than 4 bytes")
+    require(blob[:4] == b"PRTK", "BAD_MAGIC")
+    require(size >= 64, "TRUNCATED: shorter than the header")
+    (major, minor, header_size, flags, total, table_offset, count,
+     checksum) = struct.unpack_from("<HHIIQQII", blob, 4)
+    require(major == 1, "UNSUPPORTED_VERSION")
+    require(header_size >= 64 and header_size % 16 == 0, "CORRUPT: header_size")
+    require(total <= size, "TRUNCATED: total_size")
+    require(total >= size, "SIZE_MISMATCH")
+    require(header_size <= total, "CORRUPT: header_size > total_size")
+    require(flags & 0xFFFF == 0, "UNSUPPORTED_FEATURE: critical header flag")
+    require(blob[56:64] == bytes(8), "CORRUPT: reserved header bytes")
+    require(count <= 4096, "CORRUPT: section_count")
+    require(table_offset == header_size, "CORRUPT: table_offset")
+    table_end = table_offset + 48 * count
+    require(table_end <= total, "CORRUPT: table past the end")
+
+    sections, end = [], table_end
+    for i in range(count):
+        (tag, sflags, codec, layout, scheck, reserved, offset, stored, raw,
+         elements) = struct.unpack_from("<4sHBBIIQQQQ", blob, table_offset + 48 * i)
+        known = (tag, layout) in KINDS
+        require(all(0x20 <= c <= 0x7E for c in tag), "CORRUPT: tag")
+        require(sflags & ~1 == 0, "UNSUPPORTED_FEATURE: section flags")
+        require(reserved == 0, "CORRUPT: section reserved")
+        require(codec in (0, 1), "UNSUPPORTED_FEATURE: codec")
+        require(known or not sflags & 1, "UNSUPPORTED_FEATURE: unknown required section")
+        require(offset == align16(end), "CORRUPT: offset not canonical")
+        require(offset + stored <= total, "CORRUPT: section past the end")
+        require(codec != 0 or stored == raw, "CORRUPT: stored != raw")
+        require(codec != 1 or (stored >= 9 and raw <= 32768 * stored), "CORRUPT: zstd sizes")
+        if known:
+            require(elements * KINDS[(tag, layout)] == raw, "CORRUPT: element_count")
+        else:
+            require(elements <= raw, "CORRUPT: element_count")
+        require(all(s["tag"] != tag for s in sections), "CORRUPT: duplicate tag")
+        sections.append(dict(tag=tag, flags=sflags, codec=codec, layout=layout, checksum=scheck,
+                             offset=offset, stored=stored, raw=raw, elements=elements,
+                             known=known))
+        end = offset + stored
+    require(total == align16(end), "CORRUPT: total_size is not the padded end")
+    by_tag = {s["tag"]: s for s in sections if s["known"]}
+    for needy in (b"TRIS", b"VNRM"):
+        require(needy not in by_tag or b"VPOS" in by_tag, "CORRUPT: needs VPOS")
+    if b"VNRM" in by_tag:
+        require(by_tag[b"VNRM"]["elements"] == by_tag[b"VPOS"]["elements"], "CORRUPT: normals")
+
+    header = bytearray(blob[:header_size])
+    header[36:40] = bytes(4)
+    require(crc32c(bytes(header) + blob[table_offset:table_end]) == checksum,
+            "CHECKSUM_MISMATCH: header")
+    end = table_end
+    for s in sections:
+        require(blob[end:s["offset"]] == bytes(s["offset"] - end), "CORRUPT: padding")
+        data = blob[s["offset"]:s["offset"] + s["stored"]]
+        require(crc32c(data) == s["checksum"], "CHECKSUM_MISMATCH: section")
+        end = s["offset"] + s["stored"]
+        if not s["known"] or s["codec"] != 0:
+            continue
+        if s["tag"] == b"INFO":
+            try:
+                data.decode("utf-8", errors="strict")
+            except UnicodeDecodeError:
+                raise Invalid("CORRUPT: INFO is not UTF-8")
+        elif s["tag"] in (b"VPOS", b"VNRM"):
+            for (bits,) in struct.iter_unpack("<I", data):
+                require(bits & 0x7F800000 != 0x7F800000, "NON_FINITE")
+        elif s["tag"] == b"TRIS":
+            vertices = by_tag[b"VPOS"]["elements"]
+            for (index,) in struct.iter_unpack("<I", data):
+                require(index < vertices, "INDEX_OUT_OF_RANGE")
+    require(blob[end:total] == bytes(total - end), "CORRUPT: final padding")
+    return (major, minor), sections
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    blob = open(sys.argv[1], "rb").read()
+    try:
+        version, sections = read(blob)
+    except Invalid as failure:
+        print(f"{sys.argv[1]}: invalid: {failure}")
+        return 1
+    print(f"{sys.argv[1]}: valid prtkit blob {version[0]}.{version[1]}, {len(blob)} bytes")
+    for s in sections:
+        codec = "zstd" if s["codec"] else "none"
+        print(f"  {s['tag'].decode()} v{s['layout']} flags={s['flags']} {codec} "
+              f"offset={s['offset']} stored={s['stored']} raw={s['raw']} "
+              f"elements={s['elements']}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
