@@ -35,7 +35,7 @@ Mesh make_grid_mesh(std::string name, int material, int rows, int cols, Surface 
 }
 
 Mesh make_ground(int material) {
-  const float half = 2.5f;
+  const float half = 2.0f;
   return make_grid_mesh("ground", material, 64, 64, [&](float u, float v) {
     return std::pair{glm::vec3(-half + 2 * half * u, 0.0f, -half + 2 * half * v),
                      glm::vec3(0, 1, 0)};
@@ -53,7 +53,7 @@ Mesh make_sphere(int material, glm::vec3 centre, float radius) {
 
 Mesh make_torus(int material, glm::vec3 centre, float major, float minor) {
   return make_grid_mesh("torus", material, 48, 96, [&](float u, float v) {
-    float a = -u * 2 * kPi, b = v * 2 * kPi;
+    float a = u * 2 * kPi, b = v * 2 * kPi;
     glm::vec3 ring(std::cos(a), 0.0f, std::sin(a));
     glm::vec3 n = std::cos(b) * ring + std::sin(b) * glm::vec3(0, 1, 0);
     return std::pair{centre + major * ring + minor * n, n};
@@ -69,7 +69,7 @@ Mesh make_box(int material, glm::vec3 centre, float half, float yaw) {
   for (int axis = 0; axis < 3; ++axis) {
     for (float sign : {-1.0f, 1.0f}) {
       glm::vec3 n = sign * axes[axis];
-      glm::vec3 s = axes[(axis + 1) % 3], t = sign * axes[(axis + 2) % 3];
+      glm::vec3 s = axes[(axis + 1) % 3], t = -sign * axes[(axis + 2) % 3];
       Mesh face = make_grid_mesh("", material, 16, 16, [&](float u, float v) {
         return std::pair{half * (n + (2 * u - 1) * s + (2 * v - 1) * t), n};
       });

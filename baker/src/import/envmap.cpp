@@ -204,6 +204,7 @@ glm::vec3 EnvMap::texel_value(int x, int y) const {
 
 bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return false;
+  if (!dir && !solid_angle && mapping_ == EnvMapping::LatLong) return true;
   switch (mapping_) {
     case EnvMapping::LatLong: {
       // u = 0.5 + atan2(d.x, -d.z)/(2 pi), v = acos(d.y)/pi.
@@ -223,6 +224,7 @@ bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
       const int f = face_size();
       const CubeFace face = cross_face_at(x / f, y / f);
       if (face == kNoFace) return false;
+      if (!dir && !solid_angle) return true;
       const int i = x % f, j = y % f;
       const double u0 = 2.0 * i / f - 1.0, u1 = 2.0 * (i + 1) / f - 1.0;
       const double v0 = 1.0 - 2.0 * (j + 1) / f, v1 = 1.0 - 2.0 * j / f;
@@ -235,6 +237,7 @@ bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
       const double u = (x + 0.5 - half) / half, v = (half - y - 0.5) / half;
       const double r = std::sqrt(u * u + v * v);
       if (r > 1.0) return false;
+      if (!dir && !solid_angle) return true;
       const double theta = kPi * r, phi = std::atan2(v, u);
       // Probe frame d' = (sin t cos p, sin t sin p, cos t); world = (d'.x, d'.y, -d'.z).
       if (dir) {
@@ -261,19 +264,25 @@ struct LatLongCoord {
   double x, y;
 };
 
-LatLongCoord latlong_coord(const glm::dvec3& d, int width, int height) {
-  const double u = 0.5 + std::atan2(d.x, -d.z) / (2.0 * kPi);
-  const double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
-  return {u * width - 0.5, v * height - 0.5};
+// Float and double versions: radiance() runs per sample and needs no more than float.
+template <typename T>
+LatLongCoord latlong_coord(const glm::vec<3, T>& d, int width, int height) {
+  const T pi = static_cast<T>(kPi);
+  const T u = T(0.5) + std::atan2(d.x, -d.z) / (T(2) * pi);
+  const T v = std::acos(std::clamp(d.y, T(-1), T(1))) / pi;
+  return {double(u) * width - 0.5, double(v) * height - 0.5};
 }
 
-void probe_coord(const glm::dvec3& d, int width, double* x, double* y) {
-  const double theta = std::acos(std::clamp(-d.z, -1.0, 1.0));
-  const double r = theta / kPi;
-  const double phi = std::atan2(d.y, d.x);
+// Continuous texel coordinates of a direction in the probe image; no atan2/cos/sin: the
+// azimuth's cosine and sine are d.x and d.y over their length.
+template <typename T>
+void probe_coord(const glm::vec<3, T>& d, int width, double* x, double* y) {
+  const T r = std::acos(std::clamp(-d.z, T(-1), T(1))) / static_cast<T>(kPi);
+  const T len = std::sqrt(d.x * d.x + d.y * d.y);
+  const T cos_phi = len > T(0) ? d.x / len : T(1), sin_phi = len > T(0) ? d.y / len : T(0);
   const double half = 0.5 * width;
-  *x = r * std::cos(phi) * half + half - 0.5;
-  *y = half - r * std::sin(phi) * half - 0.5;
+  *x = double(r * cos_phi) * half + half - 0.5;
+  *y = half - double(r * sin_phi) * half - 0.5;
 }
 
 }  // namespace
@@ -332,7 +341,7 @@ void EnvMap::texel_of(const glm::vec3& dir_in, int* x, int* y) const {
 }
 
 glm::vec3 EnvMap::radiance(const glm::vec3& dir_in) const {
-  const glm::dvec3 d = glm::normalize(glm::dvec3(dir_in));
+  const glm::vec3 d = glm::normalize(dir_in);
   switch (mapping_) {
     case EnvMapping::LatLong: {
       // Bilinear, wrapping around in longitude and clamped at the poles.
@@ -351,7 +360,7 @@ glm::vec3 EnvMap::radiance(const glm::vec3& dir_in) const {
       // Bilinear within the face, clamped at its edges (the padding is never read).
       const int f = face_size();
       double u = 0.0, v = 0.0;
-      const CubeFace face = cross_face_of(d, &u, &v);
+      const CubeFace face = cross_face_of(glm::dvec3(d), &u, &v);
       int col = 0, row = 0;
       cross_face_cell(face, &col, &row);
       const double px = std::clamp((u + 1.0) * 0.5 * f - 0.5, 0.0, f - 1.0);

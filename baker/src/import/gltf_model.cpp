@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -374,11 +375,15 @@ ByteRange checked_range(const tinygltf::Model& model, int view_index, std::size_
                 std::to_string(view.buffer));
   }
   if (stride == 0) stride = element_size;
-  const std::size_t needed = count == 0 ? 0 : offset + stride * (count - 1) + element_size;
-  if (needed > view.byteLength) {
+  // offset + stride * (count - 1) + element_size <= byteLength, without overflow.
+  const std::size_t length = view.byteLength;
+  const bool fits = count == 0 || (offset <= length && element_size <= length - offset &&
+                                   count - 1 <= (length - offset - element_size) / stride);
+  if (!fits) {
+    const double needed = double(offset) + double(stride) * double(count - 1) + element_size;
     throw Error(file + ": " + what + " reads past the end of bufferView " +
-                std::to_string(view_index) + " (needs " + std::to_string(needed) + " bytes, has " +
-                std::to_string(view.byteLength) + ")");
+                std::to_string(view_index) + " (needs " + std::to_string(std::llround(needed)) +
+                " bytes, has " + std::to_string(view.byteLength) + ")");
   }
   return {buffer.data() + view.byteOffset + offset, stride};
 }
@@ -470,6 +475,23 @@ AccessorData read_accessor(const tinygltf::Model& model, int index, bool normali
                 " components, which this attribute does not allow");
   }
   const bool scale = normalise && accessor.normalized;
+  // Bounds are checked against the bytes present before anything is allocated; only an
+  // accessor with no bufferView (all zeros plus sparse values) could still claim a huge count.
+  constexpr std::size_t kMaxElements = std::size_t(1) << 28;
+  if (accessor.bufferView < 0 && out.count > kMaxElements) {
+    throw Error(file + ": " + name + " claims " + std::to_string(out.count) +
+                " elements without a bufferView");
+  }
+  if (accessor.bufferView >= 0) {
+    std::size_t stride = 0;
+    if (static_cast<std::size_t>(accessor.bufferView) < model.bufferViews.size()) {
+      const int s = accessor.ByteStride(model.bufferViews[accessor.bufferView]);
+      if (s < 0) throw Error(file + ": " + name + " has an invalid byteStride");
+      stride = static_cast<std::size_t>(s);
+    }
+    checked_range(model, accessor.bufferView, accessor.byteOffset, out.count,
+                  static_cast<std::size_t>(size) * out.components, stride, file, name);
+  }
   out.values.assign(out.count * out.components, 0.0);
   if (accessor.bufferView >= 0) {
     std::size_t stride = 0;

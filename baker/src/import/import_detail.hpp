@@ -17,8 +17,9 @@ std::vector<glm::vec3> area_weighted_normals(const std::vector<glm::vec3>& posit
                                              const std::vector<std::uint32_t>& indices);
 
 // Per-vertex tangents from UVs: per-triangle tangent/bitangent accumulated (area-weighted, as in
-// MikkTSpace's basic form), Gram-Schmidt against the normal, w = handedness. Vertices without a
-// usable UV gradient get any unit vector orthogonal to the normal.
+// MikkTSpace's basic form), Gram-Schmidt against the normal, w = +1 when cross(n, t) points to
+// decreasing v (glTF). Vertices without a usable UV gradient get any unit vector orthogonal to
+// the normal, w = +1.
 std::vector<glm::vec4> uv_tangents(const std::vector<glm::vec3>& positions,
                                    const std::vector<glm::vec3>& normals,
                                    const std::vector<glm::vec2>& texcoords,

@@ -3,7 +3,8 @@
 // per `o` object (groups `g` do not split). The positions declared in an object's block are its
 // vertices in file order, so a single-object file keeps the file's vertex numbering; corners that
 // use a position with a second (vt, vn) combination get an extra vertex appended. Materials
-// (mtllib/usemtl) are ignored with a note: meshes get the default white material.
+// (mtllib/usemtl) are ignored with a note: meshes get the default white material; vertex colours
+// written as "v x y z r g b" become COLOR_0.
 #include <charconv>
 #include <cstdlib>
 #include <fstream>
@@ -28,6 +29,8 @@ struct ObjObject {
 
 struct ObjFile {
   std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> colors;  // per position; white where a `v` line has none
+  bool has_colors = false;
   std::vector<glm::vec2> texcoords;
   std::vector<glm::vec3> normals;
   std::vector<ObjObject> objects;
@@ -115,6 +118,16 @@ ObjFile parse_obj(const std::string& path, const std::string& text) {
     if (key == "v") {
       const float x = args.number(), y = args.number(), z = args.number();
       obj.positions.emplace_back(x, y, z);
+      // "v x y z r g b" (a common extension) carries a vertex colour; "v x y z w" a weight.
+      glm::vec3 color(1.0f);
+      float extra[3];
+      int extras = 0;
+      while (extras < 3 && !args.at_end()) extra[extras++] = args.number();
+      if (extras == 3) {
+        color = glm::vec3(extra[0], extra[1], extra[2]);
+        obj.has_colors = true;
+      }
+      obj.colors.push_back(color);
       obj.objects.back().end_position = static_cast<long>(obj.positions.size());
     } else if (key == "vt") {
       const float u = args.number();
@@ -196,6 +209,14 @@ Mesh build_mesh(const ObjFile& obj, const ObjObject& object) {
     mesh.texcoords0 = std::move(texcoords);
   }
   if (all_normals) mesh.normals = std::move(normals);
+  if (obj.has_colors) {
+    // Slot k < block size is position first + k; appended slots were recorded in `slots`.
+    mesh.colors0.assign(mesh.positions.size(), glm::vec4(1.0f));
+    for (long v = first; v < end; ++v) mesh.colors0[v - first] = glm::vec4(obj.colors[v], 1.0f);
+    for (const auto& [key, slot] : slots) {
+      mesh.colors0[slot] = glm::vec4(obj.colors[std::get<0>(key)], 1.0f);
+    }
+  }
   return mesh;
 }
 

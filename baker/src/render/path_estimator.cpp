@@ -87,6 +87,7 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
       break;
     }
     throughput *= x.albedo;
+    if (throughput == glm::vec3(0.0f)) break;  // a black surface ends the path
     x = surface_at(hit, w);
   }
   return radiance;

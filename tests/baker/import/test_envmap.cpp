@@ -303,7 +303,8 @@ TEST(EnvMapAssets, ProbeAndCrossOfTheSameSceneAgree) {
   const Sh9 probe = project_sh9(load_envmap(probe_path, EnvMapping::Auto, ctx));
   const Sh9 cross = project_sh9(load_envmap(cross_path, EnvMapping::Auto, ctx));
   const glm::dvec3 exposure = probe[0] / cross[0];  // the files may differ in exposure
-  const double tol = 0.01 * largest(probe);
+  // Measured agreement is ~0.003 % of the largest coefficient; 0.2 % leaves room.
+  const double tol = 0.002 * largest(probe);
   for (int k = 0; k < 9; ++k) {
     const glm::dvec3 scaled = cross[k] * exposure;
     for (int c = 0; c < 3; ++c) {

@@ -91,6 +91,14 @@ TEST(ImportBroken, MissingExternalBuffer) {
   EXPECT_EQ(import_scene(path, Context{}).vertex_count(), 3u);
 }
 
+TEST(ImportBroken, SharedAssetCopiedWithoutItsBuffer) {
+  const std::string source = shared_asset("characters/RiggedSimple/RiggedSimple.gltf");
+  if (source.empty()) GTEST_SKIP() << "shared assets not found";
+  const TempDir dir("broken_asset_buffer");
+  const std::string path = dir.write("RiggedSimple.gltf", read_bytes(source));
+  expect_import_error(path, {"buffer 0", "RiggedSimple0.bin", "missing"});
+}
+
 TEST(ImportBroken, ShortExternalBuffer) {
   const TempDir dir("broken_short_buffer");
   const GltfBuilder b = triangle_builder();
@@ -105,6 +113,14 @@ TEST(ImportBroken, AccessorReadsPastItsBufferView) {
   b.doc["accessors"][0]["count"] = 30;  // POSITION: 30 vec3 in a 36-byte view
   expect_import_error(dir.write("long_accessor.glb", b.glb()),
                       {"accessor 0", "reads past the end of bufferView 0"});
+}
+
+TEST(ImportBroken, AccessorWithAHugeCount) {
+  const TempDir dir("broken_accessor_huge");
+  GltfBuilder b = triangle_builder();
+  b.doc["accessors"][0]["count"] = 4611686018427387904ULL;  // 2^62: must not wrap or allocate
+  expect_import_error(dir.write("huge_accessor.glb", b.glb()),
+                      {"accessor 0", "reads past the end"});
 }
 
 TEST(ImportBroken, AccessorWithBadBufferView) {

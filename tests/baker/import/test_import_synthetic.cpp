@@ -340,6 +340,17 @@ TEST(ImportObj, OneMeshPerObjectKeepingFileOrder) {
   expect_vec3(second.normals[0], {0, 0, 1});
 }
 
+TEST(ImportObj, VertexColoursBecomeColor0) {
+  const TempDir dir("obj_colours");
+  const std::string path =
+      dir.write("colours.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 0.5\nf 1 2 3\n");
+  const Scene scene = import_scene(path, Context{});
+  const Mesh& mesh = scene.meshes.at(0);
+  ASSERT_EQ(mesh.colors0.size(), 3u);
+  EXPECT_EQ(mesh.colors0[1], glm::vec4(0, 1, 0, 1));
+  expect_vec3(scene.vertex_albedo(mesh, 2), {0, 0, 0.5f});  // no material: white x colour
+}
+
 TEST(ImportObj, SeamVerticesAreSplitByTexcoord) {
   const TempDir dir("obj_seams");
   const std::string path = dir.write("seam.obj",
