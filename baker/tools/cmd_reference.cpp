@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "command.hpp"
 #include "prt/baker/reference.hpp"
@@ -14,7 +16,8 @@ namespace prt::bake::cli {
 namespace {
 
 struct ReferenceOptions {
-  std::string scene, env, env_mapping = "auto", albedo, vertex_out, image_out, report;
+  std::string scene, env, env_mapping = "auto", albedo, vertex_out, report;
+  std::vector<std::string> image_outs;  // one render, written to each (.png and/or .hdr)
   std::string image_size = "640x480";
   ReferenceSettings settings;
   bool exposure_given = false;
@@ -47,6 +50,12 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
   return buffer;
 }
 
+std::string join(const std::vector<std::string>& paths) {
+  std::string text;
+  for (const std::string& path : paths) text += (text.empty() ? "" : ", ") + path;
+  return text;
+}
+
 void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
   const Context ctx = env.context();
   ReferenceSettings settings = options.settings;
@@ -74,7 +83,7 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
   report.settings = settings;
   report.threads = ctx.thread_count();
 
-  const bool want_vertices = !options.vertex_out.empty() || options.image_out.empty();
+  const bool want_vertices = !options.vertex_out.empty() || options.image_outs.empty();
   if (want_vertices) {
     VertexRadiance result = renderer.render_vertices(ctx);
     ctx.info(std::to_string(scene.vertex_count()) + " vertices, " + std::to_string(settings.spp) +
@@ -91,15 +100,15 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
     report.has_vertices = true;
     report.vertex_result = std::move(result);
   }
-  if (!options.image_out.empty()) {
+  if (!options.image_outs.empty()) {
     const EmbreeScene& rays = renderer.embree_scene();
     const Camera camera =
         Camera::auto_frame(rays.bounds_lo(), rays.bounds_hi(), static_cast<float>(width) / height);
     const LinearImage image =
         renderer.render_image(camera, width, height, ctx, &report.image_stats);
     const float ev = options.exposure_given ? options.exposure_ev : auto_exposure_ev(image);
-    write_image(options.image_out, image, ev);
-    ctx.info("wrote " + options.image_out + " (" + std::to_string(width) + "x" +
+    for (const std::string& path : options.image_outs) write_image(path, image, ev);
+    ctx.info("wrote " + join(options.image_outs) + " (" + std::to_string(width) + "x" +
              std::to_string(height) + ", " + std::to_string(settings.image_spp) + " spp, " +
              format("exposure %+.2f EV, %.1f s)", ev, report.image_stats.seconds));
     report.has_image = true;
@@ -138,8 +147,10 @@ void add_reference_command(CLI::App& app, CommandEnv& env) {
       ->capture_default_str();
   cmd->add_option("--vertex-out", options->vertex_out,
                   "Write per-vertex linear radiance, float32 [V,3], as .npy");
-  cmd->add_option("--image-out", options->image_out,
-                  "Write a camera image: .png (tone-mapped sRGB) or .hdr (linear)");
+  cmd->add_option("--image-out", options->image_outs,
+                  "Write a camera image: .png (tone-mapped sRGB) or .hdr (linear); repeat the "
+                  "flag to write one render to several files")
+      ->allow_extra_args(false);
   cmd->add_option("--image-size", options->image_size, "Image size WxH")->capture_default_str();
   cmd->add_option("--image-spp", s.image_spp, "Samples per pixel")
       ->check(CLI::Range(1u, 1u << 20))

@@ -312,12 +312,19 @@ BENCHMARK(BM_ReferenceRendererVertices)
 
 void print_summary() {
   const Figures& f = g_figures;
-  std::printf("\nsummary (mesh: %s, one thread for the ray figures)\n", f.mesh_name.c_str());
-  std::printf("  memory bandwidth (triad): %.2f GB/s on 1 thread, %.2f GB/s on 2 threads\n",
-              f.triad_bytes_per_second[1] * 1e-9, f.triad_bytes_per_second[2] * 1e-9);
-  std::printf("  raw Embree: rtcOccluded1 %.2f Mrays/s, rtcOccluded%d %.2f Mrays/s\n",
-              f.occluded1_rays_per_second * 1e-6, f.packet_width, f.packet_rays_per_second * 1e-6);
+  std::printf("\nsummary (mesh: %s; ray figures on one thread)\n", f.mesh_name.c_str());
+  if (f.triad_bytes_per_second[1] > 0.0) {
+    std::printf("  memory bandwidth (triad): %.2f GB/s on 1 thread, %.2f GB/s on 2 threads\n",
+                f.triad_bytes_per_second[1] * 1e-9, f.triad_bytes_per_second[2] * 1e-9);
+  }
   if (f.occluded1_rays_per_second > 0.0) {
+    std::printf("  raw Embree rtcOccluded1: %.2f Mrays/s\n", f.occluded1_rays_per_second * 1e-6);
+  }
+  if (f.packet_rays_per_second > 0.0) {
+    std::printf("  raw Embree rtcOccluded%d: %.2f Mrays/s\n", f.packet_width,
+                f.packet_rays_per_second * 1e-6);
+  }
+  if (f.renderer_rays_per_second > 0.0 && f.occluded1_rays_per_second > 0.0) {
     std::printf("  reference renderer (0 bounces): %.2f Mrays/s = %.0f %% of raw rtcOccluded1\n",
                 f.renderer_rays_per_second * 1e-6,
                 100.0 * f.renderer_rays_per_second / f.occluded1_rays_per_second);

@@ -11,6 +11,13 @@ namespace {
 
 constexpr float kPi = glm::pi<float>();
 
+// Skips the zero-area triangles a grid makes where a row collapses to a point (sphere poles).
+void append_triangle(Mesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const auto& p = mesh.positions;
+  if (glm::length(glm::cross(p[b] - p[a], p[c] - p[a])) <= 1e-12f) return;
+  mesh.indices.insert(mesh.indices.end(), {a, b, c});
+}
+
 // Appends a (rows+1) x (cols+1) vertex grid; position_normal(u, v) gives a point and its normal.
 template <class Surface>
 Mesh make_grid_mesh(std::string name, int material, int rows, int cols, Surface position_normal) {
@@ -28,7 +35,8 @@ Mesh make_grid_mesh(std::string name, int material, int rows, int cols, Surface 
     for (int c = 0; c < cols; ++c) {
       std::uint32_t i0 = std::uint32_t(r * (cols + 1) + c), i1 = i0 + 1;
       std::uint32_t i2 = i0 + std::uint32_t(cols + 1), i3 = i2 + 1;
-      mesh.indices.insert(mesh.indices.end(), {i0, i2, i1, i1, i2, i3});
+      append_triangle(mesh, i0, i2, i1);
+      append_triangle(mesh, i1, i2, i3);
     }
   }
   return mesh;

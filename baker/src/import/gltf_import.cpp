@@ -67,8 +67,8 @@ glm::mat3 texture_transform(const tinygltf::ExtensionMap& extensions, int* texco
     *texcoord = ext.Get("texCoord").Get<int>();
   glm::mat3 t(1.0f), rot(1.0f), s(1.0f);
   t[2] = glm::vec3(number_at(offset, 0, 0.0), number_at(offset, 1, 0.0), 1.0f);
-  rot[0] = glm::vec3(std::cos(r), -std::sin(r), 0.0f);
-  rot[1] = glm::vec3(std::sin(r), std::cos(r), 0.0f);
+  rot[0] = glm::vec3(std::cos(r), std::sin(r), 0.0f);  // columns, as in the extension's GLSL
+  rot[1] = glm::vec3(-std::sin(r), std::cos(r), 0.0f);
   s[0][0] = static_cast<float>(number_at(scale, 0, 1.0));
   s[1][1] = static_cast<float>(number_at(scale, 1, 1.0));
   return t * rot * s;

@@ -98,7 +98,8 @@ float auto_exposure_ev(const LinearImage& image) {
   if (log_average_luminance(image, covered, &log_average)) {
     return static_cast<float>(std::log2(kSubjectKey) - log_average / std::log(2.0));
   }
-  if (log_average_luminance(image, [](std::size_t) { return true; }, &log_average)) {
+  if (log_average_luminance(
+          image, [](std::size_t) { return true; }, &log_average)) {
     return static_cast<float>(std::log2(kSceneKey) - log_average / std::log(2.0));
   }
   return 0.0f;

@@ -73,17 +73,21 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
     const glm::vec3 w = frame.to_world(cosine_hemisphere(stream.get_2d(index, pair + 1)));
     const float cos_w = glm::dot(x.normal, w);
     if (!(cos_w > 0.0f) || !leaves_surface(w)) break;
-    const float weight = env_distribution_.valid()
-                             ? power_heuristic(cos_w * kInvPi, env_distribution_.pdf(w))
-                             : 1.0f;
+    // Only an escaping ray needs the environment and its multiple-importance weight.
+    auto escaped = [&] {
+      const float weight = env_distribution_.valid()
+                               ? power_heuristic(cos_w * kInvPi, env_distribution_.pdf(w))
+                               : 1.0f;
+      return throughput * x.albedo * env_.radiance(w) * weight;
+    };
     ++*rays;
     if (depth == bounces_) {
-      if (!rays_.occluded(origin, w)) radiance += throughput * x.albedo * env_.radiance(w) * weight;
+      if (!rays_.occluded(origin, w)) radiance += escaped();
       break;
     }
     RayHit hit;
     if (!rays_.intersect(origin, w, &hit)) {
-      radiance += throughput * x.albedo * env_.radiance(w) * weight;
+      radiance += escaped();
       break;
     }
     throughput *= x.albedo;

@@ -268,6 +268,36 @@ TEST(ImportGltf, BaseColourFactorTextureAndVertexColour) {
   expect_vec3(scene.vertex_albedo(mesh, 1), {0.5f, 1.0f, 1.0f}, 1e-4f);
 }
 
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, with the extension's
+// reference GLSL R = mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1) (columns).
+TEST(ImportGltf, TextureTransformFollowsTheExtension) {
+  const TempDir dir("gltf_texture_transform");
+  GltfBuilder b = triangle_builder();
+  const unsigned char pixel[4] = {255, 255, 255, 255};
+  ASSERT_NE(stbi_write_png(dir.file("white.png").c_str(), 1, 1, 4, pixel, 4), 0);
+  b.doc["images"] = nlohmann::json::array({{{"uri", "white.png"}}});
+  b.doc["textures"] = nlohmann::json::array({{{"source", 0}}});
+  const double half_pi = 1.5707963267948966;
+  b.doc["materials"] = nlohmann::json::array(
+      {{{"pbrMetallicRoughness",
+         {{"baseColorTexture",
+           {{"index", 0},
+            {"extensions",
+             {{"KHR_texture_transform",
+               {{"offset", {0.5, 0.25}}, {"rotation", half_pi}, {"scale", {2, 3}}}}}}}}}}}});
+  b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  const Scene scene = import_scene(dir.write("transform.gltf", b.gltf_with_data_uri()), Context{});
+  const glm::mat3& m = scene.materials.at(0).base_color_uv_transform;
+  // (1, 0) -> S -> (2, 0) -> R(90°) -> (0, 2) -> T -> (0.5, 2.25)
+  const glm::vec3 uv = m * glm::vec3(1, 0, 1);
+  EXPECT_NEAR(uv.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(uv.y, 2.25f, 1e-5f);
+  // (0, 1) -> (0, 3) -> (-3, 0) -> (-2.5, 0.25)
+  const glm::vec3 uv2 = m * glm::vec3(0, 1, 1);
+  EXPECT_NEAR(uv2.x, -2.5f, 1e-5f);
+  EXPECT_NEAR(uv2.y, 0.25f, 1e-5f);
+}
+
 TEST(ImportGltf, GeneratedTangentsAgreeWithTheFilesMikkTSpaceTangents) {
   const std::string path = shared_asset("meshes/SheenCloth/SheenCloth.gltf");
   if (path.empty()) GTEST_SKIP() << "shared assets not found";
