@@ -475,24 +475,15 @@ AccessorData read_accessor(const tinygltf::Model& model, int index, bool normali
                 " components, which this attribute does not allow");
   }
   const bool scale = normalise && accessor.normalized;
-  // Bounds are checked against the bytes present before anything is allocated; only an
-  // accessor with no bufferView (all zeros plus sparse values) could still claim a huge count.
+  // Only an accessor with no bufferView (all zeros plus sparse values) could claim a huge count
+  // that no bytes back.
   constexpr std::size_t kMaxElements = std::size_t(1) << 28;
   if (accessor.bufferView < 0 && out.count > kMaxElements) {
     throw Error(file + ": " + name + " claims " + std::to_string(out.count) +
                 " elements without a bufferView");
   }
-  if (accessor.bufferView >= 0) {
-    std::size_t stride = 0;
-    if (static_cast<std::size_t>(accessor.bufferView) < model.bufferViews.size()) {
-      const int s = accessor.ByteStride(model.bufferViews[accessor.bufferView]);
-      if (s < 0) throw Error(file + ": " + name + " has an invalid byteStride");
-      stride = static_cast<std::size_t>(s);
-    }
-    checked_range(model, accessor.bufferView, accessor.byteOffset, out.count,
-                  static_cast<std::size_t>(size) * out.components, stride, file, name);
-  }
-  out.values.assign(out.count * out.components, 0.0);
+  // Bounds are checked before anything is allocated.
+  ByteRange range{};
   if (accessor.bufferView >= 0) {
     std::size_t stride = 0;
     if (static_cast<std::size_t>(accessor.bufferView) < model.bufferViews.size()) {
@@ -501,8 +492,11 @@ AccessorData read_accessor(const tinygltf::Model& model, int index, bool normali
       stride = static_cast<std::size_t>(s);
     }
     const std::size_t element_size = static_cast<std::size_t>(size) * out.components;
-    const ByteRange range = checked_range(model, accessor.bufferView, accessor.byteOffset,
-                                          out.count, element_size, stride, file, name);
+    range = checked_range(model, accessor.bufferView, accessor.byteOffset, out.count, element_size,
+                          stride, file, name);
+  }
+  out.values.assign(out.count * out.components, 0.0);
+  if (accessor.bufferView >= 0) {
     for (std::size_t i = 0; i < out.count; ++i) {
       const unsigned char* element = range.data + i * range.stride;
       for (int c = 0; c < out.components; ++c) {
