@@ -21,5 +21,6 @@ struct CommandEnv {
 void add_reference_command(CLI::App& app, CommandEnv& env);
 void add_inspect_command(CLI::App& app, CommandEnv& env);
 void add_demo_scene_command(CLI::App& app, CommandEnv& env);
+void add_info_command(CLI::App& app, CommandEnv& env);
 
 }  // namespace prt::bake::cli
