@@ -22,5 +22,6 @@ void add_reference_command(CLI::App& app, CommandEnv& env);
 void add_inspect_command(CLI::App& app, CommandEnv& env);
 void add_demo_scene_command(CLI::App& app, CommandEnv& env);
 void add_info_command(CLI::App& app, CommandEnv& env);
+void add_env_sh_command(CLI::App& app, CommandEnv& env);
 
 }  // namespace prt::bake::cli

@@ -1,0 +1,175 @@
+/* SPDX-License-Identifier: MIT */
+/* Projection of lat-long and cube environment maps onto SH (convention: prt_sh.h). Each texel
+ * contributes radiance(centre) * Y(centre) * exact solid angle, accumulated in double. */
+#include <math.h>
+#include <string.h>
+
+#include "sh_internal.h"
+
+#define PRT_SH_PI 3.14159265358979323846
+
+/* A channel value as used by projection: NaN, infinities and negatives count as 0. */
+static double sanitised(float value) {
+  return (isfinite(value) && value > 0.0f) ? (double)value : 0.0;
+}
+
+static int order_valid(uint32_t order) {
+  return order >= 1 && order <= PRT_SH_MAX_ORDER;
+}
+
+static void store_rgb(uint32_t order, const double* sums, float* out_rgb) {
+  uint32_t i;
+  for (i = 0; i < order * order * 3u; ++i) out_rgb[i] = (float)sums[i];
+}
+
+/* Lat-long. Per row, theta is constant, so the row is first reduced to its azimuthal Fourier
+ * sums F_m = sum_x L(x) e^(i m psi_x) (psi the SH-frame azimuth), then combined with the
+ * normalised Legendre values of the row: O(W H n + H n^2) instead of O(W H n^2).
+ * SPEC §12: d = (sin t sin f, cos t, -sin t cos f), f = 2 pi (u - 1/2); in the SH frame
+ * (x, y, z) = (X, -Z, Y) = (sin t sin f, sin t cos f, cos t), so psi = pi/2 - f. */
+prt_result prt_sh_project_latlong(uint32_t order, uint32_t width, uint32_t height, const float* rgb,
+                                  size_t row_stride_floats, float* out_rgb) {
+  double sums[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3];
+  double legendre[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER];
+  double fourier_cos[PRT_SH_MAX_ORDER * 3];
+  double fourier_sin[PRT_SH_MAX_ORDER * 3];
+  const double dpsi = -2.0 * PRT_SH_PI / (double)width;
+  const double cos_dpsi = cos(dpsi), sin_dpsi = sin(dpsi);
+  uint32_t y;
+  if (!order_valid(order) || width == 0 || height == 0 || !rgb || !out_rgb ||
+      row_stride_floats < 3u * (size_t)width)
+    return PRT_ERROR_INVALID_ARGUMENT;
+  memset(sums, 0, sizeof sums);
+  for (y = 0; y < height; ++y) {
+    const double theta0 = PRT_SH_PI * (double)y / (double)height;
+    const double theta1 = PRT_SH_PI * (double)(y + 1) / (double)height;
+    const double theta = 0.5 * (theta0 + theta1);
+    const double sin_theta = sin(theta), cos_theta = cos(theta);
+    const double solid_angle = (2.0 * PRT_SH_PI / (double)width) * (cos(theta0) - cos(theta1));
+    const float* row = rgb + (size_t)y * row_stride_floats;
+    /* e^(i psi) at column 0's centre, f = 2 pi (0.5/W - 0.5); stepped by complex rotation. */
+    const double psi0 = 0.5 * PRT_SH_PI - 2.0 * PRT_SH_PI * (0.5 / (double)width - 0.5);
+    double col_cos = cos(psi0), col_sin = sin(psi0);
+    uint32_t x, m, l, c;
+    memset(fourier_cos, 0, sizeof fourier_cos);
+    memset(fourier_sin, 0, sizeof fourier_sin);
+    for (x = 0; x < width; ++x) {
+      const double radiance[3] = {sanitised(row[3 * x]), sanitised(row[3 * x + 1]),
+                                  sanitised(row[3 * x + 2])};
+      double cm = 1.0, sm = 0.0, next;
+      if (radiance[0] != 0.0 || radiance[1] != 0.0 || radiance[2] != 0.0) {
+        for (m = 0; m < order; ++m) {
+          for (c = 0; c < 3; ++c) {
+            fourier_cos[m * 3 + c] += radiance[c] * cm;
+            fourier_sin[m * 3 + c] += radiance[c] * sm;
+          }
+          next = cm * col_cos - sm * col_sin;
+          sm = sm * col_cos + cm * col_sin;
+          cm = next;
+        }
+      }
+      next = col_cos * cos_dpsi - col_sin * sin_dpsi;
+      col_sin = col_sin * cos_dpsi + col_cos * sin_dpsi;
+      col_cos = next;
+    }
+    /* Y_lm = Q_l^|m| * sqrt2 * sin^|m| theta * cos/sin(m psi); the basis at (sin t, 0, cos t)
+     * gives Q_l^m sqrt2 sin^m t in its m > 0 slots (cos 0 = 1). */
+    prt_sh_eval_sh_frame_d(order, sin_theta, 0.0, cos_theta, legendre);
+    for (l = 0; l < order; ++l) {
+      for (c = 0; c < 3; ++c)
+        sums[(l * (l + 1)) * 3 + c] += solid_angle * legendre[l * (l + 1)] * fourier_cos[c];
+      for (m = 1; m <= l; ++m) {
+        const double radial = solid_angle * legendre[l * (l + 1) + m];
+        for (c = 0; c < 3; ++c) {
+          sums[(l * (l + 1) + m) * 3 + c] += radial * fourier_cos[m * 3 + c];
+          sums[(l * (l + 1) - m) * 3 + c] += radial * fourier_sin[m * 3 + c];
+        }
+      }
+    }
+  }
+  store_rgb(order, sums, out_rgb);
+  return PRT_OK;
+}
+
+/* Solid angle subtended by the rectangle [0, a] x [0, b] of the plane at unit distance, as seen
+ * from the origin: atan(a b / sqrt(a^2 + b^2 + 1)); a texel is the signed sum over its corners. */
+static double corner_solid_angle(double a, double b) {
+  return atan2(a * b, sqrt(a * a + b * b + 1.0));
+}
+
+/* World direction (unnormalised) of face coordinates (sc, tc) on a GL cube face. */
+static void cube_direction(uint32_t face, double sc, double tc, double d[3]) {
+  switch (face) {
+    case 0:
+      d[0] = 1.0;
+      d[1] = -tc;
+      d[2] = -sc;
+      break;
+    case 1:
+      d[0] = -1.0;
+      d[1] = -tc;
+      d[2] = sc;
+      break;
+    case 2:
+      d[0] = sc;
+      d[1] = 1.0;
+      d[2] = tc;
+      break;
+    case 3:
+      d[0] = sc;
+      d[1] = -1.0;
+      d[2] = -tc;
+      break;
+    case 4:
+      d[0] = sc;
+      d[1] = -tc;
+      d[2] = 1.0;
+      break;
+    default:
+      d[0] = -sc;
+      d[1] = -tc;
+      d[2] = -1.0;
+      break;
+  }
+}
+
+prt_result prt_sh_project_cube(uint32_t order, uint32_t face_size, const float* const faces[6],
+                               float* out_rgb) {
+  double sums[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3];
+  double basis[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER];
+  const uint32_t count = order * order;
+  const double step = 2.0 / (double)face_size;
+  uint32_t face;
+  if (!order_valid(order) || face_size == 0 || !faces || !out_rgb)
+    return PRT_ERROR_INVALID_ARGUMENT;
+  for (face = 0; face < 6; ++face)
+    if (!faces[face]) return PRT_ERROR_INVALID_ARGUMENT;
+  memset(sums, 0, sizeof sums);
+  for (face = 0; face < 6; ++face) {
+    uint32_t i, j;
+    for (j = 0; j < face_size; ++j) {
+      const double t0 = -1.0 + step * j, t1 = t0 + step;
+      const double tc = 0.5 * (t0 + t1);
+      for (i = 0; i < face_size; ++i) {
+        const float* texel = faces[face] + 3 * ((size_t)j * face_size + i);
+        const double radiance[3] = {sanitised(texel[0]), sanitised(texel[1]), sanitised(texel[2])};
+        const double s0 = -1.0 + step * i, s1 = s0 + step;
+        double d[3], inv, solid_angle;
+        uint32_t k, c;
+        if (radiance[0] == 0.0 && radiance[1] == 0.0 && radiance[2] == 0.0) continue;
+        solid_angle = corner_solid_angle(s1, t1) - corner_solid_angle(s0, t1) -
+                      corner_solid_angle(s1, t0) + corner_solid_angle(s0, t0);
+        cube_direction(face, 0.5 * (s0 + s1), tc, d);
+        inv = 1.0 / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        /* World (X, Y, Z) -> SH frame (X, -Z, Y). */
+        prt_sh_eval_sh_frame_d(order, d[0] * inv, -d[2] * inv, d[1] * inv, basis);
+        for (k = 0; k < count; ++k) {
+          const double w = basis[k] * solid_angle;
+          for (c = 0; c < 3; ++c) sums[k * 3 + c] += w * radiance[c];
+        }
+      }
+    }
+  }
+  store_rgb(order, sums, out_rgb);
+  return PRT_OK;
+}
