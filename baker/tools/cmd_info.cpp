@@ -38,7 +38,8 @@ std::string producer_text(const std::uint8_t (&producer)[16]) {
 void print_blob(const std::string& path, const prt_asset* asset) {
   prt_asset_info info{};
   prt_asset_get_info(asset, &info);
-  std::printf("blob: %s\n  format:   %u.%u\n  size:     %" PRIu64 " bytes\n  flags:    0x%08X\n"
+  std::printf("blob: %s\n  format:   %u.%u\n  size:     %" PRIu64
+              " bytes\n  flags:    0x%08X\n"
               "  producer: %s\n  sections: %u\n",
               path.c_str(), info.format_major, info.format_minor, info.total_size, info.flags,
               producer_text(info.producer).c_str(), info.section_count);

@@ -109,8 +109,9 @@ Material diffuse(std::string name, glm::vec3 colour) {
 Scene make_demo_scene() {
   Scene scene;
   scene.source = "prtkit demo scene";
-  scene.materials = {diffuse("ground", {0.55f, 0.55f, 0.52f}), diffuse("clay", {0.80f, 0.32f, 0.18f}),
-                     diffuse("glaze", {0.20f, 0.35f, 0.75f}), diffuse("plaster", {0.85f, 0.85f, 0.80f})};
+  scene.materials = {
+      diffuse("ground", {0.55f, 0.55f, 0.52f}), diffuse("clay", {0.80f, 0.32f, 0.18f}),
+      diffuse("glaze", {0.20f, 0.35f, 0.75f}), diffuse("plaster", {0.85f, 0.85f, 0.80f})};
   scene.meshes.push_back(make_ground(0));
   scene.meshes.push_back(make_sphere(1, {-0.9f, 0.6f, 0.2f}, 0.6f));
   scene.meshes.push_back(make_torus(2, {0.9f, 0.2f, 0.5f}, 0.5f, 0.2f));
@@ -133,7 +134,8 @@ EnvMap make_demo_sky(int width) {
       // Inverse of the lat-long convention in formats/SPEC.md.
       float theta = (float(y) + 0.5f) / float(height) * kPi;
       float phi = ((float(x) + 0.5f) / float(width) - 0.5f) * 2 * kPi;
-      glm::vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+      glm::vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                  -std::sin(theta) * std::cos(phi));
       glm::vec3 radiance;
       if (d.y >= 0) {
         float t = std::pow(1.0f - d.y, 3.0f);

@@ -29,8 +29,8 @@ int append_view(tinygltf::Model& model, const void* data, std::size_t bytes, int
 int append_vec3_accessor(tinygltf::Model& model, const std::vector<glm::vec3>& values,
                          bool with_bounds) {
   tinygltf::Accessor accessor;
-  accessor.bufferView =
-      append_view(model, values.data(), values.size() * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  accessor.bufferView = append_view(model, values.data(), values.size() * sizeof(glm::vec3),
+                                    TINYGLTF_TARGET_ARRAY_BUFFER);
   accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   accessor.type = TINYGLTF_TYPE_VEC3;
   accessor.count = values.size();

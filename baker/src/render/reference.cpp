@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "prt/baker/reference.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <atomic>
@@ -10,8 +8,8 @@
 #include <cmath>
 #include <mutex>
 
+#include "parallel_tasks.hpp"
 #include "path_estimator.hpp"
-#include "tracing_thread.hpp"
 
 namespace prt::bake {
 namespace {
@@ -36,34 +34,6 @@ void validate(const ReferenceSettings& settings) {
       !(a.r >= 0.0f && a.r <= 1.0f && a.g >= 0.0f && a.g <= 1.0f && a.b >= 0.0f && a.b <= 1.0f)) {
     throw Error("reference renderer: --albedo must lie in [0,1]");
   }
-}
-
-// Runs body(task) for task in [0, tasks) on `threads` threads and reports progress; every task
-// writes only its own outputs, so the result does not depend on scheduling.
-template <typename Body>
-void parallel_tasks(std::size_t tasks, const Context& ctx, const std::string& stage, Body body) {
-  std::atomic<std::size_t> done{0};
-  std::atomic<bool> cancelled{false};
-  std::mutex progress_mutex;
-  tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks, 1),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        render::TracingThreadScope fp_mode;  // FTZ/DAZ for Embree
-                        for (std::size_t task = range.begin(); task != range.end(); ++task) {
-                          if (cancelled.load(std::memory_order_relaxed)) return;
-                          body(task);
-                          const std::size_t finished = ++done;
-                          if (ctx.progress) {
-                            std::lock_guard<std::mutex> lock(progress_mutex);
-                            if (!ctx.progress(static_cast<double>(finished) / tasks, stage)) {
-                              cancelled = true;
-                            }
-                          }
-                        }
-                      });
-  });
-  if (cancelled) throw Error("cancelled");
 }
 
 }  // namespace
@@ -133,7 +103,7 @@ VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
   const std::size_t tasks = (vertices + kVerticesPerTask - 1) / kVerticesPerTask;
   std::vector<std::uint64_t> task_rays(tasks, 0);
 
-  parallel_tasks(tasks, ctx, "reference: vertices", [&](std::size_t task) {
+  render::parallel_tasks(tasks, ctx, "reference: vertices", [&](std::size_t task) {
     const std::size_t end = std::min(vertices, (task + 1) * kVerticesPerTask);
     for (std::size_t v = task * kVerticesPerTask; v < end; ++v) {
       render::SurfacePoint point;
@@ -194,29 +164,30 @@ LinearImage ReferenceRenderer::render_image(const Camera& camera, int width, int
   image.coverage.assign(image.pixels.size(), 0.0f);
   std::vector<std::uint64_t> row_rays(height, 0);
 
-  parallel_tasks(static_cast<std::size_t>(height), ctx, "reference: image", [&](std::size_t y) {
-    for (int x = 0; x < width; ++x) {
-      const std::size_t pixel = y * static_cast<std::size_t>(width) + x;
-      const SampleStream stream(hash_key(settings.seed, pixel, kPixel));
-      glm::dvec3 sum(0.0);
-      std::uint32_t hits = 0;
-      for (std::uint32_t i = 0; i < settings.image_spp; ++i) {
-        const glm::vec2 jitter = stream.get_2d(i, 0);
-        const glm::vec3 dir = camera.direction((x + jitter.x) / width, (y + jitter.y) / height);
-        ++row_rays[y];
-        RayHit hit;
-        if (impl_->rays.intersect(camera.eye, dir, &hit)) {
-          ++hits;
-          const render::SurfacePoint point = estimator.surface_at(hit, dir);
-          sum += glm::dvec3(estimator.sample(point, stream, i, 1, &row_rays[y]));
-        } else {
-          sum += glm::dvec3(impl_->env.radiance(dir));
+  render::parallel_tasks(
+      static_cast<std::size_t>(height), ctx, "reference: image", [&](std::size_t y) {
+        for (int x = 0; x < width; ++x) {
+          const std::size_t pixel = y * static_cast<std::size_t>(width) + x;
+          const SampleStream stream(hash_key(settings.seed, pixel, kPixel));
+          glm::dvec3 sum(0.0);
+          std::uint32_t hits = 0;
+          for (std::uint32_t i = 0; i < settings.image_spp; ++i) {
+            const glm::vec2 jitter = stream.get_2d(i, 0);
+            const glm::vec3 dir = camera.direction((x + jitter.x) / width, (y + jitter.y) / height);
+            ++row_rays[y];
+            RayHit hit;
+            if (impl_->rays.intersect(camera.eye, dir, &hit)) {
+              ++hits;
+              const render::SurfacePoint point = estimator.surface_at(hit, dir);
+              sum += glm::dvec3(estimator.sample(point, stream, i, 1, &row_rays[y]));
+            } else {
+              sum += glm::dvec3(impl_->env.radiance(dir));
+            }
+          }
+          image.pixels[pixel] = glm::vec3(sum / static_cast<double>(settings.image_spp));
+          image.coverage[pixel] = static_cast<float>(hits) / static_cast<float>(settings.image_spp);
         }
-      }
-      image.pixels[pixel] = glm::vec3(sum / static_cast<double>(settings.image_spp));
-      image.coverage[pixel] = static_cast<float>(hits) / static_cast<float>(settings.image_spp);
-    }
-  });
+      });
 
   if (stats) {
     stats->rays = 0;

@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: MIT
+#include "prt/baker/sh_transfer.hpp"
+
+#include <prt/prt_sh.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "../render/parallel_tasks.hpp"
+#include "prt/baker/sampling.hpp"
+
+namespace prt::bake {
+namespace {
+
+constexpr std::size_t kVerticesPerTask = 64;
+// Stream key of a vertex's directions (distinct from the reference renderer's tags, so a bake and
+// a reference with the same seed never share sample points).
+constexpr std::uint64_t kDirectionsTag = 0x5348;  // "SH"
+
+bool usable_normal(const glm::vec3& n) {
+  const float len2 = glm::dot(n, n);
+  return std::isfinite(len2) && len2 > 1e-12f;
+}
+
+bool finite(const glm::vec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+void validate(const ShTransferSettings& s) {
+  if (s.order < 1 || s.order > PRT_SH_MAX_ORDER) {
+    throw Error("sh transfer: order must be in 1.." + std::to_string(PRT_SH_MAX_ORDER));
+  }
+  if (s.rays < 1) throw Error("sh transfer: rays per vertex must be >= 1");
+  if (s.bounces < 0) throw Error("sh transfer: bounces must be >= 0");
+  const glm::vec3& a = s.albedo;
+  if (s.override_albedo &&
+      !(a.r >= 0.0f && a.r <= 1.0f && a.g >= 0.0f && a.g <= 1.0f && a.b >= 0.0f && a.b <= 1.0f)) {
+    throw Error("sh transfer: albedo must lie in [0,1]");
+  }
+}
+
+// What every pass needs to know about a scene vertex (Scene order).
+struct VertexTable {
+  std::vector<glm::vec3> position, normal, albedo;
+  std::vector<unsigned char> usable;       // finite position and usable normal
+  std::vector<std::size_t> first_of_mesh;  // per mesh: its first vertex
+
+  VertexTable(const Scene& scene, const ShTransferSettings& settings) {
+    for (const Mesh& mesh : scene.meshes) {
+      first_of_mesh.push_back(position.size());
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const glm::vec3 p = mesh.positions[v];
+        const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+        const bool ok = usable_normal(n) && finite(p);
+        position.push_back(p);
+        normal.push_back(ok ? glm::normalize(n) : glm::vec3(0.0f));
+        usable.push_back(ok ? 1 : 0);
+        albedo.push_back(settings.override_albedo ? settings.albedo : scene.vertex_albedo(mesh, v));
+      }
+    }
+  }
+  std::size_t size() const { return position.size(); }
+};
+
+// The i-th direction of a vertex: cosine-weighted about its normal.
+struct VertexDirections {
+  SampleStream stream;
+  Frame frame;
+  VertexDirections(std::uint32_t seed, std::size_t vertex, const glm::vec3& normal)
+      : stream(hash_key(seed, vertex, kDirectionsTag)), frame(normal) {}
+  glm::vec3 operator()(std::uint32_t i) const {
+    return frame.to_world(cosine_hemisphere(stream.get_2d(i, 0)));
+  }
+};
+
+class TransferBaker {
+ public:
+  TransferBaker(const Scene& scene, const EmbreeScene* rays, const ShTransferSettings& settings,
+                const VertexTable& vertices)
+      : scene_(scene),
+        rays_(rays),
+        settings_(settings),
+        vertices_(vertices),
+        coeffs_(static_cast<std::size_t>(settings.order) * settings.order),
+        tasks_((vertices.size() + kVerticesPerTask - 1) / kVerticesPerTask),
+        task_rays_(tasks_, 0) {}
+
+  // Pass 0: rho * mean over directions of V(w) y(w), V = 1 when unshadowed.
+  std::vector<float> direct(const Context& ctx) {
+    std::vector<float> out(vertices_.size() * 3 * coeffs_, 0.0f);
+    const bool shadowed = settings_.kind != ShTransferKind::Unshadowed;
+    render::parallel_tasks(tasks_, ctx, "sh transfer: direct", [&](std::size_t task) {
+      std::vector<double> sum(coeffs_);
+      std::vector<float> y(coeffs_);
+      std::uint64_t traced = 0;
+      for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
+        if (!vertices_.usable[v]) continue;
+        const glm::vec3 n = vertices_.normal[v];
+        const glm::vec3 origin =
+            shadowed ? rays_->offset_origin(vertices_.position[v], n) : glm::vec3(0.0f);
+        const VertexDirections directions(settings_.seed, v, n);
+        std::fill(sum.begin(), sum.end(), 0.0);
+        for (std::uint32_t i = 0; i < settings_.rays; ++i) {
+          const glm::vec3 w = directions(i);
+          if (!(glm::dot(n, w) > 0.0f)) continue;  // on the horizon: no weight
+          if (shadowed) {
+            ++traced;
+            if (rays_->occluded(origin, w)) continue;
+          }
+          prt_sh_eval(settings_.order, &w.x, y.data());
+          for (std::size_t k = 0; k < coeffs_; ++k) sum[k] += y[k];
+        }
+        store(v, sum, 0, &out);
+      }
+      task_rays_[task] += traced;
+    });
+    return out;
+  }
+
+  // One bounce (Sloan 2002 §5): rho * mean over directions that hit the front of a surface of
+  // the previous pass's transfer interpolated at the hit.
+  std::vector<float> bounce(const std::vector<float>& previous, int index, const Context& ctx) {
+    std::vector<float> out(previous.size(), 0.0f);
+    const std::string stage = "sh transfer: bounce " + std::to_string(index);
+    render::parallel_tasks(tasks_, ctx, stage, [&](std::size_t task) {
+      std::vector<double> sum(3 * coeffs_);
+      std::uint64_t traced = 0;
+      for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
+        if (!vertices_.usable[v]) continue;
+        const glm::vec3 n = vertices_.normal[v];
+        const glm::vec3 origin = rays_->offset_origin(vertices_.position[v], n);
+        const VertexDirections directions(settings_.seed, v, n);
+        std::fill(sum.begin(), sum.end(), 0.0);
+        for (std::uint32_t i = 0; i < settings_.rays; ++i) {
+          const glm::vec3 w = directions(i);
+          if (!(glm::dot(n, w) > 0.0f)) continue;
+          ++traced;
+          RayHit hit;
+          if (rays_->intersect(origin, w, &hit)) gather(hit, w, previous, &sum);
+        }
+        store(v, sum, coeffs_, &out);
+      }
+      task_rays_[task] += traced;
+    });
+    return out;
+  }
+
+  std::uint64_t rays_traced() const {
+    std::uint64_t total = 0;
+    for (std::uint64_t r : task_rays_) total += r;
+    return total;
+  }
+
+ private:
+  std::size_t task_end(std::size_t task) const {
+    return std::min(vertices_.size(), (task + 1) * kVerticesPerTask);
+  }
+
+  // Writes rho_c * sum / rays for each channel c; sum holds channel_stride values per channel
+  // (0: one set shared by the three channels).
+  void store(std::size_t v, const std::vector<double>& sum, std::size_t channel_stride,
+             std::vector<float>* out) const {
+    for (int c = 0; c < 3; ++c) {
+      const double scale = static_cast<double>(vertices_.albedo[v][c]) / settings_.rays;
+      const double* s = sum.data() + c * channel_stride;
+      float* t = out->data() + (v * 3 + c) * coeffs_;
+      for (std::size_t k = 0; k < coeffs_; ++k) t[k] = static_cast<float>(s[k] * scale);
+    }
+  }
+
+  // Adds the barycentric interpolation of `previous` at the hit to sum (RGB x coefficients),
+  // unless the ray arrived at the back of the surface.
+  void gather(const RayHit& hit, const glm::vec3& w, const std::vector<float>& previous,
+              std::vector<double>* sum) const {
+    const Mesh& mesh = scene_.meshes[hit.mesh];
+    const std::size_t first = vertices_.first_of_mesh[hit.mesh];
+    const std::size_t corner[3] = {first + mesh.indices[3 * hit.triangle],
+                                   first + mesh.indices[3 * hit.triangle + 1],
+                                   first + mesh.indices[3 * hit.triangle + 2]};
+    const float weight[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};
+    glm::vec3 normal(0.0f);
+    for (int j = 0; j < 3; ++j) normal += weight[j] * vertices_.normal[corner[j]];
+    if (glm::dot(normal, w) >= 0.0f) return;  // back face, or no usable normal at the hit
+    for (int j = 0; j < 3; ++j) {
+      const float* t = previous.data() + corner[j] * 3 * coeffs_;
+      for (std::size_t k = 0; k < 3 * coeffs_; ++k)
+        (*sum)[k] += static_cast<double>(weight[j]) * t[k];
+    }
+  }
+
+  const Scene& scene_;
+  const EmbreeScene* rays_;
+  const ShTransferSettings& settings_;
+  const VertexTable& vertices_;
+  std::size_t coeffs_, tasks_;
+  std::vector<std::uint64_t> task_rays_;  // per task, summed at the end: deterministic
+};
+
+}  // namespace
+
+const char* sh_transfer_kind_name(ShTransferKind kind) {
+  switch (kind) {
+    case ShTransferKind::Unshadowed:
+      return "unshadowed";
+    case ShTransferKind::Shadowed:
+      return "shadowed";
+    case ShTransferKind::Interreflected:
+      return "interreflected";
+  }
+  return "unknown";
+}
+
+ShTransferKind parse_sh_transfer_kind(const char* name) {
+  for (ShTransferKind kind :
+       {ShTransferKind::Unshadowed, ShTransferKind::Shadowed, ShTransferKind::Interreflected}) {
+    if (name && std::strcmp(name, sh_transfer_kind_name(kind)) == 0) return kind;
+  }
+  throw Error(std::string("sh transfer: unknown kind '") + (name ? name : "") +
+              "' (unshadowed, shadowed or interreflected)");
+}
+
+ShTransfer compute_sh_transfer(const Scene& scene, const EmbreeScene* rays,
+                               const ShTransferSettings& settings, const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<EmbreeScene> own_rays;
+  if (!rays && settings.kind != ShTransferKind::Unshadowed) {
+    tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+    arena.execute([&] { own_rays = std::make_unique<EmbreeScene>(scene, ctx); });
+    rays = own_rays.get();
+  }
+  const VertexTable vertices(scene, settings);
+  TransferBaker baker(scene, rays, settings, vertices);
+
+  ShTransfer result;
+  result.order = settings.order;
+  result.kind = settings.kind;
+  result.vertex_count = vertices.size();
+  result.coefficients = baker.direct(ctx);
+  if (settings.kind == ShTransferKind::Interreflected) {
+    std::vector<float> pass = result.coefficients;
+    for (int b = 1; b <= settings.bounces; ++b) {
+      pass = baker.bounce(pass, b, ctx);
+      for (std::size_t i = 0; i < pass.size(); ++i) result.coefficients[i] += pass[i];
+    }
+  }
+  for (unsigned char ok : vertices.usable) result.vertices_without_normal += ok ? 0 : 1;
+  if (result.vertices_without_normal > 0) {
+    ctx.warn("sh transfer: " + std::to_string(result.vertices_without_normal) +
+             " vertices have no usable normal (zero or non-finite) or position; their transfer "
+             "is 0");
+  }
+  result.rays_traced = baker.rays_traced();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::vector<glm::vec3> shade_sh_transfer(const ShTransfer& transfer,
+                                         const std::vector<glm::vec3>& light) {
+  const std::size_t n = transfer.coefficient_count();
+  if (light.size() != n) {
+    throw Error("sh transfer: light has " + std::to_string(light.size()) +
+                " SH coefficients, the transfer needs " + std::to_string(n));
+  }
+  std::vector<glm::vec3> radiance(transfer.vertex_count, glm::vec3(0.0f));
+  for (std::size_t v = 0; v < transfer.vertex_count; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      const float* t = transfer.vertex_channel(v, c);
+      double sum = 0.0;
+      for (std::size_t k = 0; k < n; ++k) sum += static_cast<double>(t[k]) * light[k][c];
+      radiance[v][c] = static_cast<float>(sum);
+    }
+  }
+  return radiance;
+}
+
+}  // namespace prt::bake
