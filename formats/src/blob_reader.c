@@ -13,6 +13,7 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_VPOS, PRT_BLOB_LAYOUT_VERSION_1, 12u, "vertex positions (3 x f32)"},
     {PRT_BLOB_TAG_VNRM, PRT_BLOB_LAYOUT_VERSION_1, 12u, "vertex normals (3 x f32)"},
     {PRT_BLOB_TAG_TRIS, PRT_BLOB_LAYOUT_VERSION_1, 12u, "triangles (3 x u32)"},
+    {PRT_BLOB_TAG_SHTR, PRT_BLOB_LAYOUT_VERSION_1, 0u, "sh transfer (element = vertex)"},
 };
 
 const prt_blob_kind* prt_blob_find_kind(uint32_t tag, uint8_t layout_version) {
@@ -212,7 +213,7 @@ static prt_blob_status check_entry(const uint8_t* b, const prt_blob_header* h, u
   if (s->raw_size > (uint64_t)SIZE_MAX)
     return fail(PRT_BLOB_CORRUPT, msg, cap, "section %" PRIu32 " '%s': raw size too large", i,
                 name);
-  if (kind) {
+  if (kind && kind->element_size != 0) {
     uint64_t expected_raw;
     if (!mul_u64(s->element_count, kind->element_size, &expected_raw) ||
         expected_raw != s->raw_size)
@@ -239,7 +240,8 @@ static long find_known(const void* data, const prt_blob_header* h, uint32_t tag,
   return -1;
 }
 
-/* Relations between kinds: TRIS and VNRM need VPOS; VNRM has one normal per vertex. */
+/* Relations between kinds: TRIS, VNRM and SHTR need VPOS; VNRM and SHTR have one element per
+ * vertex. */
 static prt_blob_status check_dependencies(const void* data, const prt_blob_header* h, char* msg,
                                           size_t cap) {
   prt_blob_section vpos, other;
@@ -252,6 +254,13 @@ static prt_blob_status check_dependencies(const void* data, const prt_blob_heade
       return fail(PRT_BLOB_CORRUPT, msg, cap,
                   "'VNRM' has %" PRIu64 " normals for %" PRIu64 " vertices", other.element_count,
                   vpos.element_count);
+  }
+  if (find_known(data, h, PRT_BLOB_TAG_SHTR, &other) >= 0) {
+    if (!has_vpos) return fail(PRT_BLOB_CORRUPT, msg, cap, "section 'SHTR' needs a 'VPOS' section");
+    if (other.element_count != vpos.element_count)
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'SHTR' has %" PRIu64 " transfer vectors for %" PRIu64 " vertices",
+                  other.element_count, vpos.element_count);
   }
   return PRT_BLOB_OK;
 }
@@ -359,6 +368,62 @@ static size_t utf8_sequence_length(const uint8_t* p, size_t n) {
   return len;
 }
 
+static float load_f32(const uint8_t* p) {
+  uint32_t bits = prt_le_load_u32(p);
+  float f;
+  memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+/* The `sh` transfer section (SPEC.md, `sh` layout): header fields, exact size, zero padding,
+ * finite offsets and finite non-negative scales. Quantised values need no check (any is valid). */
+static prt_blob_status check_shtr(const prt_blob_section* s, const uint8_t* p, size_t n,
+                                  uint64_t vertex_count, char* msg, size_t cap) {
+  uint32_t order, vertices, channels, bits, coefficients, j;
+  uint64_t params_end, payload_end, expected;
+  if (n < PRT_BLOB_SHTR_HEADER_SIZE)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': %zu bytes cannot hold the 32-byte header", n);
+  order = prt_le_load_u32(p);
+  vertices = prt_le_load_u32(p + 4);
+  channels = prt_le_load_u32(p + 8);
+  bits = prt_le_load_u32(p + 12);
+  if (order < 1 || order > PRT_BLOB_SHTR_MAX_ORDER)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': order %" PRIu32 " is not in 1..16", order);
+  if (channels != 1 && channels != 3)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': %" PRIu32 " channels (must be 1 or 3)",
+                channels);
+  if (bits != 8 && bits != 16)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': %" PRIu32 " bits (must be 8 or 16)", bits);
+  if (prt_le_load_u32(p + 24) != 0 || prt_le_load_u32(p + 28) != 0)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': reserved header fields are not zero");
+  if ((uint64_t)vertices != vertex_count || (uint64_t)vertices != s->element_count)
+    return fail(PRT_BLOB_CORRUPT, msg, cap,
+                "'SHTR': header says %" PRIu32 " vertices, element count %" PRIu64
+                ", 'VPOS' has %" PRIu64,
+                vertices, s->element_count, vertex_count);
+  /* order <= 16, channels <= 3, vertices < 2^32: no overflow in 64 bits. */
+  coefficients = channels * order * order;
+  params_end = PRT_BLOB_SHTR_HEADER_SIZE + 8u * (uint64_t)coefficients;
+  payload_end = params_end + (uint64_t)vertices * coefficients * (bits / 8u);
+  expected = (payload_end + 3u) & ~(uint64_t)3u;
+  if ((uint64_t)n != expected)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': %zu raw bytes, the header implies %" PRIu64, n,
+                expected);
+  if (!is_zero(p + payload_end, (size_t)(expected - payload_end)))
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'SHTR': padding is not zero");
+  for (j = 0; j < coefficients; ++j) {
+    float offset = load_f32(p + PRT_BLOB_SHTR_HEADER_SIZE + 8u * j);
+    float scale = load_f32(p + PRT_BLOB_SHTR_HEADER_SIZE + 8u * j + 4u);
+    if (offset != offset || scale != scale || offset - offset != 0.0f || scale - scale != 0.0f)
+      return fail(PRT_BLOB_NON_FINITE, msg, cap,
+                  "'SHTR': offset or scale of coefficient %" PRIu32 " is not finite", j);
+    if (scale < 0.0f)
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'SHTR': scale of coefficient %" PRIu32 " is negative", j);
+  }
+  return PRT_BLOB_OK;
+}
+
 prt_blob_status prt_blob_check_content(const prt_blob_section* s, const void* raw,
                                        uint64_t vertex_count, char* msg, size_t cap) {
   const uint8_t* p = (const uint8_t*)raw;
@@ -389,6 +454,8 @@ prt_blob_status prt_blob_check_content(const prt_blob_section* s, const void* ra
                     " of triangle %zu is not below the vertex count %" PRIu64,
                     index, i / 12, vertex_count);
     }
+  } else if (s->tag == PRT_BLOB_TAG_SHTR) {
+    return check_shtr(s, p, n, vertex_count, msg, cap);
   }
   return PRT_BLOB_OK;
 }

@@ -48,7 +48,8 @@ std::vector<uint8_t> zstd_compress(const void* data, size_t size, int level) {
 }
 
 void check_sizes(uint32_t tag, uint8_t layout_version, size_t size, uint64_t element_count) {
-  if (const prt_blob_kind* kind = prt_blob_find_kind(tag, layout_version)) {
+  const prt_blob_kind* kind = prt_blob_find_kind(tag, layout_version);
+  if (kind && kind->element_size != 0) {  // 0: variable size, checked at full validation
     if (element_count > UINT64_MAX / kind->element_size ||
         element_count * kind->element_size != size)
       throw std::invalid_argument("blob section '" + tag_name(tag) +

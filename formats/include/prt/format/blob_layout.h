@@ -87,6 +87,11 @@ extern "C" {
 #define PRT_BLOB_TAG_VPOS PRT_BLOB_TAG('V', 'P', 'O', 'S') /* f32 x,y,z per vertex */
 #define PRT_BLOB_TAG_VNRM PRT_BLOB_TAG('V', 'N', 'R', 'M') /* f32 x,y,z per vertex */
 #define PRT_BLOB_TAG_TRIS PRT_BLOB_TAG('T', 'R', 'I', 'S') /* u32 i0,i1,i2 per triangle */
+/* `sh` transfer: 32-byte header, offset/scale pairs, quantised values (SPEC.md, `sh` layout);
+ * element = vertex, raw size given by the header (element size 0 in the kind table). */
+#define PRT_BLOB_TAG_SHTR PRT_BLOB_TAG('S', 'H', 'T', 'R')
+#define PRT_BLOB_SHTR_HEADER_SIZE 32u
+#define PRT_BLOB_SHTR_MAX_ORDER 16u
 #define PRT_BLOB_LAYOUT_VERSION_1 1u /* the layout version of every 1.0 kind */
 
 /* ---- Little-endian load/store, byte by byte ------------------------------------------------- */

@@ -63,7 +63,8 @@ typedef struct prt_blob_section {
 typedef struct prt_blob_kind {
   uint32_t tag;
   uint8_t layout_version;
-  uint32_t element_size; /* bytes per element in the raw (decoded) bytes */
+  uint32_t element_size; /* bytes per element in the raw (decoded) bytes; 0 = variable size
+                          * (element_count <= raw_size, exact size checked by content) */
   const char* name;
 } prt_blob_kind;
 
