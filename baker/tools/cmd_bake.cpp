@@ -20,17 +20,6 @@ struct BakeOptions {
   int bits = 16;
 };
 
-glm::vec3 parse_albedo(const std::string& text) {
-  glm::vec3 rgb;
-  char comma1 = 0, comma2 = 0, rest = 0;
-  std::istringstream in(text);
-  if (!(in >> rgb.r >> comma1 >> rgb.g >> comma2 >> rgb.b) || comma1 != ',' || comma2 != ',' ||
-      (in >> rest)) {
-    throw Error("--albedo: expected r,g,b (e.g. 0.8,0.8,0.8), got '" + text + "'");
-  }
-  return rgb;
-}
-
 void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   std::ofstream file(path, std::ios::binary);
   if (!file || !file.write(reinterpret_cast<const char*>(bytes.data()),

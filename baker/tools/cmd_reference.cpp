@@ -24,17 +24,6 @@ struct ReferenceOptions {
   float exposure_ev = 0.0f;
 };
 
-glm::vec3 parse_albedo(const std::string& text) {
-  glm::vec3 rgb;
-  char comma1 = 0, comma2 = 0, rest = 0;
-  std::istringstream in(text);
-  if (!(in >> rgb.r >> comma1 >> rgb.g >> comma2 >> rgb.b) || comma1 != ',' || comma2 != ',' ||
-      (in >> rest)) {
-    throw Error("--albedo: expected r,g,b (e.g. 0.8,0.8,0.8), got '" + text + "'");
-  }
-  return rgb;
-}
-
 void parse_image_size(const std::string& text, int* width, int* height) {
   char x = 0, rest = 0;
   std::istringstream in(text);

@@ -2,7 +2,10 @@
 // What every prt-bake subcommand shares: global flags, the terminal context, the exit code.
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 #include "prt/baker/context.hpp"
 
@@ -15,6 +18,9 @@ struct CommandEnv {
   // A context that logs to stderr and draws progress when stderr is a terminal.
   Context context() const;
 };
+
+// Parses "r,g,b" (the --albedo flag of several commands); throws Error on anything else.
+glm::vec3 parse_albedo(const std::string& text);
 
 // Each command file registers one subcommand; its callback runs the command, throws Error on
 // failure, and sets env.exit_code when it has something other than 0 to say.
