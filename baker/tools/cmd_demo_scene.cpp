@@ -10,7 +10,8 @@ namespace prt::bake::cli {
 
 void add_demo_scene_command(CLI::App& app, CommandEnv& env) {
   auto* cmd = app.add_subcommand(
-      "demo-scene", "Write the built-in default scene (DIR/demo_scene.glb) and sky (DIR/demo_sky.hdr)");
+      "demo-scene",
+      "Write the built-in default scene (DIR/demo_scene.glb) and sky (DIR/demo_sky.hdr)");
   auto dir = std::make_shared<std::string>();
   auto sky_width = std::make_shared<int>(512);
   cmd->add_option("DIR", *dir, "Output folder (created if missing)")->required();

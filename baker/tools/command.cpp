@@ -16,10 +16,14 @@ namespace {
 
 const char* level_prefix(LogLevel level) {
   switch (level) {
-    case LogLevel::Debug: return "debug: ";
-    case LogLevel::Info: return "";
-    case LogLevel::Warning: return "warning: ";
-    case LogLevel::Error: return "error: ";
+    case LogLevel::Debug:
+      return "debug: ";
+    case LogLevel::Info:
+      return "";
+    case LogLevel::Warning:
+      return "warning: ";
+    case LogLevel::Error:
+      return "error: ";
   }
   return "";
 }

@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "prt-bake " PRT_VERSION_STRING);
 
   CommandEnv env;
-  app.add_option("--threads", env.threads, "Worker threads (0 = all cores); results do not depend on it")
+  app.add_option("--threads", env.threads,
+                 "Worker threads (0 = all cores); results do not depend on it")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", env.quiet, "Print errors only, no progress");
 
