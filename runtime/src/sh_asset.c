@@ -115,3 +115,19 @@ prt_result prt_sh_shade(const prt_asset* asset, const float* light_rgb, uint32_t
     shade_vertex(&view, light_rgb, first_vertex + v, out_rgb + 3u * (size_t)v);
   return PRT_OK;
 }
+
+prt_result prt_sh_shade_on(const prt_asset* asset, prt_backend backend, const float* light_rgb,
+                           uint32_t first_vertex, uint32_t vertex_count, float* out_rgb) {
+  if (!asset) return PRT_ERROR_INVALID_ARGUMENT;
+  if (backend == PRT_BACKEND_AUTO) backend = prt_context_backend(asset->context);
+  switch (backend) {
+    case PRT_BACKEND_CPU:
+      return prt_sh_shade(asset, light_rgb, first_vertex, vertex_count, out_rgb);
+    case PRT_BACKEND_SIMD: /* SIMD kernels: see sh_shade_simd.c (in progress) */
+    case PRT_BACKEND_GL:
+      return PRT_ERROR_UNSUPPORTED_BACKEND;
+    case PRT_BACKEND_AUTO:
+      break;
+  }
+  return PRT_ERROR_INVALID_ARGUMENT;
+}

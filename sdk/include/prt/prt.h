@@ -10,6 +10,7 @@
 #include <prt/prt_asset.h>
 #include <prt/prt_backend.h>
 #include <prt/prt_context.h>
+#include <prt/prt_gl.h>
 #include <prt/prt_sh.h>
 #include <prt/prt_sh_asset.h>
 #include <prt/prt_types.h>

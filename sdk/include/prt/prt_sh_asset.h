@@ -39,6 +39,22 @@ PRT_API prt_result prt_sh_decode_transfer(const prt_asset* asset, uint32_t first
 PRT_API prt_result prt_sh_shade(const prt_asset* asset, const float* light_rgb,
                                 uint32_t first_vertex, uint32_t vertex_count, float* out_rgb);
 
+/* Shades vertices [first, first+count) like prt_sh_shade, on a CPU-side backend of the asset's
+ * context:
+ *   PRT_BACKEND_AUTO : the context's best (prt_context_backend: SIMD when usable, else CPU);
+ *   PRT_BACKEND_CPU  : the scalar reference (prt_sh_shade);
+ *   PRT_BACKEND_SIMD : SSE4.1 or AVX2+FMA kernels (the context's ISA, picked at run time); sums
+ *                      in float, so results differ from the reference by rounding only (the
+ *                      conformance test states the tolerance);
+ *   PRT_BACKEND_GL   : not here (it needs the game's GL context): see prt_gl.h.
+ * Returns PRT_ERROR_UNSUPPORTED_BACKEND when the backend is not usable in the asset's context
+ * (compiled out, CPU without SSE4.1, or limited away), PRT_ERROR_INVALID_ARGUMENT for bad
+ * pointers, ranges or backend values. Thread safety as prt_sh_shade: disjoint or overlapping
+ * vertex ranges of one asset may be shaded from several threads at once. */
+PRT_API prt_result prt_sh_shade_on(const prt_asset* asset, prt_backend backend,
+                                   const float* light_rgb, uint32_t first_vertex,
+                                   uint32_t vertex_count, float* out_rgb);
+
 #ifdef __cplusplus
 }
 #endif
