@@ -17,7 +17,7 @@ prt_simd_isa prt_internal_detect_simd_isa(void) {
 #endif
 }
 
-#if !defined(PRT_NO_SIMD)
+#if !defined(PRT_NO_SIMD) || defined(PRT_HAS_GL)
 static int backend_allowed(const prt_context* context, prt_backend backend) {
   return context->backend_limit == PRT_BACKEND_AUTO || backend <= context->backend_limit;
 }
@@ -56,13 +56,17 @@ prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
       return PRT_OK;
     case PRT_BACKEND_GL:
 #if defined(PRT_HAS_GL)
+      /* Usable means "allowed": whether the application has a GL 4.3+ context is only known
+       * when it calls prt_gl_sh_create with its loader. */
       out->compiled = 1;
-      out->note = "compiled in; no GL evaluator in this version";
+      out->usable = (uint32_t)backend_allowed(context, backend);
+      out->note = out->usable ? "usable with the application's GL 4.3+ context"
+                              : "disabled by the context's backend limit";
 #else
       out->compiled = 0;
+      out->usable = 0;
       out->note = "compiled out (PRT_ENABLE_GL=OFF)";
 #endif
-      out->usable = 0;
       return PRT_OK;
     case PRT_BACKEND_AUTO:
       break;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The GL backend of `sh` shading (prt_gl.h). */
+/* The GL backend of `sh` shading (prt_gl.h): a compute shader over the quantised transfer. */
 #include "internal.h"
 
 #if !defined(PRT_HAS_GL)
@@ -26,4 +26,481 @@ prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint3
   (void)shader, (void)first_vertex, (void)vertex_count, (void)out_rgb;
   return PRT_ERROR_UNSUPPORTED_BACKEND;
 }
-#endif
+#else /* PRT_HAS_GL */
+
+#include <stdio.h>
+#include <string.h>
+
+#include "gl_functions.h"
+
+/* Vertices per work group, and per dispatch (GL guarantees 65535 groups in x). */
+#define LOCAL_SIZE 64u
+#define MAX_GROUPS_PER_DISPATCH 65535u
+/* The light block: vec4 base, then 3 order² weights rounded up to whole vec4s. */
+#define MAX_LIGHT_FLOATS (4u + 3u * PRT_BLOB_SHTR_MAX_ORDER * PRT_BLOB_SHTR_MAX_ORDER + 3u)
+#define LOG_EXCERPT 300
+
+/* buffers[]: the quantised transfer (SSBO binding 0), the folded light (uniform block binding 0)
+ * and the radiance (SSBO binding 2). */
+enum { BINDING_QUANTISED = 0, BINDING_LIGHT = 1, BINDING_RADIANCE = 2, BINDING_COUNT = 3 };
+enum { UNIFORM_FIRST_VERTEX = 0, UNIFORM_VERTEX_COUNT = 1 };
+
+struct prt_gl_sh_shader {
+  const prt_asset* asset;
+  prt_gl_functions gl;
+  prt_sh_transfer_info info;
+  uint32_t coefficients; /* channels * order² per vertex */
+  const uint8_t* params; /* (offset, scale) f32 pairs in the asset, `coefficients` of them */
+  uint32_t light_floats; /* floats uploaded per shade call */
+  prt_GLuint program;
+  prt_GLuint buffers[BINDING_COUNT];
+};
+
+/* ---- entry points ---------------------------------------------------------------------- */
+
+typedef struct gl_function_slot {
+  const char* name;
+  size_t offset; /* of the pointer in prt_gl_functions */
+} gl_function_slot;
+
+#define SLOT(fn) \
+  { "gl" #fn, offsetof(prt_gl_functions, fn) }
+static const gl_function_slot kGlFunctions[] = {
+    SLOT(GetError),         SLOT(GetIntegerv),      SLOT(GetInteger64v),
+    SLOT(CreateShader),     SLOT(ShaderSource),     SLOT(CompileShader),
+    SLOT(GetShaderiv),      SLOT(GetShaderInfoLog), SLOT(DeleteShader),
+    SLOT(CreateProgram),    SLOT(AttachShader),     SLOT(DetachShader),
+    SLOT(LinkProgram),      SLOT(GetProgramiv),     SLOT(GetProgramInfoLog),
+    SLOT(DeleteProgram),    SLOT(UseProgram),       SLOT(ProgramUniform1ui),
+    SLOT(GenBuffers),       SLOT(DeleteBuffers),    SLOT(BindBuffer),
+    SLOT(BindBufferBase),   SLOT(BufferData),       SLOT(BufferSubData),
+    SLOT(GetBufferSubData), SLOT(DispatchCompute),  SLOT(MemoryBarrier)};
+#undef SLOT
+
+/* Fills every entry point through the loader; returns the first missing name, or NULL. */
+static const char* load_gl_functions(prt_gl_loader_fn loader, void* user, prt_gl_functions* gl) {
+  size_t i;
+  for (i = 0; i < sizeof kGlFunctions / sizeof kGlFunctions[0]; ++i) {
+    void* address = loader(user, kGlFunctions[i].name);
+    if (!address) return kGlFunctions[i].name;
+    /* Object-to-function pointer conversion through memcpy: POSIX guarantees equal sizes. */
+    memcpy((char*)gl + kGlFunctions[i].offset, &address, sizeof address);
+  }
+  return NULL;
+}
+
+/* ---- the compute shader ---------------------------------------------------------------- */
+
+/* One invocation per vertex: radiance = base + sum_j q_j weight_j, where the CPU folded the
+ * dequantisation into the light (base = sum_j offset_j L_j, weight_j = scale_j L_j), so the
+ * GPU reads the stored 8/16-bit values as they are, packed in uint words (little-endian).
+ * The folded light is a uniform block (the same for every invocation): vec4 base, then the
+ * weights channel-major (R: order² floats, then G, then B) packed four to a vec4.
+ * Even orders have order² divisible by 4, so every row starts on a word and every group of
+ * four coefficients fills one word (8-bit) or two (16-bit) and one weight vec4: the loop reads
+ * each word once and sums with dot(). Odd orders take the general path, one value at a time. */
+static const char kShaderDeclarations[] =
+    "layout(local_size_x = LOCAL_SIZE) in;\n"
+    "layout(std430, binding = 0) readonly restrict buffer Quantised { uint words[]; };\n"
+    "layout(std140, binding = 0) uniform Light { vec4 base; vec4 weight[WEIGHT_VEC4S]; };\n"
+    "layout(std430, binding = 2) writeonly restrict buffer Radiance { float radiance[]; };\n"
+    "layout(location = 0) uniform uint first_vertex;\n"
+    "layout(location = 1) uniform uint vertex_count;\n"
+    "const uint N2 = uint(ORDER2);\n"
+    "\n"
+    "#if ORDER2 % 4 == 0\n"
+    "const uint GROUPS = N2 / 4u; /* vec4 groups per channel */\n"
+    "vec4 group_at(uint g) {\n"
+    "#if BITS == 8\n"
+    "  uint w = words[g];\n"
+    "  return vec4(uvec4(w & 0xFFu, (w >> 8u) & 0xFFu, (w >> 16u) & 0xFFu, w >> 24u));\n"
+    "#else\n"
+    "  uint a = words[2u * g], b = words[2u * g + 1u];\n"
+    "  return vec4(uvec4(a & 0xFFFFu, a >> 16u, b & 0xFFFFu, b >> 16u));\n"
+    "#endif\n"
+    "}\n"
+    "\n"
+    "vec3 shade(uint v) {\n"
+    "  uint g0 = v * uint(CHANNELS) * GROUPS;\n"
+    "  vec3 sum = base.xyz;\n"
+    "#if CHANNELS == 1\n"
+    "  for (uint g = 0u; g < GROUPS; ++g) {\n"
+    "    vec4 q = group_at(g0 + g);\n"
+    "    sum += vec3(dot(q, weight[g]), dot(q, weight[GROUPS + g]),\n"
+    "                dot(q, weight[2u * GROUPS + g]));\n"
+    "  }\n"
+    "#else\n"
+    "  for (uint c = 0u; c < 3u; ++c) {\n"
+    "    float s = 0.0;\n"
+    "    for (uint g = 0u; g < GROUPS; ++g)\n"
+    "      s += dot(group_at(g0 + c * GROUPS + g), weight[c * GROUPS + g]);\n"
+    "    sum[c] += s;\n"
+    "  }\n"
+    "#endif\n"
+    "  return sum;\n"
+    "}\n"
+    "#else\n"
+    "float quantised(uint index) {\n"
+    "#if BITS == 8\n"
+    "  return float(bitfieldExtract(words[index >> 2u], int((index & 3u) << 3u), 8));\n"
+    "#else\n"
+    "  return float(bitfieldExtract(words[index >> 1u], int((index & 1u) << 4u), 16));\n"
+    "#endif\n"
+    "}\n"
+    "float weight_at(uint i) { return weight[i >> 2u][i & 3u]; }\n"
+    "\n"
+    "vec3 shade(uint v) {\n"
+    "  uint row = v * uint(CHANNELS) * N2;\n"
+    "  vec3 sum = base.xyz;\n"
+    "#if CHANNELS == 1\n"
+    "  for (uint k = 0u; k < N2; ++k)\n"
+    "    sum += quantised(row + k) *\n"
+    "           vec3(weight_at(k), weight_at(N2 + k), weight_at(2u * N2 + k));\n"
+    "#else\n"
+    "  for (uint c = 0u; c < 3u; ++c) {\n"
+    "    float s = 0.0;\n"
+    "    for (uint k = 0u; k < N2; ++k)\n"
+    "      s += quantised(row + c * N2 + k) * weight_at(c * N2 + k);\n"
+    "    sum[c] += s;\n"
+    "  }\n"
+    "#endif\n"
+    "  return sum;\n"
+    "}\n"
+    "#endif\n";
+
+static const char kShaderMain[] =
+    "void main() {\n"
+    "  uint i = gl_GlobalInvocationID.x;\n"
+    "  if (i >= vertex_count) return;\n"
+    "  uint v = first_vertex + i;\n"
+    "  vec3 rgb = shade(v);\n"
+    "  radiance[3u * v + 0u] = rgb.x;\n"
+    "  radiance[3u * v + 1u] = rgb.y;\n"
+    "  radiance[3u * v + 2u] = rgb.z;\n"
+    "}\n";
+
+static prt_result compile_program(prt_gl_sh_shader* s) {
+  const prt_gl_functions* gl = &s->gl;
+  prt_context* context = s->asset->context;
+  char header[256];
+  const prt_GLchar* sources[3];
+  prt_GLint ok = 0;
+  char log[LOG_EXCERPT + 1] = "";
+  prt_GLuint shader;
+  snprintf(header, sizeof header,
+           "#version 430 core\n#define LOCAL_SIZE %u\n#define ORDER2 %u\n#define CHANNELS %u\n"
+           "#define BITS %u\n#define WEIGHT_VEC4S %u\n",
+           LOCAL_SIZE, s->info.order * s->info.order, s->info.channels, s->info.bits,
+           (s->light_floats - 4u) / 4u);
+  sources[0] = header;
+  sources[1] = kShaderDeclarations;
+  sources[2] = kShaderMain;
+  shader = gl->CreateShader(PRT_GL_COMPUTE_SHADER);
+  if (!shader)
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: glCreateShader(GL_COMPUTE_SHADER) failed");
+  gl->ShaderSource(shader, 3, sources, NULL);
+  gl->CompileShader(shader);
+  gl->GetShaderiv(shader, PRT_GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    gl->GetShaderInfoLog(shader, (prt_GLsizei)sizeof log, NULL, log);
+    gl->DeleteShader(shader);
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: the compute shader does not compile: %s", log);
+  }
+  s->program = gl->CreateProgram();
+  gl->AttachShader(s->program, shader);
+  gl->LinkProgram(s->program);
+  gl->DetachShader(s->program, shader);
+  gl->DeleteShader(shader);
+  gl->GetProgramiv(s->program, PRT_GL_LINK_STATUS, &ok);
+  if (!ok) {
+    gl->GetProgramInfoLog(s->program, (prt_GLsizei)sizeof log, NULL, log);
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: the compute shader does not link: %s", log);
+  }
+  return PRT_OK;
+}
+
+/* ---- buffers --------------------------------------------------------------------------- */
+
+static int host_is_little_endian(void) {
+  const uint32_t one = 1;
+  uint8_t first;
+  memcpy(&first, &one, 1);
+  return first == 1;
+}
+
+/* Uploads the stored values as uint words. They are little-endian in the blob: used in place on
+ * a little-endian host, re-read word by word into a temporary copy otherwise. */
+static prt_result upload_quantised(prt_gl_sh_shader* s, const uint8_t* values, size_t bytes) {
+  const prt_allocator* allocator = &s->asset->allocator;
+  uint32_t* words;
+  size_t i;
+  if (!values || host_is_little_endian()) { /* NULL: an asset without vertices */
+    s->gl.BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)bytes, values,
+                     PRT_GL_STATIC_DRAW);
+    return PRT_OK;
+  }
+  words = (uint32_t*)prt_internal_alloc(allocator, bytes, 16);
+  if (!words)
+    return prt_internal_fail(s->asset->context, PRT_ERROR_OUT_OF_MEMORY,
+                             "prt_gl_sh_create: out of memory (%zu bytes)", bytes);
+  for (i = 0; i < bytes / 4u; ++i) words[i] = prt_le_load_u32(values + 4u * i);
+  s->gl.BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)bytes, words, PRT_GL_STATIC_DRAW);
+  prt_internal_free(allocator, words, bytes);
+  return PRT_OK;
+}
+
+/* Creates the three buffers (bound to the generic SSBO target only while filling them). */
+static prt_result create_buffers(prt_gl_sh_shader* s, const uint8_t* values, size_t value_bytes,
+                                 size_t radiance_bytes) {
+  const prt_gl_functions* gl = &s->gl;
+  prt_GLenum error;
+  prt_result r;
+  int drained;
+  /* Drain errors the application left pending, so that the check below is about our calls. */
+  for (drained = 0; drained < 16 && gl->GetError() != PRT_GL_NO_ERROR; ++drained) {
+  }
+  gl->GenBuffers(BINDING_COUNT, s->buffers);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_QUANTISED]);
+  r = upload_quantised(s, values, value_bytes);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_LIGHT]);
+  gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)(4u * s->light_floats), NULL,
+                 PRT_GL_DYNAMIC_DRAW);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_RADIANCE]);
+  gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)radiance_bytes, NULL,
+                 PRT_GL_DYNAMIC_COPY);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+  if (r != PRT_OK) return r;
+  error = gl->GetError();
+  if (error == PRT_GL_OUT_OF_MEMORY)
+    return prt_internal_fail(s->asset->context, PRT_ERROR_OUT_OF_MEMORY,
+                             "prt_gl_sh_create: GL_OUT_OF_MEMORY creating %zu + %zu bytes of "
+                             "buffers",
+                             value_bytes, radiance_bytes);
+  if (error != PRT_GL_NO_ERROR)
+    return prt_internal_fail(s->asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: GL error 0x%04x creating the buffers",
+                             (unsigned)error);
+  return PRT_OK;
+}
+
+/* ---- create / destroy ------------------------------------------------------------------ */
+
+static prt_result check_context(prt_context* context, const prt_gl_functions* gl) {
+  prt_GLint major = 0, minor = 0;
+  gl->GetIntegerv(PRT_GL_MAJOR_VERSION, &major);
+  gl->GetIntegerv(PRT_GL_MINOR_VERSION, &minor);
+  if (major < 4 || (major == 4 && minor < 3))
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: needs OpenGL 4.3 (compute shaders, SSBOs); the "
+                             "current context is %d.%d",
+                             (int)major, (int)minor);
+  return PRT_OK;
+}
+
+/* Every SSBO must fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE (at least 2^27 bytes in GL 4.3), and
+ * below 4 GiB so that the shader's uint indices cannot wrap. */
+static prt_result check_sizes(prt_context* context, const prt_gl_functions* gl,
+                              uint64_t value_bytes, uint64_t radiance_bytes) {
+  prt_GLint64 max_block = 0;
+  gl->GetInteger64v(PRT_GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (max_block <= 0 || value_bytes > (uint64_t)max_block || radiance_bytes > (uint64_t)max_block ||
+      value_bytes > UINT32_MAX || radiance_bytes > UINT32_MAX ||
+      value_bytes > (uint64_t)PTRDIFF_MAX || radiance_bytes > (uint64_t)PTRDIFF_MAX)
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: the asset needs shader storage blocks of %llu "
+                             "(transfer) and %llu (radiance) bytes; this GL allows %lld",
+                             (unsigned long long)value_bytes, (unsigned long long)radiance_bytes,
+                             (long long)max_block);
+  return PRT_OK;
+}
+
+/* GL is allowed when the context's backend limit is AUTO (none) or GL (backend.c). */
+static int gl_allowed(const prt_context* context) {
+  return context->backend_limit == PRT_BACKEND_AUTO || context->backend_limit >= PRT_BACKEND_GL;
+}
+
+static prt_result open_asset(const prt_asset* asset, prt_sh_transfer_info* info,
+                             const uint8_t** params) {
+  const void* data = NULL;
+  size_t size = 0;
+  prt_result r = prt_sh_get_transfer_info(asset, info);
+  if (r == PRT_ERROR_NOT_FOUND)
+    return prt_internal_fail(asset->context, r, "prt_gl_sh_create: the asset has no SHTR section");
+  if (r != PRT_OK)
+    return prt_internal_fail(asset->context, r, "prt_gl_sh_create: bad SHTR section: %s",
+                             prt_result_string(r));
+  r = prt_asset_section_data(asset, PRT_SECTION_SHTR, &data, &size);
+  if (r != PRT_OK) return prt_internal_fail(asset->context, r, "prt_gl_sh_create: no SHTR data");
+  *params = (const uint8_t*)data + PRT_BLOB_SHTR_HEADER_SIZE;
+  return PRT_OK;
+}
+
+prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, void* loader_user,
+                            prt_gl_sh_shader** out_shader) {
+  prt_gl_sh_shader local;
+  prt_gl_sh_shader* s;
+  const char* missing;
+  uint64_t value_bytes, radiance_bytes;
+  prt_result r;
+  if (out_shader) *out_shader = NULL;
+  if (!asset) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!loader || !out_shader)
+    return prt_internal_fail(asset->context, PRT_ERROR_INVALID_ARGUMENT,
+                             "prt_gl_sh_create: loader and out_shader must not be NULL");
+  if (!gl_allowed(asset->context))
+    return prt_internal_fail(asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: the context's backend limit (%s) excludes gl",
+                             prt_backend_name(asset->context->backend_limit));
+  memset(&local, 0, sizeof local);
+  local.asset = asset;
+  r = open_asset(asset, &local.info, &local.params);
+  if (r != PRT_OK) return r;
+  local.coefficients = local.info.channels * local.info.order * local.info.order;
+  local.light_floats = 4u + (3u * local.info.order * local.info.order + 3u) / 4u * 4u;
+  missing = load_gl_functions(loader, loader_user, &local.gl);
+  if (missing)
+    return prt_internal_fail(asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "prt_gl_sh_create: the GL loader has no %s", missing);
+  r = check_context(asset->context, &local.gl);
+  /* Whole uint words: the section is padded to 4 bytes, so the last word is inside it. */
+  value_bytes =
+      ((uint64_t)local.info.vertex_count * local.coefficients * (local.info.bits / 8u) + 3u) &
+      ~(uint64_t)3u;
+  radiance_bytes = 12u * (uint64_t)local.info.vertex_count;
+  if (value_bytes == 0) value_bytes = 4; /* empty assets still get valid buffers */
+  if (radiance_bytes == 0) radiance_bytes = 12;
+  if (r == PRT_OK) r = check_sizes(asset->context, &local.gl, value_bytes, radiance_bytes);
+  if (r != PRT_OK) return r;
+
+  s = (prt_gl_sh_shader*)prt_internal_alloc(&asset->allocator, sizeof *s, 16);
+  if (!s)
+    return prt_internal_fail(asset->context, PRT_ERROR_OUT_OF_MEMORY,
+                             "prt_gl_sh_create: out of memory");
+  *s = local;
+  r = compile_program(s);
+  if (r == PRT_OK)
+    r = create_buffers(s, s->info.vertex_count ? s->params + 8u * (size_t)s->coefficients : NULL,
+                       (size_t)value_bytes, (size_t)radiance_bytes);
+  if (r != PRT_OK) {
+    prt_gl_sh_destroy(s);
+    return r;
+  }
+  *out_shader = s;
+  return PRT_OK;
+}
+
+void prt_gl_sh_destroy(prt_gl_sh_shader* shader) {
+  prt_allocator allocator;
+  if (!shader) return;
+  if (shader->buffers[0]) shader->gl.DeleteBuffers(BINDING_COUNT, shader->buffers);
+  if (shader->program) shader->gl.DeleteProgram(shader->program);
+  allocator = shader->asset->allocator;
+  prt_internal_free(&allocator, shader, sizeof *shader);
+}
+
+/* ---- per frame ------------------------------------------------------------------------- */
+
+static float param_at(const prt_gl_sh_shader* s, uint32_t j, uint32_t which) {
+  uint32_t bits = prt_le_load_u32(s->params + 8u * j + 4u * which);
+  float f;
+  memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+/* Folds the dequantisation into the light: base[ch] = sum_k offset_{c,k} L[k][ch] (in double)
+ * and weight[ch order² + k] = scale_{c,k} L[k][ch], with c = ch for RGB transfer and 0 for grey;
+ * the padding up to whole vec4s is zero. */
+static void fold_light(const prt_gl_sh_shader* s, const float* light_rgb, float* out) {
+  uint32_t n2 = s->info.order * s->info.order, ch, k;
+  for (ch = 0; ch < 3; ++ch) {
+    uint32_t row = (s->info.channels == 3 ? ch : 0u) * n2;
+    double base = 0.0;
+    for (k = 0; k < n2; ++k) {
+      float l = light_rgb[3u * k + ch];
+      base += (double)param_at(s, row + k, 0) * (double)l;
+      out[4u + ch * n2 + k] = param_at(s, row + k, 1) * l;
+    }
+    out[ch] = (float)base;
+  }
+  out[3] = 0.0f;
+  for (k = 4u + 3u * n2; k < s->light_floats; ++k) out[k] = 0.0f;
+}
+
+static prt_result check_range(const prt_gl_sh_shader* s, const char* function, uint32_t first,
+                              uint32_t count) {
+  if (first > s->info.vertex_count || count > s->info.vertex_count - first)
+    return prt_internal_fail(s->asset->context, PRT_ERROR_INVALID_ARGUMENT,
+                             "%s: vertices [%u, %u + %u) are outside the asset's %u", function,
+                             first, first, count, s->info.vertex_count);
+  return PRT_OK;
+}
+
+prt_result prt_gl_sh_shade(prt_gl_sh_shader* shader, const float* light_rgb, uint32_t first_vertex,
+                           uint32_t vertex_count) {
+  float light[MAX_LIGHT_FLOATS];
+  const prt_gl_functions* gl;
+  uint32_t done;
+  prt_result r;
+  if (!shader) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!light_rgb)
+    return prt_internal_fail(shader->asset->context, PRT_ERROR_INVALID_ARGUMENT,
+                             "prt_gl_sh_shade: light_rgb must not be NULL");
+  r = check_range(shader, "prt_gl_sh_shade", first_vertex, vertex_count);
+  if (r != PRT_OK || vertex_count == 0) return r;
+  gl = &shader->gl;
+  fold_light(shader, light_rgb, light);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, shader->buffers[BINDING_LIGHT]);
+  gl->BufferSubData(PRT_GL_SHADER_STORAGE_BUFFER, 0, (prt_GLsizeiptr)(4u * shader->light_floats),
+                    light);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+  gl->BindBufferBase(PRT_GL_SHADER_STORAGE_BUFFER, BINDING_QUANTISED,
+                     shader->buffers[BINDING_QUANTISED]);
+  gl->BindBufferBase(PRT_GL_UNIFORM_BUFFER, 0, shader->buffers[BINDING_LIGHT]);
+  gl->BindBufferBase(PRT_GL_SHADER_STORAGE_BUFFER, BINDING_RADIANCE,
+                     shader->buffers[BINDING_RADIANCE]);
+  gl->UseProgram(shader->program);
+  for (done = 0; done < vertex_count;) {
+    uint32_t chunk = vertex_count - done;
+    if (chunk > MAX_GROUPS_PER_DISPATCH * LOCAL_SIZE) chunk = MAX_GROUPS_PER_DISPATCH * LOCAL_SIZE;
+    gl->ProgramUniform1ui(shader->program, UNIFORM_FIRST_VERTEX, first_vertex + done);
+    gl->ProgramUniform1ui(shader->program, UNIFORM_VERTEX_COUNT, chunk);
+    gl->DispatchCompute((chunk + LOCAL_SIZE - 1u) / LOCAL_SIZE, 1, 1);
+    done += chunk;
+  }
+  gl->UseProgram(0);
+  gl->BindBufferBase(PRT_GL_SHADER_STORAGE_BUFFER, BINDING_QUANTISED, 0);
+  gl->BindBufferBase(PRT_GL_UNIFORM_BUFFER, 0, 0);
+  gl->BindBufferBase(PRT_GL_SHADER_STORAGE_BUFFER, BINDING_RADIANCE, 0);
+  /* Make the writes visible to whatever reads the output next: vertex fetch, shaders, copies. */
+  gl->MemoryBarrier(PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | PRT_GL_SHADER_STORAGE_BARRIER_BIT |
+                    PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
+  return PRT_OK;
+}
+
+uint32_t prt_gl_sh_output_buffer(const prt_gl_sh_shader* shader) {
+  return shader ? shader->buffers[BINDING_RADIANCE] : 0u;
+}
+
+prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint32_t vertex_count,
+                          float* out_rgb) {
+  const prt_gl_functions* gl;
+  prt_result r;
+  if (!shader) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!out_rgb && vertex_count > 0)
+    return prt_internal_fail(shader->asset->context, PRT_ERROR_INVALID_ARGUMENT,
+                             "prt_gl_sh_read: out_rgb must not be NULL");
+  r = check_range(shader, "prt_gl_sh_read", first_vertex, vertex_count);
+  if (r != PRT_OK || vertex_count == 0) return r;
+  gl = &shader->gl;
+  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, shader->buffers[BINDING_RADIANCE]);
+  gl->GetBufferSubData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLintptr)(12u * (size_t)first_vertex),
+                       (prt_GLsizeiptr)(12u * (size_t)vertex_count), out_rgb);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+  return PRT_OK;
+}
+
+#endif /* PRT_HAS_GL */

@@ -55,6 +55,13 @@ TEST(Backend, CpuAlwaysUsable) {
   EXPECT_STREQ(cpu.name, "cpu");
   EXPECT_EQ(prt_context_backend(ctx), PRT_BACKEND_CPU);
   EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).usable, 0u) << "forced below SIMD";
+  EXPECT_EQ(info(ctx, PRT_BACKEND_GL).usable, 0u) << "forced below GL";
+  prt_context_destroy(ctx);
+  ctx = make(PRT_BACKEND_SIMD);
+  EXPECT_EQ(info(ctx, PRT_BACKEND_GL).usable, 0u) << "forced below GL";
+  prt_context_destroy(ctx);
+  ctx = make(PRT_BACKEND_GL);
+  EXPECT_EQ(info(ctx, PRT_BACKEND_GL).usable, uint32_t(PRT_TEST_GL_COMPILED));
   prt_context_destroy(ctx);
 }
 
@@ -63,7 +70,9 @@ TEST(Backend, CompiledSetMatchesBuildOptions) {
   EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).compiled, uint32_t(PRT_TEST_SIMD_COMPILED));
   const prt_backend_info gl = info(ctx, PRT_BACKEND_GL);
   EXPECT_EQ(gl.compiled, uint32_t(PRT_TEST_GL_COMPILED));
-  EXPECT_EQ(gl.usable, 0u) << "no GL evaluator in this version";
+  // GL is "usable with the application's GL context" whenever compiled and not limited away.
+  EXPECT_EQ(gl.usable, uint32_t(PRT_TEST_GL_COMPILED));
+  EXPECT_NE(prt_context_backend(ctx), PRT_BACKEND_GL) << "AUTO never picks GL";
   prt_backend_info i;
   EXPECT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_AUTO, &i), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_CPU, nullptr), PRT_ERROR_INVALID_ARGUMENT);

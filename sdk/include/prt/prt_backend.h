@@ -5,8 +5,10 @@
  * cpu  : the scalar reference, always compiled and usable.
  * simd : compiled unless the library was built with PRT_ENABLE_SIMD=OFF; usable when the CPU
  *        has SSE4.1 (AVX2 + FMA preferred), detected at run time.
- * gl   : compiled when built with PRT_ENABLE_GL=ON; not usable yet in this version (its
- *        evaluator comes in a later release), so it is reported as compiled only.
+ * gl   : compiled when built with PRT_ENABLE_GL=ON; then reported usable unless the context's
+ *        backend limit excludes it, meaning "usable with the application's GL 4.3+ context":
+ *        the runtime owns no GL context, so whether one exists is only known when the game calls
+ *        prt_gl_sh_create (prt_gl.h) with its loader. Never picked by AUTO.
  * A context's limits (prt_context_desc.backend_limit / simd_isa_limit, or the environment
  * variables PRT_BACKEND and PRT_SIMD_ISA) can force a lower backend or instruction set.
  *
