@@ -22,6 +22,7 @@ struct ReferenceOptions {
   ReferenceSettings settings;
   bool exposure_given = false;
   float exposure_ev = 0.0f;
+  double env_rotate_degrees = 0.0;
 };
 
 void parse_image_size(const std::string& text, int* width, int* height) {
@@ -57,15 +58,17 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
   const EnvMapping mapping = parse_env_mapping(options.env_mapping);
 
   const Scene scene = import_scene(options.scene, ctx);
-  const EnvMap env_map = options.env.empty() ? constant_envmap(glm::vec3(1.0f))
-                                             : load_envmap(options.env, mapping, ctx);
+  EnvMap env_map = options.env.empty() ? constant_envmap(glm::vec3(1.0f))
+                                       : load_envmap(options.env, mapping, ctx);
   if (options.env.empty()) ctx.info("no --env: a constant white environment of radiance 1");
+  env_map.set_rotation(rotation_about_y(options.env_rotate_degrees));
   const ReferenceRenderer renderer(scene, env_map, settings, ctx);
 
   ReferenceReport report;
   report.scene = options.scene;
   report.env = options.env.empty() ? "constant 1" : options.env;
   report.env_mapping = env_mapping_name(env_map.mapping());
+  report.env_rotate_degrees = options.env_rotate_degrees;
   report.vertices = scene.vertex_count();
   report.triangles = scene.triangle_count();
   report.dropped_triangles = renderer.embree_scene().dropped_triangles();
@@ -122,6 +125,11 @@ void add_reference_command(CLI::App& app, CommandEnv& env) {
   cmd->add_option("--env", options->env,
                   "Environment map (.hdr); default: constant white of radiance 1");
   cmd->add_option("--env-mapping", options->env_mapping, "auto|latlong|cross|probe")
+      ->capture_default_str();
+  cmd->add_option("--env-rotate", options->env_rotate_degrees,
+                  "Turn the environment about world +Y by DEG degrees (light from d comes from "
+                  "R d, R = [[c,0,s],[0,1,0],[-s,0,c]], as prt_sh_rotate and prt-view --rotate)")
+      ->check(CLI::Range(-1e6, 1e6))
       ->capture_default_str();
   cmd->add_option("--albedo", options->albedo,
                   "Diffuse albedo r,g,b for every surface "

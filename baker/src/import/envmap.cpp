@@ -202,7 +202,7 @@ glm::vec3 EnvMap::texel_value(int x, int y) const {
   return {rgb_[i], rgb_[i + 1], rgb_[i + 2]};
 }
 
-bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
+bool EnvMap::image_texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return false;
   if (!dir && !solid_angle && mapping_ == EnvMapping::LatLong) return true;
   switch (mapping_) {
@@ -287,7 +287,7 @@ void probe_coord(const glm::vec<3, T>& d, int width, double* x, double* y) {
 
 }  // namespace
 
-void EnvMap::texel_of(const glm::vec3& dir_in, int* x, int* y) const {
+void EnvMap::image_texel_of(const glm::vec3& dir_in, int* x, int* y) const {
   const glm::dvec3 d = glm::normalize(glm::dvec3(dir_in));
   int tx = 0, ty = 0;
   switch (mapping_) {
@@ -315,7 +315,7 @@ void EnvMap::texel_of(const glm::vec3& dir_in, int* x, int* y) const {
       probe_coord(d, width_, &cx, &cy);
       tx = static_cast<int>(std::floor(cx + 0.5));
       ty = static_cast<int>(std::floor(cy + 0.5));
-      if (!texel(tx, ty, nullptr, nullptr)) {
+      if (!image_texel(tx, ty, nullptr, nullptr)) {
         // Near the rim the nearest texel centre can lie just outside the disc: take the nearest
         // neighbour that is inside.
         double best = 1e300;
@@ -323,7 +323,7 @@ void EnvMap::texel_of(const glm::vec3& dir_in, int* x, int* y) const {
         for (int j = cy0 - 1; j <= cy0 + 1; ++j) {
           for (int i = cx0 - 1; i <= cx0 + 1; ++i) {
             const double dist = (i - cx) * (i - cx) + (j - cy) * (j - cy);
-            if (dist < best && texel(i, j, nullptr, nullptr)) {
+            if (dist < best && image_texel(i, j, nullptr, nullptr)) {
               best = dist;
               tx = i;
               ty = j;
@@ -340,7 +340,7 @@ void EnvMap::texel_of(const glm::vec3& dir_in, int* x, int* y) const {
   *y = std::clamp(ty, 0, height_ - 1);
 }
 
-glm::vec3 EnvMap::radiance(const glm::vec3& dir_in) const {
+glm::vec3 EnvMap::image_radiance(const glm::vec3& dir_in) const {
   const glm::vec3 d = glm::normalize(dir_in);
   switch (mapping_) {
     case EnvMapping::LatLong: {
@@ -385,20 +385,84 @@ glm::vec3 EnvMap::radiance(const glm::vec3& dir_in) const {
       double weight = 0.0;
       for (int k = 0; k < 4; ++k) {
         const int x = static_cast<int>(fx) + (k & 1), y = static_cast<int>(fy) + (k >> 1);
-        if (!texel(x, y, nullptr, nullptr)) continue;
+        if (!image_texel(x, y, nullptr, nullptr)) continue;
         const double w = ((k & 1) ? ax : 1.0 - ax) * ((k >> 1) ? ay : 1.0 - ay);
         sum += w * glm::dvec3(texel_value(x, y));
         weight += w;
       }
       if (weight > 0.0) return glm::vec3(sum / weight);
       int x = 0, y = 0;
-      texel_of(dir_in, &x, &y);
+      image_texel_of(d, &x, &y);
       return texel_value(x, y);
     }
     case EnvMapping::Auto:
       break;
   }
   return glm::vec3(0.0f);
+}
+
+// Rotation: the image describes the light in its own frame; world direction d sees the image at
+// R^T d, and the image's texel direction e is seen from world R e.
+void EnvMap::set_rotation(const glm::mat3& rotation) {
+  const glm::mat3 should_be_identity = glm::transpose(rotation) * rotation;
+  float off = 0.0f;
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) {
+      const float v = rotation[c][r];
+      if (!std::isfinite(v)) throw Error(source_ + ": environment rotation is not finite");
+      off = std::max(off, std::abs(should_be_identity[c][r] - (c == r ? 1.0f : 0.0f)));
+    }
+  }
+  if (off > 1e-4f || glm::determinant(rotation) < 0.0f) {
+    throw Error(source_ + ": environment rotation is not a proper rotation matrix");
+  }
+  rotation_ = rotation;
+  rotated_ = rotation != glm::mat3(1.0f);
+}
+
+glm::vec3 EnvMap::to_image_frame(const glm::vec3& dir) const {
+  return rotated_ ? glm::transpose(rotation_) * dir : dir;
+}
+
+glm::vec3 EnvMap::radiance(const glm::vec3& dir) const {
+  return image_radiance(to_image_frame(dir));
+}
+
+bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
+  if (!image_texel(x, y, dir, solid_angle)) return false;
+  if (dir && rotated_) *dir = rotation_ * *dir;
+  return true;
+}
+
+void EnvMap::texel_of(const glm::vec3& dir, int* x, int* y) const {
+  image_texel_of(to_image_frame(dir), x, y);
+}
+
+glm::mat3 rotation_about_y(double degrees) {
+  // Exact quarter turns keep a 90-degree shift of a lat-long map exact (cos(pi/2) != 0 in
+  // floating point).
+  const double turns = degrees / 90.0;
+  double c = std::cos(degrees * kPi / 180.0), s = std::sin(degrees * kPi / 180.0);
+  if (turns == std::floor(turns)) {
+    static const double kCos[4] = {1.0, 0.0, -1.0, 0.0}, kSin[4] = {0.0, 1.0, 0.0, -1.0};
+    const int k = ((static_cast<int>(std::fmod(turns, 4.0)) % 4) + 4) % 4;
+    c = kCos[k];
+    s = kSin[k];
+  }
+  // glm is column-major: m[column][row]. Rows: (c, 0, s), (0, 1, 0), (-s, 0, c).
+  glm::mat3 m(1.0f);
+  m[0][0] = float(c);
+  m[2][0] = float(s);
+  m[0][2] = float(-s);
+  m[2][2] = float(c);
+  return m;
+}
+
+void rotation_about_y_row_major(double degrees, float out[9]) {
+  const glm::mat3 m = rotation_about_y(degrees);
+  for (int row = 0; row < 3; ++row) {
+    for (int column = 0; column < 3; ++column) out[3 * row + column] = m[column][row];
+  }
 }
 
 EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx) {

@@ -47,13 +47,23 @@ class EnvMap {
   // Edge length of a cube face (VerticalCross only, else 0).
   int face_size() const { return mapping_ == EnvMapping::VerticalCross ? width_ / 3 : 0; }
 
+  // Turns the whole environment: the light the image shows coming from d comes from R d
+  // (L'(w) = L(R^T w)), the convention of prt_sh_rotate. radiance(), texel() and texel_of() all
+  // see the turned map, so importance sampling (built from radiance()) and SH projection (from
+  // texel()) follow; texel solid angles and pdfs in solid angle are unchanged by a rotation.
+  // Throws Error when R is not a proper rotation (orthonormal to 1e-4, determinant +1).
+  void set_rotation(const glm::mat3& rotation);
+  const glm::mat3& rotation() const { return rotation_; }
+  bool rotated() const { return rotated_; }
+
   // Radiance arriving from world direction dir (unit): bilinear within a face/region.
   glm::vec3 radiance(const glm::vec3& dir) const;
 
-  // Texel (x, y): its centre direction and the solid angle it covers. Returns false for texels
-  // that are not part of the mapping (cross padding, outside the probe disc).
+  // Texel (x, y): its centre direction (world, after the rotation) and the solid angle it
+  // covers. Returns false for texels that are not part of the mapping (cross padding, outside
+  // the probe disc).
   bool texel(int x, int y, glm::vec3* dir, float* solid_angle) const;
-  // The texel a direction falls in (nearest).
+  // The texel a world direction falls in (nearest), after the rotation.
   void texel_of(const glm::vec3& dir, int* x, int* y) const;
   glm::vec3 texel_value(int x, int y) const;
 
@@ -63,7 +73,21 @@ class EnvMap {
   EnvMapping mapping_;
   std::string source_;
   std::size_t sanitized_ = 0;
+  glm::mat3 rotation_{1.0f};  // world from image frame; identity unless set_rotation
+  bool rotated_ = false;
+
+  // The image-frame direction of a world direction (R^T d), or d itself when not rotated.
+  glm::vec3 to_image_frame(const glm::vec3& dir) const;
+  glm::vec3 image_radiance(const glm::vec3& image_dir) const;
+  bool image_texel(int x, int y, glm::vec3* dir, float* solid_angle) const;
+  void image_texel_of(const glm::vec3& image_dir, int* x, int* y) const;
 };
+
+// The rotation about world +Y by `degrees` (R = [[c,0,s],[0,1,0],[-s,0,c]] row-major, c = cos,
+// s = sin): turns the light as `prt-bake reference --env-rotate` and prt_sh_rotate take it.
+glm::mat3 rotation_about_y(double degrees);
+// The same matrix as 9 row-major floats, the layout prt_sh_rotate takes.
+void rotation_about_y_row_major(double degrees, float out[9]);
 
 // Reads a Radiance .hdr file. NaN, Inf and negative texels are replaced by 0 and counted in one
 // warning through ctx. Throws Error naming the file when it is not a readable .hdr image or its

@@ -86,6 +86,7 @@ class ReferenceRenderer {
 // What `prt-bake reference --report` writes.
 struct ReferenceReport {
   std::string scene, env, env_mapping;
+  double env_rotate_degrees = 0.0;  // the environment turned about world +Y (EnvMap::rotation)
   std::size_t vertices = 0, triangles = 0, dropped_triangles = 0;
   ReferenceSettings settings;
   unsigned threads = 1;
