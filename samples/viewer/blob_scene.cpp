@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#include "blob_scene.hpp"
+
+namespace prt::view {
+
+BlobScene::BlobScene(const std::string& path) : path_(path) {
+  if (prt_context_create(nullptr, &context_) != PRT_OK) {
+    throw ViewerError("cannot create a prtkit context");
+  }
+  if (prt_asset_load_file(context_, path.c_str(), PRT_VALIDATE_FULL, &asset_) != PRT_OK) {
+    const std::string message = prt_context_last_message(context_);
+    prt_context_destroy(context_);
+    throw ViewerError(path + ": " + message);
+  }
+  try {
+    const prt_result result = prt_sh_get_transfer_info(asset_, &transfer_);
+    if (result == PRT_ERROR_NOT_FOUND) fail("no SHTR section (not an `sh` bake)");
+    if (result != PRT_OK)
+      fail(std::string("cannot read the SHTR header: ") + prt_result_string(result));
+    read_mesh();
+  } catch (...) {
+    prt_asset_destroy(asset_);
+    prt_context_destroy(context_);
+    throw;
+  }
+}
+
+BlobScene::~BlobScene() {
+  prt_asset_destroy(asset_);
+  prt_context_destroy(context_);
+}
+
+void BlobScene::fail(const std::string& what) const {
+  throw ViewerError(path_ + ": " + what);
+}
+
+void BlobScene::read_mesh() {
+  const void* positions = nullptr;
+  const void* indices = nullptr;
+  std::size_t position_bytes = 0, index_bytes = 0;
+  if (prt_asset_section_data(asset_, PRT_SECTION_VPOS, &positions, &position_bytes) != PRT_OK) {
+    fail("no VPOS section (vertex positions)");
+  }
+  if (prt_asset_section_data(asset_, PRT_SECTION_TRIS, &indices, &index_bytes) != PRT_OK) {
+    fail("no TRIS section (triangles)");
+  }
+  if (position_bytes % (3 * sizeof(float)) != 0 || index_bytes % (3 * sizeof(std::uint32_t)) != 0) {
+    fail("VPOS/TRIS sizes are not whole vertices/triangles");
+  }
+  mesh_.positions = static_cast<const float*>(positions);
+  mesh_.vertex_count = static_cast<std::uint32_t>(position_bytes / (3 * sizeof(float)));
+  mesh_.indices = static_cast<const std::uint32_t*>(indices);
+  mesh_.triangle_count = static_cast<std::uint32_t>(index_bytes / (3 * sizeof(std::uint32_t)));
+  if (mesh_.vertex_count != transfer_.vertex_count) {
+    fail("VPOS has " + std::to_string(mesh_.vertex_count) + " vertices but SHTR " +
+         std::to_string(transfer_.vertex_count));
+  }
+  // Full validation checks index ranges already; the rasteriser relies on it, so say so here.
+  for (std::size_t i = 0; i < 3u * mesh_.triangle_count; ++i) {
+    if (mesh_.indices[i] >= mesh_.vertex_count) fail("TRIS index out of range");
+  }
+}
+
+}  // namespace prt::view

@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// The light the viewer shades with: an environment map (read by the baker's importer, any of
+// its three mappings) projected to SH by the RUNTIME, as a game would do it, then rotated.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "prt/baker/envmap.hpp"
+
+namespace prt::view {
+
+// order² RGB coefficients, coefficient-major, of `map`, which must carry no rotation (turn the
+// coefficients instead, rotate_environment; throws ViewerError otherwise): lat-long maps through
+// prt_sh_project_latlong directly; cross and probe maps resampled (EnvMap::radiance, bilinear) to
+// six cube faces as prt_sh_project_cube documents them, then prt_sh_project_cube. Throws
+// ViewerError when the runtime refuses.
+std::vector<float> project_environment(const prt::bake::EnvMap& map, std::uint32_t order);
+
+// Edge length of the cube faces a cross or probe map is resampled to: the cross's own face
+// size; for a probe of width W, W/2 (a cube texel at a face centre then spans about the solid
+// angle of a probe texel near its centre, (2/F)^2 ~ (2 pi/W)^2 / 2.5, so no detail is lost).
+std::uint32_t cube_face_size(const prt::bake::EnvMap& map);
+
+// The six faces (+X, -X, +Y, -Y, +Z, -Z; rows from the top, GL cube-map orientation, texel
+// directions exactly as prt_sh_project_cube documents), each face_size² RGB floats.
+std::vector<std::vector<float>> resample_to_cube(const prt::bake::EnvMap& map,
+                                                 std::uint32_t face_size);
+
+// Rotates coefficients in place about world +Y by `degrees` with prt_sh_rotate (light from d
+// comes from R d, R = [[c,0,s],[0,1,0],[-s,0,c]]).
+void rotate_environment(std::vector<float>* coefficients, std::uint32_t order, double degrees);
+
+}  // namespace prt::view

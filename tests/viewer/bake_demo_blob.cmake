@@ -1,0 +1,12 @@
+# Test fixture: the demo scene and sky, baked with `sh` at a small order, for the viewer tests.
+# cmake -DPRT_BAKE=... -DOUT=... -P bake_demo_blob.cmake
+file(MAKE_DIRECTORY ${OUT})
+execute_process(COMMAND ${PRT_BAKE} demo-scene ${OUT} --sky-width 128 RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "prt-bake demo-scene failed (${status})")
+endif()
+execute_process(COMMAND ${PRT_BAKE} bake ${OUT}/demo_scene.glb --technique sh --order 4 --rays 64
+                        -o ${OUT}/demo_sh4.prtk RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "prt-bake bake failed (${status})")
+endif()
