@@ -21,6 +21,9 @@
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sampling.hpp"
 
+#include "bench_embree.hpp"
+#include "bench_triad.hpp"
+
 namespace {
 
 using namespace prt::bake;
@@ -37,32 +40,9 @@ struct Figures {
 
 // --- Memory bandwidth ------------------------------------------------------------------------
 
-constexpr std::size_t kTriadElements = std::size_t(1) << 23;  // 64 MiB per array, 192 MiB total
-
 void BM_StreamTriad(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
-  std::vector<double> a(kTriadElements, 0.0), b(kTriadElements, 1.0), c(kTriadElements, 2.0);
-  const double scalar = 3.0;
-  auto triad = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) a[i] = b[i] + scalar * c[i];
-  };
-  double seconds = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<std::thread> pool;
-    const std::size_t chunk = kTriadElements / threads;
-    for (int t = 0; t < threads; ++t) {
-      pool.emplace_back(triad, t * chunk, t + 1 == threads ? kTriadElements : (t + 1) * chunk);
-    }
-    for (auto& thread : pool) thread.join();
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    benchmark::DoNotOptimize(a.data());
-    benchmark::ClobberMemory();
-  }
-  // STREAM's convention: 3 x 8 bytes per element (two reads, one write; write-allocate ignored).
-  const double bytes = 24.0 * kTriadElements * state.iterations();
-  state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
-  g_figures.triad_bytes_per_second[threads] = bytes / seconds;
+  g_figures.triad_bytes_per_second[threads] = prt_bench::stream_triad(state, threads).wall;
 }
 BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -132,54 +112,12 @@ const Workload& workload() {
   return w;
 }
 
-// A raw Embree device and scene over the workload's triangles: no prtkit code in the way.
-struct RawEmbree {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  explicit RawEmbree(const Scene& s) {
-    device = rtcNewDevice(nullptr);
-    scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-    for (const Mesh& mesh : s.meshes) {
-      std::vector<std::uint32_t> kept;
-      for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        if (is_degenerate_triangle(mesh, t)) continue;
-        kept.insert(kept.end(), mesh.indices.begin() + 3 * t, mesh.indices.begin() + 3 * t + 3);
-      }
-      if (kept.empty()) continue;
-      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, mesh.positions.size()));
-      std::memcpy(v, mesh.positions.data(), mesh.positions.size() * 12);
-      auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, kept.size() / 3));
-      std::memcpy(i, kept.data(), kept.size() * 4);
-      rtcCommitGeometry(g);
-      rtcAttachGeometry(scene, g);
-      rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(scene);
-  }
-  ~RawEmbree() {
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
-  }
-  int widest_packet() const {
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) return 4;
-    return 1;
-  }
-};
+using prt_bench::RawEmbree;
+using prt_bench::set_ftz_daz;
 
 const RawEmbree& raw_embree() {
   static const RawEmbree raw(workload().scene);
   return raw;
-}
-
-void set_ftz_daz() {
-  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
 void BM_EmbreeOccluded1(benchmark::State& state) {

@@ -32,7 +32,8 @@
 #include <tuple>
 #include <vector>
 
-#include "bench_util.hpp"
+#include "bench_embree.hpp"
+#include "bench_triad.hpp"
 #include "prt/baker/demo_scene.hpp"
 #include "prt/baker/embree_scene.hpp"
 #include "prt/baker/sampling.hpp"

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 // GL shading throughput of technique `sh` (prt_gl.h) on a headless EGL context, in one run with
 // the memory-bandwidth roofline it is compared with; printed, never asserted.
-//  - STREAM triad on 1 and 2 threads (measured here, as in bench_foundation.cpp, so that this
-//    benchmark needs neither the baker nor Embree);
+//  - STREAM triad on 1 and 2 threads (bench_triad.hpp, which needs neither the baker nor Embree);
 //  - prt_gl_sh_shade of a random SHTR asset of 35,947 vertices (the Stanford bunny's count), RGB
 //    transfer at orders 2/4/6/8 and 8/16 bits: vertices/s excluding readback (shade + glFinish)
 //    and including it (shade + prt_gl_sh_read of every vertex). On Mesa llvmpipe the "GPU" is
@@ -27,6 +26,7 @@
 #include <vector>
 
 #include "../runtime/sh_blob_test_util.hpp"
+#include "bench_triad.hpp"
 #include "headless_gl.h"
 
 namespace {
@@ -61,30 +61,10 @@ headless_gl* shared_gl() {
   return g_gl;
 }
 
-// STREAM triad a = b + s c over three 64 MiB arrays (far beyond the caches) on 1 or 2 threads;
-// bytes/s by STREAM's convention (24 B per element: two reads, one write).
+// The memory roofline (bench_triad.hpp), by wall clock: llvmpipe's threads are not ours to time.
 void BM_StreamTriad(benchmark::State& state) {
-  constexpr size_t kElements = size_t(1) << 23;
   const int threads = int(state.range(0));
-  std::vector<double> a(kElements, 0.0), b(kElements, 1.0), c(kElements, 2.0);
-  auto triad = [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) a[i] = b[i] + 3.0 * c[i];
-  };
-  double seconds = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<std::thread> pool;
-    const size_t chunk = kElements / size_t(threads);
-    for (int t = 0; t < threads; ++t)
-      pool.emplace_back(triad, t * chunk, t + 1 == threads ? kElements : (t + 1) * chunk);
-    for (std::thread& thread : pool) thread.join();
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    benchmark::DoNotOptimize(a.data());
-    benchmark::ClobberMemory();
-  }
-  const double bytes = 24.0 * double(kElements) * double(state.iterations());
-  state.SetBytesProcessed(int64_t(bytes));
-  g_figures.triad[threads] = bytes / seconds;
+  g_figures.triad[threads] = prt_bench::stream_triad(state, threads).wall;
 }
 BENCHMARK(BM_StreamTriad)
     ->Arg(1)

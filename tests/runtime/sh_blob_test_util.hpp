@@ -75,11 +75,13 @@ inline constexpr uint32_t kVPOS = PRT_BLOB_TAG_VPOS, kTRIS = PRT_BLOB_TAG_TRIS,
                           kSHTR = PRT_BLOB_TAG_SHTR;
 
 // A blob with `vertex_count` positions, one triangle and the given SHTR bytes (sections 0, 1, 2).
+// The triangle's indices are clamped to the last vertex, so 1 and 2 vertices work too.
 inline Bytes make_blob(const Bytes& shtr, uint32_t vertex_count, bool zstd = false) {
   prt::format::BlobWriter w;
   std::vector<float> positions(size_t(vertex_count) * 3);
   for (size_t i = 0; i < positions.size(); ++i) positions[i] = float(i % 7) * 0.25f;
-  const uint32_t tri[3] = {0, 1, 2};
+  const uint32_t last = vertex_count > 0 ? vertex_count - 1 : 2u;
+  const uint32_t tri[3] = {0, last < 1 ? last : 1u, last < 2 ? last : 2u};
   prt::format::SectionOptions required;
   required.required = true;
   w.add_section(kVPOS, positions.data(), positions.size() * 4, vertex_count, required);

@@ -39,23 +39,6 @@ struct LimitedContext {
   LimitedContext& operator=(const LimitedContext&) = delete;
 };
 
-// make_blob (sh_blob_test_util.hpp) for any vertex count, 1 and 2 included: its triangle's
-// indices are clamped to the last vertex.
-Bytes make_sh_blob(const Bytes& shtr, uint32_t vertex_count, bool zstd = false) {
-  if (vertex_count >= 3) return make_blob(shtr, vertex_count, zstd);
-  prt::format::BlobWriter w;
-  const std::vector<float> positions(size_t(vertex_count) * 3, 0.5f);
-  const uint32_t last = vertex_count - 1, tri[3] = {0, last, last};
-  prt::format::SectionOptions required;
-  required.required = true;
-  w.add_section(kVPOS, positions.data(), positions.size() * 4, vertex_count, required);
-  w.add_section(kTRIS, tri, sizeof tri, 1, required);
-  prt::format::SectionOptions sh = required;
-  if (zstd) sh.compression = prt::format::Compression::kZstd;
-  w.add_section(kSHTR, shtr.data(), shtr.size(), vertex_count, sh);
-  return w.finish();
-}
-
 bool simd_usable(prt_context* ctx) {
   prt_backend_info info{};
   return prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable;
@@ -146,7 +129,7 @@ TEST_P(ShSimd, MatchesTheDoubleSumForEveryLayout) {
                                           << ", bits " << bits << ", vertices " << vertices);
           const Transfer t = random_transfer(order, vertices, channels, bits, ++seed);
           // zstd sections are decoded into a buffer of exactly the section's size.
-          LoadedAsset a(ctx, make_sh_blob(encode(t), vertices, /*zstd=*/seed % 2 == 0));
+          LoadedAsset a(ctx, make_blob(encode(t), vertices, /*zstd=*/seed % 2 == 0));
           ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx);
           const std::vector<float> light = random_light(order, seed);
           expect_matches_double_sum(t, light, 0, shade(a, light, 0, vertices));

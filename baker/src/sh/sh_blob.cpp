@@ -282,7 +282,13 @@ std::vector<std::uint8_t> build_sh_blob(const Scene& scene, const QuantizedShTra
     const auto base = static_cast<std::uint32_t>(positions.size() / 3);
     for (const glm::vec3& p : mesh.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
     all_normals = all_normals && mesh.normals.size() == mesh.positions.size();
-    for (const glm::vec3& n : mesh.normals) normals.insert(normals.end(), {n.x, n.y, n.z});
+    // A non-finite normal (the bake gave that vertex zero transfer) is stored as (0, 0, 0): full
+    // validation rejects NaN, and zero says "no usable normal" as the bake treated it.
+    for (const glm::vec3& n : mesh.normals) {
+      const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+      normals.insert(normals.end(),
+                     {finite ? n.x : 0.0f, finite ? n.y : 0.0f, finite ? n.z : 0.0f});
+    }
     for (std::uint32_t i : mesh.indices) triangles.push_back(base + i);
   }
   using prt::format::Compression;

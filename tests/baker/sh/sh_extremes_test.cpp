@@ -10,8 +10,8 @@
 // - an all-black map: exactly 0 everywhere;
 // - NaN / Inf / negative texels: sanitised to 0, so the same light and shading, bit for bit, as the
 //   map with those texels 0;
-// - a zero normal: transfer exactly 0, counted; runtime radiance 0 up to quantisation (a NaN
-//   normal: transfer 0 and counted too, but such a scene cannot be written to a blob);
+// - a zero normal: transfer exactly 0, counted; runtime radiance 0 up to quantisation; a NaN
+//   normal: the same, and the blob stores (0, 0, 0) for it (full validation refuses NaN);
 // - a vertex inside a closed box: shadowed transfer exactly 0; runtime radiance 0 up to
 //   quantisation;
 // - a constant transfer vector (min = max): scale 0, decoded exactly.
@@ -272,22 +272,43 @@ TEST(ShExtremes, NaNInfiniteAndNegativeTexelsActAsZero) {
   EXPECT_EQ(shaded, blob.shade(project(reference, order)));
 }
 
-TEST(ShExtremes, VertexWithANaNNormalGetsZeroTransfer) {
-  // Transfer only: a NaN normal cannot go into a blob (VNRM must be finite; the runtime refuses
-  // it at full validation).
+TEST(ShExtremes, VertexWithANaNNormalGetsZeroTransferAndAZeroStoredNormal) {
   Mesh plane = test::make_plane(1.0f, 4);
   plane.normals[12] = glm::vec3(std::numeric_limits<float>::quiet_NaN(), 1.0f, 0.0f);
-  ShTransferSettings s;
-  s.order = 3;
-  s.rays = 64;
-  const ShTransfer t = compute_sh_transfer(test::scene_of({plane}), nullptr, s, Context{});
-  EXPECT_EQ(t.vertices_without_normal, 1u);
+  const Scene scene = test::scene_of({plane});
+  const std::uint32_t order = 3;
+  const Baked b = bake(scene, ShTransferKind::Shadowed, order, 64, 0.8f);
+  EXPECT_EQ(b.transfer.vertices_without_normal, 1u);
   for (int c = 0; c < 3; ++c) {
-    for (std::size_t k = 0; k < t.coefficient_count(); ++k) {
-      EXPECT_EQ(t.vertex_channel(12, c)[k], 0.0f);
-      EXPECT_TRUE(std::isfinite(t.vertex_channel(11, c)[k]));
+    for (std::size_t k = 0; k < b.transfer.coefficient_count(); ++k) {
+      EXPECT_EQ(b.transfer.vertex_channel(12, c)[k], 0.0f);
+      EXPECT_TRUE(std::isfinite(b.transfer.vertex_channel(11, c)[k]));
     }
   }
+  // The blob loads at full validation (RuntimeBlob checks it) and stores a zero normal there.
+  const RuntimeBlob blob(b.blob);
+  const auto sky = [](glm::vec3 w) { return glm::vec3(1.0f, 0.7f, 0.5f) + 0.4f * w; };
+  const std::vector<float> light = project(test::make_function_map(128, sky), order);
+  const std::vector<glm::vec3> shaded = blob.shade(light);
+  expect_all_finite(shaded);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LE(std::abs(shaded[12][c]), quantisation_bound(b.quantized, light, c));
+  }
+  prt_context* context = nullptr;
+  ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
+  prt_asset* asset = nullptr;
+  ASSERT_EQ(prt_asset_load_memory(context, b.blob.data(), b.blob.size(), PRT_VALIDATE_FULL, &asset),
+            PRT_OK);
+  std::vector<float> normals(3 * scene.vertex_count());
+  EXPECT_EQ(prt_asset_copy_section(asset, PRT_SECTION_VNRM, normals.data(),
+                                   normals.size() * sizeof(float), nullptr),
+            PRT_OK);
+  EXPECT_EQ(normals[36], 0.0f);
+  EXPECT_EQ(normals[37], 0.0f);
+  EXPECT_EQ(normals[38], 0.0f);
+  EXPECT_EQ(normals[34], plane.normals[11].y);
+  prt_asset_destroy(asset);
+  prt_context_destroy(context);
 }
 
 TEST(ShExtremes, VertexWithAZeroNormalGetsZeroTransferAndShadesToZero) {

@@ -1,23 +1,15 @@
 // SPDX-License-Identifier: MIT
-// Pieces the benchmarks share: the STREAM triad (the memory-bandwidth roofline of this machine,
-// measured in the same run as the figure compared with it) and a raw Embree scene with no prtkit
-// code in the way (the ray-throughput roofline). Taken from bench_foundation.cpp.
+// The memory-bandwidth roofline the benchmarks compare with: a STREAM triad measured in the same
+// run as the figure, by wall clock and by each thread's CPU time (this machine may be shared).
 #pragma once
 
 #include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
-#include <pmmintrin.h>
-#include <xmmintrin.h>
 
 #include <chrono>
 #include <cstdint>
-#include <cstring>
 #include <ctime>
 #include <thread>
 #include <vector>
-
-#include "prt/baker/embree_scene.hpp"
-#include "prt/baker/scene.hpp"
 
 namespace prt_bench {
 
@@ -75,47 +67,6 @@ inline Rate stream_triad(benchmark::State& state, int threads) {
     rate.cpu += 24.0 * (t + 1 == threads ? kElements - t * chunk : chunk) * state.iterations() /
                 cpu_seconds[t];
   return rate;
-}
-
-// A raw Embree device and scene over a Scene's non-degenerate triangles.
-struct RawEmbree {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  explicit RawEmbree(const prt::bake::Scene& s) {
-    device = rtcNewDevice(nullptr);
-    scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-    for (const prt::bake::Mesh& mesh : s.meshes) {
-      std::vector<std::uint32_t> kept;
-      for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        if (prt::bake::is_degenerate_triangle(mesh, t)) continue;
-        kept.insert(kept.end(), mesh.indices.begin() + 3 * t, mesh.indices.begin() + 3 * t + 3);
-      }
-      if (kept.empty()) continue;
-      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, mesh.positions.size()));
-      std::memcpy(v, mesh.positions.data(), mesh.positions.size() * 12);
-      auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, kept.size() / 3));
-      std::memcpy(i, kept.data(), kept.size() * 4);
-      rtcCommitGeometry(g);
-      rtcAttachGeometry(scene, g);
-      rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(scene);
-  }
-  ~RawEmbree() {
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
-  }
-  RawEmbree(const RawEmbree&) = delete;
-  RawEmbree& operator=(const RawEmbree&) = delete;
-};
-
-inline void set_ftz_daz() {
-  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
 }  // namespace prt_bench
