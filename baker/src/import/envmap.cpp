@@ -197,11 +197,6 @@ EnvMap::EnvMap(int width, int height, std::vector<float> rgb, EnvMapping mapping
   sanitized_ = sanitize_radiance(rgb_);
 }
 
-glm::vec3 EnvMap::texel_value(int x, int y) const {
-  const std::size_t i = (static_cast<std::size_t>(y) * width_ + x) * 3;
-  return {rgb_[i], rgb_[i + 1], rgb_[i + 2]};
-}
-
 bool EnvMap::image_texel(int x, int y, glm::vec3* dir, float* solid_angle) const {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return false;
   if (!dir && !solid_angle && mapping_ == EnvMapping::LatLong) return true;
@@ -340,22 +335,35 @@ void EnvMap::image_texel_of(const glm::vec3& dir_in, int* x, int* y) const {
   *y = std::clamp(ty, 0, height_ - 1);
 }
 
-glm::vec3 EnvMap::image_radiance(const glm::vec3& dir_in) const {
+namespace {
+
+// The bilinear footprint of continuous texel coordinates: texels (x0|x1, y0|y1), weights from
+// the fractions ax, ay.
+EnvMap::Footprint bilinear_footprint(int width, int x0, int x1, int y0, int y1, float ax,
+                                     float ay) {
+  EnvMap::Footprint f;
+  const auto index = [width](int x, int y) {
+    return static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
+           static_cast<std::uint32_t>(x);
+  };
+  f.texel[0] = index(x0, y0);
+  f.texel[1] = index(x1, y0);
+  f.texel[2] = index(x0, y1);
+  f.texel[3] = index(x1, y1);
+  f.weight[0] = (1.0f - ax) * (1.0f - ay);
+  f.weight[1] = ax * (1.0f - ay);
+  f.weight[2] = (1.0f - ax) * ay;
+  f.weight[3] = ax * ay;
+  return f;
+}
+
+}  // namespace
+
+EnvMap::Footprint EnvMap::image_footprint(const glm::vec3& dir_in) const {
   const glm::vec3 d = glm::normalize(dir_in);
   switch (mapping_) {
-    case EnvMapping::LatLong: {
-      // Bilinear, wrapping around in longitude and clamped at the poles.
-      const LatLongCoord c = latlong_coord(d, width_, height_);
-      const double fx = std::floor(c.x), fy = std::floor(c.y);
-      const double ax = c.x - fx, ay = c.y - fy;
-      const int x0 = ((static_cast<int>(fx) % width_) + width_) % width_;
-      const int x1 = (x0 + 1) % width_;
-      const int y0 = std::clamp(static_cast<int>(fy), 0, height_ - 1);
-      const int y1 = std::clamp(static_cast<int>(fy) + 1, 0, height_ - 1);
-      const glm::vec3 top = glm::mix(texel_value(x0, y0), texel_value(x1, y0), float(ax));
-      const glm::vec3 bottom = glm::mix(texel_value(x0, y1), texel_value(x1, y1), float(ax));
-      return glm::mix(top, bottom, float(ay));
-    }
+    case EnvMapping::LatLong:
+      return latlong_footprint(d);
     case EnvMapping::VerticalCross: {
       // Bilinear within the face, clamped at its edges (the padding is never read).
       const int f = face_size();
@@ -367,13 +375,9 @@ glm::vec3 EnvMap::image_radiance(const glm::vec3& dir_in) const {
       const double py = std::clamp((1.0 - v) * 0.5 * f - 0.5, 0.0, f - 1.0);
       const int i0 = static_cast<int>(px), j0 = static_cast<int>(py);
       const int i1 = std::min(i0 + 1, f - 1), j1 = std::min(j0 + 1, f - 1);
-      const float ax = float(px - i0), ay = float(py - j0);
       const int ox = col * f, oy = row * f;
-      const glm::vec3 top =
-          glm::mix(texel_value(ox + i0, oy + j0), texel_value(ox + i1, oy + j0), ax);
-      const glm::vec3 bottom =
-          glm::mix(texel_value(ox + i0, oy + j1), texel_value(ox + i1, oy + j1), ax);
-      return glm::mix(top, bottom, ay);
+      return bilinear_footprint(width_, ox + i0, ox + i1, oy + j0, oy + j1, float(px - i0),
+                                float(py - j0));
     }
     case EnvMapping::AngularProbe: {
       // Bilinear over the texels inside the disc, weights renormalised at the rim.
@@ -381,24 +385,67 @@ glm::vec3 EnvMap::image_radiance(const glm::vec3& dir_in) const {
       probe_coord(d, width_, &cx, &cy);
       const double fx = std::floor(cx), fy = std::floor(cy);
       const double ax = cx - fx, ay = cy - fy;
-      glm::dvec3 sum(0.0);
-      double weight = 0.0;
+      Footprint f{};
+      double w[4] = {0.0, 0.0, 0.0, 0.0}, weight = 0.0;
       for (int k = 0; k < 4; ++k) {
         const int x = static_cast<int>(fx) + (k & 1), y = static_cast<int>(fy) + (k >> 1);
         if (!image_texel(x, y, nullptr, nullptr)) continue;
-        const double w = ((k & 1) ? ax : 1.0 - ax) * ((k >> 1) ? ay : 1.0 - ay);
-        sum += w * glm::dvec3(texel_value(x, y));
-        weight += w;
+        w[k] = ((k & 1) ? ax : 1.0 - ax) * ((k >> 1) ? ay : 1.0 - ay);
+        f.texel[k] = static_cast<std::uint32_t>(y) * width_ + static_cast<std::uint32_t>(x);
+        weight += w[k];
       }
-      if (weight > 0.0) return glm::vec3(sum / weight);
+      if (weight > 0.0) {
+        for (int k = 0; k < 4; ++k) f.weight[k] = static_cast<float>(w[k] / weight);
+        return f;
+      }
       int x = 0, y = 0;
       image_texel_of(d, &x, &y);
-      return texel_value(x, y);
+      f = Footprint{};
+      f.texel[0] = static_cast<std::uint32_t>(y) * width_ + static_cast<std::uint32_t>(x);
+      f.weight[0] = 1.0f;
+      return f;
     }
     case EnvMapping::Auto:
       break;
   }
-  return glm::vec3(0.0f);
+  return Footprint{};
+}
+
+// Bilinear, wrapping around in longitude and clamped at the poles. All in float: this runs for
+// every sample, and float texel coordinates (at most 2^15 wide) keep 8+ fractional bits, far
+// finer than the bilinear weights need; the integer modulo is left to the rare out-of-range case.
+EnvMap::Footprint EnvMap::latlong_footprint(const glm::vec3& d) const {
+  constexpr float kInvPi = static_cast<float>(1.0 / kPi), kInvTwoPi = static_cast<float>(0.5 / kPi);
+  const float u = 0.5f + atan2_float(d.x, -d.z) * kInvTwoPi;
+  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) * kInvPi;
+  const float cx = u * static_cast<float>(width_) - 0.5f;
+  const float cy = v * static_cast<float>(height_) - 0.5f;
+  const float fx = std::floor(cx), fy = std::floor(cy);
+  int x0 = static_cast<int>(fx);
+  if (x0 < 0 || x0 >= width_) x0 = ((x0 % width_) + width_) % width_;
+  const int x1 = x0 + 1 == width_ ? 0 : x0 + 1;
+  const int y0 = std::clamp(static_cast<int>(fy), 0, height_ - 1);
+  const int y1 = std::clamp(static_cast<int>(fy) + 1, 0, height_ - 1);
+  return bilinear_footprint(width_, x0, x1, y0, y1, cx - fx, cy - fy);
+}
+
+glm::vec3 EnvMap::footprint_radiance(const Footprint& footprint) const {
+  glm::vec3 sum(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const float* p = rgb_.data() + static_cast<std::size_t>(footprint.texel[k]) * 3;
+    sum += footprint.weight[k] * glm::vec3(p[0], p[1], p[2]);
+  }
+  return sum;
+}
+
+void EnvMap::prefetch(const Footprint& footprint) const {
+#if defined(__GNUC__) || defined(__clang__)
+  for (int k = 0; k < 4; ++k) {
+    __builtin_prefetch(rgb_.data() + static_cast<std::size_t>(footprint.texel[k]) * 3);
+  }
+#else
+  (void)footprint;
+#endif
 }
 
 // Rotation: the image describes the light in its own frame; world direction d sees the image at
@@ -425,7 +472,11 @@ glm::vec3 EnvMap::to_image_frame(const glm::vec3& dir) const {
 }
 
 glm::vec3 EnvMap::radiance(const glm::vec3& dir) const {
-  return image_radiance(to_image_frame(dir));
+  return footprint_radiance(footprint(dir));
+}
+
+EnvMap::Footprint EnvMap::footprint(const glm::vec3& dir) const {
+  return image_footprint(to_image_frame(dir));
 }
 
 bool EnvMap::texel(int x, int y, glm::vec3* dir, float* solid_angle) const {

@@ -60,10 +60,13 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
       const float cos_w = glm::dot(x.normal, w);
       if (cos_w > 0.0f && env_pdf > 0.0f && leaves_surface(w)) {
         ++*rays;
+        // Find the texels and start loading them now: the ray hides their memory latency.
+        const EnvMap::Footprint texels = env_.footprint(w);
+        env_.prefetch(texels);
         if (!rays_.occluded(origin, w)) {
           const float weight = power_heuristic(env_pdf, cos_w * kInvPi);
-          radiance +=
-              throughput * x.albedo * env_.radiance(w) * (kInvPi * cos_w / env_pdf * weight);
+          radiance += throughput * x.albedo * env_.footprint_radiance(texels) *
+                      (kInvPi * cos_w / env_pdf * weight);
         }
       }
     }
@@ -73,12 +76,17 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
     const glm::vec3 w = frame.to_world(cosine_hemisphere(stream.get_2d(index, pair + 1)));
     const float cos_w = glm::dot(x.normal, w);
     if (!(cos_w > 0.0f) || !leaves_surface(w)) break;
-    // Only an escaping ray needs the environment and its multiple-importance weight.
+    // Only an escaping ray needs the environment and its multiple-importance weight; their
+    // memory is fetched while the ray is traced.
+    const EnvMap::Footprint texels = env_.footprint(w);
+    env_.prefetch(texels);
+    const std::size_t cell = env_distribution_.valid() ? env_distribution_.cell(w) : 0;
+    if (env_distribution_.valid()) env_distribution_.prefetch_cell(cell);
     auto escaped = [&] {
       const float weight = env_distribution_.valid()
-                               ? power_heuristic(cos_w * kInvPi, env_distribution_.pdf(w))
+                               ? power_heuristic(cos_w * kInvPi, env_distribution_.cell_pdf(cell))
                                : 1.0f;
-      return throughput * x.albedo * env_.radiance(w) * weight;
+      return throughput * x.albedo * env_.footprint_radiance(texels) * weight;
     };
     ++*rays;
     if (depth == bounces_) {

@@ -78,7 +78,11 @@ float luminance(const glm::vec3& c) {
   return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 }
 
-constexpr int kColumnGuide = 64;  // guide entries per row (see build_guide)
+// Guide entries per row (see build_guide): a quarter of the columns, so a sample's search within
+// a row touches a cache line or two of its CDF rather than a binary search across dozens.
+int column_guide_size(int columns) {
+  return std::max(64, columns / 4);
+}
 
 // guide[g] (g = 0..size) is the bin that holds u = g/size in the normalised CDF (n+1 entries,
 // cdf[0] = 0, cdf[n] = 1): the largest i < n with cdf[i] <= u. The bin of any u in
@@ -101,6 +105,13 @@ int sample_cdf(const double* cdf, const int* guide, int guide_size, double u, do
   const double width = cdf[bin + 1] - cdf[bin];
   *remapped = width > 0.0 ? std::clamp((u - cdf[bin]) / width, 0.0, 1.0 - 1e-12) : 0.5;
   return bin;
+}
+
+// Density in solid angle of cell (r, c): the probability the CDFs give it over its solid angle.
+float cell_density(const double* row_cdf, const double* column_cdf, int r, int c,
+                   double solid_angle) {
+  return static_cast<float>((row_cdf[r + 1] - row_cdf[r]) * (column_cdf[c + 1] - column_cdf[c]) /
+                            solid_angle);
 }
 
 }  // namespace
@@ -165,7 +176,7 @@ void grid_cell(const glm::vec3& dir, int rows, int columns, int* row, int* colum
   const float len = glm::length(dir);
   const float y = len > 0.0f ? dir.y / len : 1.0f;
   const float theta = std::acos(std::clamp(y, -1.0f, 1.0f));
-  float phi = std::atan2(dir.z, dir.x);
+  float phi = atan2_float(dir.z, dir.x);
   if (phi < 0.0f) phi += static_cast<float>(2.0 * kPi);
   *row = std::clamp(static_cast<int>(theta * kInvPi * rows), 0, rows - 1);
   *column = std::clamp(static_cast<int>(phi * kInvTwoPi * columns), 0, columns - 1);
@@ -185,8 +196,9 @@ EnvDistribution::EnvDistribution(const EnvMap& env) {
   const double dphi = 2.0 * kPi / columns_;
   row_cos_.resize(rows_ + 1);
   for (int r = 0; r <= rows_; ++r) row_cos_[r] = std::cos(kPi * r / rows_);
-  std::vector<double> cell_solid_angle(rows_);  // of one cell in each row
-  for (int r = 0; r < rows_; ++r) cell_solid_angle[r] = dphi * (row_cos_[r] - row_cos_[r + 1]);
+  cell_solid_angle_.resize(rows_);
+  for (int r = 0; r < rows_; ++r) cell_solid_angle_[r] = dphi * (row_cos_[r] - row_cos_[r + 1]);
+  const std::vector<double>& cell_solid_angle = cell_solid_angle_;
 
   // The interpolated map's power, gathered at 2x2 points per cell. Rows run in parallel (on
   // the caller's TBB arena) and each writes only its own cells.
@@ -227,8 +239,6 @@ EnvDistribution::EnvDistribution(const EnvMap& env) {
       const double w = weight[static_cast<std::size_t>(r) * columns_ + c];
       row_sum += w;
       cdf[c + 1] = row_sum;
-      density_[static_cast<std::size_t>(r) * columns_ + c] =
-          static_cast<float>(w / total_ / cell_solid_angle[r]);
     }
     for (int c = 1; c <= columns_; ++c) cdf[c] = row_sum > 0.0 ? cdf[c] / row_sum : 0.0;
     cdf[columns_] = 1.0;
@@ -236,34 +246,58 @@ EnvDistribution::EnvDistribution(const EnvMap& env) {
   }
   for (int r = 1; r <= rows_; ++r) row_cdf_[r] /= total_;
   row_cdf_[rows_] = 1.0;
+  // The density is what the CDFs sample, computed as sample() computes it (from the CDF entries
+  // it has just read, which saves it a cache miss on density_): the two agree to the bit.
+  for (int r = 0; r < rows_; ++r) {
+    const double* cdf = &column_cdf_[static_cast<std::size_t>(r) * (columns_ + 1)];
+    for (int c = 0; c < columns_; ++c) {
+      density_[static_cast<std::size_t>(r) * columns_ + c] =
+          cell_density(row_cdf_.data(), cdf, r, c, cell_solid_angle_[r]);
+    }
+  }
 
   row_guide_.resize(rows_ + 1);
   build_guide(row_cdf_.data(), rows_, rows_, row_guide_.data());
-  column_guide_.resize(static_cast<std::size_t>(rows_) * (kColumnGuide + 1));
+  column_guide_size_ = column_guide_size(columns_);
+  column_guide_.resize(static_cast<std::size_t>(rows_) * (column_guide_size_ + 1));
   for (int r = 0; r < rows_; ++r) {
-    build_guide(&column_cdf_[static_cast<std::size_t>(r) * (columns_ + 1)], columns_, kColumnGuide,
-                &column_guide_[static_cast<std::size_t>(r) * (kColumnGuide + 1)]);
+    build_guide(&column_cdf_[static_cast<std::size_t>(r) * (columns_ + 1)], columns_,
+                column_guide_size_,
+                &column_guide_[static_cast<std::size_t>(r) * (column_guide_size_ + 1)]);
   }
 }
 
 glm::vec3 EnvDistribution::sample(const glm::vec2& u, float* pdf) const {
   double v_row = 0.0, u_column = 0.0;
   const int r = sample_cdf(row_cdf_.data(), row_guide_.data(), rows_, u.y, &v_row);
-  const int c = sample_cdf(&column_cdf_[static_cast<std::size_t>(r) * (columns_ + 1)],
-                           &column_guide_[static_cast<std::size_t>(r) * (kColumnGuide + 1)],
-                           kColumnGuide, u.x, &u_column);
+  const double* column_cdf = &column_cdf_[static_cast<std::size_t>(r) * (columns_ + 1)];
+  const int c =
+      sample_cdf(column_cdf, &column_guide_[static_cast<std::size_t>(r) * (column_guide_size_ + 1)],
+                 column_guide_size_, u.x, &u_column);
   const double cos_theta = row_cos_[r] - v_row * (row_cos_[r] - row_cos_[r + 1]);
   const float sin_theta = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta)));
   const float phi = static_cast<float>(2.0 * kPi * (c + u_column) / columns_);
-  *pdf = density_[static_cast<std::size_t>(r) * columns_ + c];
+  *pdf = cell_density(row_cdf_.data(), column_cdf, r, c, cell_solid_angle_[r]);
   return {sin_theta * std::cos(phi), static_cast<float>(cos_theta), sin_theta * std::sin(phi)};
 }
 
 float EnvDistribution::pdf(const glm::vec3& dir) const {
   if (!valid()) return 0.0f;
+  return density_[cell(dir)];
+}
+
+std::size_t EnvDistribution::cell(const glm::vec3& dir) const {
   int r = 0, c = 0;
   grid_cell(dir, rows_, columns_, &r, &c);
-  return density_[static_cast<std::size_t>(r) * columns_ + c];
+  return static_cast<std::size_t>(r) * columns_ + c;
+}
+
+void EnvDistribution::prefetch_cell(std::size_t cell) const {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(density_.data() + cell);
+#else
+  (void)cell;
+#endif
 }
 
 }  // namespace prt::bake

@@ -4,7 +4,10 @@
 // mapping is normative and written in formats/SPEC.md §Environment maps.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -59,13 +62,29 @@ class EnvMap {
   // Radiance arriving from world direction dir (unit): bilinear within a face/region.
   glm::vec3 radiance(const glm::vec3& dir) const;
 
+  // Where radiance(dir) reads: four texels (index y * width + x) and their weights (zero for
+  // texels that do not count). Split out so a renderer can find the texels and prefetch them
+  // before it traces a ray, and read them after: footprint_radiance(footprint(dir)) ==
+  // radiance(dir).
+  struct Footprint {
+    std::uint32_t texel[4];
+    float weight[4];
+  };
+  Footprint footprint(const glm::vec3& dir) const;
+  glm::vec3 footprint_radiance(const Footprint& footprint) const;
+  void prefetch(const Footprint& footprint) const;
+
   // Texel (x, y): its centre direction (world, after the rotation) and the solid angle it
   // covers. Returns false for texels that are not part of the mapping (cross padding, outside
   // the probe disc).
   bool texel(int x, int y, glm::vec3* dir, float* solid_angle) const;
   // The texel a world direction falls in (nearest), after the rotation.
   void texel_of(const glm::vec3& dir, int* x, int* y) const;
-  glm::vec3 texel_value(int x, int y) const;
+  // Inline: the renderer's bilinear lookups call it four times per radiance() sample.
+  glm::vec3 texel_value(int x, int y) const {
+    const float* p = rgb_.data() + (static_cast<std::size_t>(y) * width_ + x) * 3;
+    return {p[0], p[1], p[2]};
+  }
 
  private:
   int width_, height_;
@@ -78,7 +97,8 @@ class EnvMap {
 
   // The image-frame direction of a world direction (R^T d), or d itself when not rotated.
   glm::vec3 to_image_frame(const glm::vec3& dir) const;
-  glm::vec3 image_radiance(const glm::vec3& image_dir) const;
+  Footprint image_footprint(const glm::vec3& image_dir) const;
+  Footprint latlong_footprint(const glm::vec3& image_dir) const;
   bool image_texel(int x, int y, glm::vec3* dir, float* solid_angle) const;
   void image_texel_of(const glm::vec3& image_dir, int* x, int* y) const;
 };
@@ -88,6 +108,30 @@ class EnvMap {
 glm::mat3 rotation_about_y(double degrees);
 // The same matrix as 9 row-major floats, the layout prt_sh_rotate takes.
 void rotation_about_y_row_major(double degrees, float out[9]);
+
+// atan2 in single precision without a libm call (Cephes' atanf: reduction to |t| <= tan(pi/8)
+// and a degree-9 odd polynomial; error a few float ulps, like atan2f's). The per-sample direction
+// lookups (lat-long texels, the sampling grid's cells) spend much of their time in atan2f.
+inline float atan2_float(float y, float x) {
+  constexpr float kPiF = 3.14159265358979f;
+  const float ax = std::fabs(x), ay = std::fabs(y);
+  const float hi = std::max(ax, ay), lo = std::min(ax, ay);
+  float t = hi > 0.0f ? lo / hi : 0.0f;  // in [0, 1]
+  float base = 0.0f;
+  if (t > 0.414213562f) {  // tan(pi/8): atan(t) = pi/4 + atan((t - 1) / (t + 1))
+    base = 0.25f * kPiF;
+    t = (t - 1.0f) / (t + 1.0f);
+  }
+  const float z = t * t;
+  float angle = ((((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
+                  3.33329491539e-1f) *
+                     z * t +
+                 t) +
+                base;
+  if (ay > ax) angle = 0.5f * kPiF - angle;
+  if (x < 0.0f) angle = kPiF - angle;
+  return std::copysign(angle, y);
+}
 
 // Reads a Radiance .hdr file. NaN, Inf and negative texels are replaced by 0 and counted in one
 // warning through ctx. Throws Error naming the file when it is not a readable .hdr image or its

@@ -9,6 +9,7 @@
 // is keyed by one 32-bit seed; two streams with different seeds are independent randomisations.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -72,18 +73,25 @@ class EnvDistribution {
   glm::vec3 sample(const glm::vec2& u, float* pdf) const;
   // Density in solid angle of sampling `dir` (unit).
   float pdf(const glm::vec3& dir) const;
+  // pdf() in two steps, so a renderer can prefetch before it traces a ray: the grid cell of
+  // `dir` (unit), and its density (valid() only). pdf(dir) == cell_pdf(cell(dir)).
+  std::size_t cell(const glm::vec3& dir) const;
+  float cell_pdf(std::size_t cell) const { return density_[cell]; }
+  void prefetch_cell(std::size_t cell) const;
 
   int columns() const { return columns_; }
   int rows() const { return rows_; }
 
  private:
   int columns_ = 0, rows_ = 0;
-  std::vector<double> row_cdf_;     // rows_+1 entries, normalised
-  std::vector<double> row_cos_;     // rows_+1 entries: cos(theta) at the row boundaries
-  std::vector<double> column_cdf_;  // rows_ x (columns_+1), each row normalised
-  std::vector<int> row_guide_;      // rows_+1 entries: where to start searching row_cdf_
-  std::vector<int> column_guide_;   // per row: where to start searching its column CDF
-  std::vector<float> density_;      // rows_ x columns_: pdf in solid angle
+  int column_guide_size_ = 0;             // guide buckets per row (a row stores this + 1 entries)
+  std::vector<double> row_cdf_;           // rows_+1 entries, normalised
+  std::vector<double> row_cos_;           // rows_+1 entries: cos(theta) at the row boundaries
+  std::vector<double> column_cdf_;        // rows_ x (columns_+1), each row normalised
+  std::vector<int> row_guide_;            // rows_+1 entries: where to start searching row_cdf_
+  std::vector<int> column_guide_;         // per row: where to start searching its column CDF
+  std::vector<float> density_;            // rows_ x columns_: pdf in solid angle
+  std::vector<double> cell_solid_angle_;  // rows_ entries: of one cell in each row
   double total_ = 0.0;
 };
 
