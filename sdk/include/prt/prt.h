@@ -15,5 +15,6 @@
 #include <prt/prt_sh_asset.h>
 #include <prt/prt_types.h>
 #include <prt/prt_version.h>
+#include <prt/prt_wavelet.h>
 
 #endif /* PRT_H */

@@ -1,0 +1,74 @@
+/* SPDX-License-Identifier: MIT */
+/* 2-D orthonormal Haar transform of square faces, non-standard decomposition (prt_wavelet.h). */
+#include <string.h>
+
+#include "internal.h"
+
+#define INV_SQRT2 0.70710678118654752440f
+
+static int valid_face(uint32_t size, uint32_t channels, const float* face) {
+  return face && size >= 1u && size <= PRT_HAAR_MAX_SIZE && (size & (size - 1u)) == 0u &&
+         channels >= 1u && channels <= PRT_HAAR_MAX_CHANNELS;
+}
+
+/* One level on n values spaced `step` texels apart (a row: step 1; a column: step size), each
+ * texel `channels` floats: sums to the first half, differences to the second (forward), or back
+ * (inverse). `scratch` holds n * channels floats. */
+static void haar_line(float* line, uint32_t n, size_t step, uint32_t channels, int forward,
+                      float* scratch) {
+  uint32_t i, c, half = n / 2u;
+  for (i = 0; i < n; ++i)
+    memcpy(scratch + (size_t)i * channels, line + i * step * channels, channels * sizeof(float));
+  for (i = 0; i < half; ++i) {
+    float* even = line + (forward ? i : 2u * i) * step * channels;
+    float* odd = line + (forward ? half + i : 2u * i + 1u) * step * channels;
+    const float* a = scratch + (size_t)(forward ? 2u * i : i) * channels;
+    const float* b = scratch + (size_t)(forward ? 2u * i + 1u : half + i) * channels;
+    for (c = 0; c < channels; ++c) {
+      even[c] = (a[c] + b[c]) * INV_SQRT2;
+      odd[c] = (a[c] - b[c]) * INV_SQRT2;
+    }
+  }
+}
+
+/* One level on the n x n top-left block: rows then columns (forward), columns then rows
+ * (inverse, the transpose). */
+static void haar_level(float* face, uint32_t size, uint32_t n, uint32_t channels, int forward,
+                       float* scratch) {
+  uint32_t i, pass;
+  for (pass = 0; pass < 2u; ++pass) {
+    const int rows = (pass == 0u) == (forward != 0);
+    for (i = 0; i < n; ++i) {
+      float* start = face + (size_t)(rows ? i * size : i) * channels;
+      haar_line(start, n, rows ? 1u : size, channels, forward, scratch);
+    }
+  }
+}
+
+prt_result prt_haar_forward(uint32_t size, uint32_t channels, float* face) {
+  float scratch[PRT_HAAR_MAX_SIZE * PRT_HAAR_MAX_CHANNELS];
+  uint32_t n;
+  if (!valid_face(size, channels, face)) return PRT_ERROR_INVALID_ARGUMENT;
+  for (n = size; n >= 2u; n /= 2u) haar_level(face, size, n, channels, 1, scratch);
+  return PRT_OK;
+}
+
+prt_result prt_haar_inverse(uint32_t size, uint32_t channels, float* face) {
+  float scratch[PRT_HAAR_MAX_SIZE * PRT_HAAR_MAX_CHANNELS];
+  uint32_t n;
+  if (!valid_face(size, channels, face)) return PRT_ERROR_INVALID_ARGUMENT;
+  for (n = 2u; n <= size; n *= 2u) haar_level(face, size, n, channels, 0, scratch);
+  return PRT_OK;
+}
+
+int prt_haar_level(uint32_t size, uint32_t x, uint32_t y) {
+  uint32_t m = x > y ? x : y;
+  int level = -1;
+  if (size < 1u || size > PRT_HAAR_MAX_SIZE || (size & (size - 1u)) != 0u || x >= size || y >= size)
+    return -2;
+  while (m > 0u) {
+    ++level;
+    m >>= 1;
+  }
+  return level;
+}
