@@ -139,30 +139,6 @@ void check_options(const TradeOptions& o) {
 
 // --- lights -------------------------------------------------------------------------------------
 
-// The six GL-oriented cube faces of a vertical-cross map. prt_sh_project_cube's face texel
-// centres are the cross's texel centres, so the nearest texel is the very texel: a permutation.
-std::vector<std::vector<float>> cube_faces_of_cross(const EnvMap& map) {
-  const int f = map.face_size();
-  std::vector<std::vector<float>> faces(6, std::vector<float>(std::size_t(f) * f * 3));
-  for (int face = 0; face < 6; ++face) {
-    for (int j = 0; j < f; ++j) {
-      for (int i = 0; i < f; ++i) {
-        const float s = 2.0f * (i + 0.5f) / f - 1.0f, t = 2.0f * (j + 0.5f) / f - 1.0f;
-        const glm::vec3 dirs[6] = {{1, -t, -s}, {-1, -t, s}, {s, 1, t},
-                                   {s, -1, -t}, {s, -t, 1},  {-s, -t, -1}};
-        int x = 0, y = 0;
-        map.texel_of(glm::normalize(dirs[face]), &x, &y);
-        const glm::vec3 value = map.texel_value(x, y);
-        float* out = &faces[face][(std::size_t(j) * f + i) * 3];
-        out[0] = value.r;
-        out[1] = value.g;
-        out[2] = value.b;
-      }
-    }
-  }
-  return faces;
-}
-
 void check_runtime(prt_result result, const std::string& what) {
   if (result != PRT_OK) throw Error(what + ": " + prt_result_string(result));
 }
@@ -201,7 +177,7 @@ Light load_light(const std::string& path, std::uint32_t order, const Context& ct
       break;
     case EnvMapping::VerticalCross: {
       light.projection = "runtime cube";
-      const auto faces = cube_faces_of_cross(map);
+      const auto faces = resample_to_cube(map, map.face_size());
       const float* pointers[6];
       for (int i = 0; i < 6; ++i) pointers[i] = faces[i].data();
       check_runtime(prt_sh_project_cube(order, map.face_size(), pointers, light.rgb.data()),
@@ -219,27 +195,16 @@ Light load_light(const std::string& path, std::uint32_t order, const Context& ct
 
 // --- reference cache ----------------------------------------------------------------------------
 
-// Reads what write_npy_vec3 writes: float32 little-endian, C order, shape [n, 3].
-bool read_npy_vec3(const std::string& path, std::vector<glm::vec3>* values) {
-  std::ifstream file(path, std::ios::binary);
-  char magic[8];
-  if (!file.read(magic, 8) || std::memcmp(magic, "\x93NUMPY\x01\x00", 8) != 0) return false;
-  unsigned char len[2];
-  if (!file.read(reinterpret_cast<char*>(len), 2)) return false;
-  std::string header(len[0] | (len[1] << 8), '\0');
-  if (!file.read(header.data(), static_cast<std::streamsize>(header.size()))) return false;
-  if (header.find("'<f4'") == std::string::npos ||
-      header.find("'fortran_order': False") == std::string::npos)
+// A cached reference's radiance, or false when the file is missing or unreadable (then it is
+// rendered again).
+bool cached_radiance(const std::string& path, std::vector<glm::vec3>* radiance) {
+  if (!std::filesystem::exists(path)) return false;
+  try {
+    *radiance = read_npy_vec3(path);
+    return true;
+  } catch (const Error&) {
     return false;
-  const std::size_t open = header.find("'shape': (");
-  if (open == std::string::npos) return false;
-  std::size_t count = 0, columns = 0;
-  char comma = 0;
-  std::istringstream shape(header.substr(open + 10));
-  if (!(shape >> count >> comma >> columns) || comma != ',' || columns != 3) return false;
-  values->resize(count);
-  return static_cast<bool>(file.read(reinterpret_cast<char*>(values->data()),
-                                     static_cast<std::streamsize>(count * sizeof(glm::vec3))));
+  }
 }
 
 std::string albedo_key(const TradeOptions& o) {
@@ -257,7 +222,7 @@ Reference reference_for(const Scene& scene, const Light& light, int bounces, con
   const std::string npy = o.cache_dir + "/" + key + ".npy", noise_file = npy + ".noise";
   Reference ref;
   std::ifstream noise_in(noise_file);
-  if (noise_in >> ref.noise && read_npy_vec3(npy, &ref.radiance) &&
+  if (noise_in >> ref.noise && cached_radiance(npy, &ref.radiance) &&
       ref.radiance.size() == scene.vertex_count()) {
     ctx.info("reference " + key + ": from the cache (" + format("noise %.3f %%)", 100 * ref.noise));
     return ref;

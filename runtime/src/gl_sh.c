@@ -32,6 +32,7 @@ prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint3
 #include <string.h>
 
 #include "gl_functions.h"
+#include "sh_internal.h"
 
 /* Vertices per work group, and per dispatch (GL guarantees 65535 groups in x). */
 #define LOCAL_SIZE 64u
@@ -403,28 +404,12 @@ void prt_gl_sh_destroy(prt_gl_sh_shader* shader) {
 
 /* ---- per frame ------------------------------------------------------------------------- */
 
-static float param_at(const prt_gl_sh_shader* s, uint32_t j, uint32_t which) {
-  uint32_t bits = prt_le_load_u32(s->params + 8u * j + 4u * which);
-  float f;
-  memcpy(&f, &bits, sizeof f);
-  return f;
-}
-
-/* Folds the dequantisation into the light: base[ch] = sum_k offset_{c,k} L[k][ch] (in double)
- * and weight[ch order² + k] = scale_{c,k} L[k][ch], with c = ch for RGB transfer and 0 for grey;
- * the padding up to whole vec4s is zero. */
+/* The folded light as the shader reads it: vec4 (bias r, g, b, 0), then weight[ch order² + k]
+ * (prt_sh_fold_light), zero up to whole vec4s. */
 static void fold_light(const prt_gl_sh_shader* s, const float* light_rgb, float* out) {
-  uint32_t n2 = s->info.order * s->info.order, ch, k;
-  for (ch = 0; ch < 3; ++ch) {
-    uint32_t row = (s->info.channels == 3 ? ch : 0u) * n2;
-    double base = 0.0;
-    for (k = 0; k < n2; ++k) {
-      float l = light_rgb[3u * k + ch];
-      base += (double)param_at(s, row + k, 0) * (double)l;
-      out[4u + ch * n2 + k] = param_at(s, row + k, 1) * l;
-    }
-    out[ch] = (float)base;
-  }
+  const uint32_t n2 = s->info.order * s->info.order;
+  uint32_t k;
+  prt_sh_fold_light(s->params, s->info.order, s->info.channels, light_rgb, n2, out + 4, n2, out);
   out[3] = 0.0f;
   for (k = 4u + 3u * n2; k < s->light_floats; ++k) out[k] = 0.0f;
 }

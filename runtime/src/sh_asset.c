@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "sh_internal.h"
 #include "sh_shade_simd.h"
 
 /* A checked view of the SHTR bytes. */
@@ -100,6 +101,25 @@ static float to_float(double x) {
   return (float)x;
 }
 
+void prt_sh_fold_light(const uint8_t* params, uint32_t order, uint32_t channels,
+                       const float* light_rgb, uint32_t padded, float* weight, size_t weight_stride,
+                       float bias[3]) {
+  const uint32_t n2 = order * order;
+  uint32_t ch, k;
+  for (ch = 0; ch < 3; ++ch) {
+    const uint8_t* param = params + 8u * (size_t)((channels == 3 ? ch : 0u) * n2);
+    float* row = weight + ch * weight_stride;
+    double sum = 0.0;
+    for (k = 0; k < n2; ++k, param += 8) {
+      const float light = light_rgb[3u * k + ch];
+      sum += (double)load_f32(param) * (double)light;
+      row[k] = load_f32(param + 4u) * light;
+    }
+    for (; k < padded; ++k) row[k] = 0.0f;
+    bias[ch] = to_float(sum);
+  }
+}
+
 /* radiance[ch] = sum_k t[c(ch)][k] L[k][ch], c(ch) = ch for RGB transfer, 0 for grey; summed in
  * double since this is the reference the other backends are compared with. */
 static void shade_vertex(const shtr_view* view, const float* light_rgb, uint32_t v, float* rgb) {
@@ -149,28 +169,18 @@ static prt_sh_simd_kernel simd_kernel(const prt_context* context) {
   return NULL;
 }
 
-/* Folds the light into the quantisation, once per call: weight[ch][k] = scale_j L_k (float, as a
- * kernel multiplies) and bias[ch] = sum_k offset_j L_k (double), j the coefficient of output
- * channel ch; weights are zero from the channel's last coefficient up to the padded count. */
+/* The light folded into the quantisation, once per call (prt_sh_fold_light). */
 static void fold_light(const shtr_view* view, const float* light_rgb,
                        float weight[3][PRT_SH_MAX_COEFFICIENTS + PRT_SH_SIMD_BLOCK],
                        prt_sh_simd_job* job) {
   const uint32_t n2 = view->info.order * view->info.order;
-  uint32_t ch, k;
+  uint32_t ch;
   job->padded = (n2 + PRT_SH_SIMD_BLOCK - 1u) / PRT_SH_SIMD_BLOCK * PRT_SH_SIMD_BLOCK;
+  prt_sh_fold_light(view->params, view->info.order, view->info.channels, light_rgb, job->padded,
+                    &weight[0][0], PRT_SH_MAX_COEFFICIENTS + PRT_SH_SIMD_BLOCK, job->bias);
   for (ch = 0; ch < 3; ++ch) {
-    const uint32_t segment = (view->info.channels == 3 ? ch : 0u) * n2;
-    double bias = 0.0;
-    for (k = 0; k < n2; ++k) {
-      const uint8_t* param = view->params + 8u * (size_t)(segment + k);
-      const float light = light_rgb[3u * k + ch];
-      bias += (double)load_f32(param) * (double)light;
-      weight[ch][k] = load_f32(param + 4u) * light;
-    }
-    for (; k < job->padded; ++k) weight[ch][k] = 0.0f;
-    job->segment[ch] = segment;
+    job->segment[ch] = (view->info.channels == 3 ? ch : 0u) * n2;
     job->weight[ch] = weight[ch];
-    job->bias[ch] = to_float(bias);
   }
 }
 

@@ -11,10 +11,6 @@
 
 namespace prt::view {
 
-// Reads a float32 little-endian C-order array of shape [N, 3] (.npy 1.0/2.0), the layout
-// prt::bake::write_npy_vec3 writes. Throws ViewerError naming the file on anything else.
-std::vector<glm::vec3> read_npy_vec3(const std::string& path);
-
 // Per-vertex error for the heat map: |x - ref| (Euclidean over RGB) divided by the mean of
 // |ref| over all vertices, so 0.1 means "10 % of a typical vertex's radiance".
 std::vector<float> relative_vertex_error(const std::vector<glm::vec3>& x,

@@ -22,11 +22,6 @@ std::vector<float> project_environment(const prt::bake::EnvMap& map, std::uint32
 // angle of a probe texel near its centre, (2/F)^2 ~ (2 pi/W)^2 / 2.5, so no detail is lost).
 std::uint32_t cube_face_size(const prt::bake::EnvMap& map);
 
-// The six faces (+X, -X, +Y, -Y, +Z, -Z; rows from the top, GL cube-map orientation, texel
-// directions exactly as prt_sh_project_cube documents), each face_size² RGB floats.
-std::vector<std::vector<float>> resample_to_cube(const prt::bake::EnvMap& map,
-                                                 std::uint32_t face_size);
-
 // Rotates coefficients in place about world +Y by `degrees` with prt_sh_rotate (light from d
 // comes from R d, R = [[c,0,s],[0,1,0],[-s,0,c]]).
 void rotate_environment(std::vector<float>* coefficients, std::uint32_t order, double degrees);

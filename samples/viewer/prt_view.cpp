@@ -70,7 +70,7 @@ RasterMesh raster_mesh(const BlobMesh& mesh) {
 void compare_with_reference(const Options& options, const std::vector<glm::vec3>& shaded,
                             const prt::bake::Camera& camera, int width, int height,
                             const RasterMesh& mesh) {
-  const std::vector<glm::vec3> reference = read_npy_vec3(options.reference);
+  const std::vector<glm::vec3> reference = prt::bake::read_npy_vec3(options.reference);
   if (reference.size() != shaded.size()) {
     throw ViewerError(options.reference + ": " + std::to_string(reference.size()) +
                       " vertices, the blob has " + std::to_string(shaded.size()));

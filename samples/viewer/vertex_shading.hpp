@@ -31,7 +31,8 @@ struct ShadingRun {
 ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& light,
                           ViewBackend backend, int frames);
 
-// The GL path (gl_shading.cpp, or a stub that says GL is not built in).
+// The GL path: gl_shading.cpp, or gl_shading_unavailable.cpp (an error naming the build option)
+// when prt-view is built without GL.
 ShadingRun shade_vertices_gl(const BlobScene& scene, const std::vector<float>& light, int frames);
 
 // Median of the frame times (sorted copy).

@@ -556,4 +556,45 @@ EnvMap constant_envmap(const glm::vec3& radiance) {
   return EnvMap(kWidth, kHeight, std::move(rgb), EnvMapping::LatLong, "constant environment");
 }
 
+namespace {
+
+// Texel direction of face `face` at cube coordinates (s_c, t_c): prt_sh.h's table.
+glm::vec3 cube_direction(int face, float s, float t) {
+  switch (face) {
+    case 0:
+      return {1.0f, -t, -s};
+    case 1:
+      return {-1.0f, -t, s};
+    case 2:
+      return {s, 1.0f, t};
+    case 3:
+      return {s, -1.0f, -t};
+    case 4:
+      return {s, -t, 1.0f};
+    default:
+      return {-s, -t, -1.0f};
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<float>> resample_to_cube(const EnvMap& map, int face_size) {
+  if (face_size < 1) throw Error(map.source() + ": cube face size must be >= 1");
+  const std::size_t texels = std::size_t(face_size) * std::size_t(face_size);
+  std::vector<std::vector<float>> faces(6, std::vector<float>(3 * texels));
+  for (int face = 0; face < 6; ++face) {
+    float* out = faces[face].data();
+    for (int j = 0; j < face_size; ++j) {
+      const float t = 2.0f * (static_cast<float>(j) + 0.5f) / static_cast<float>(face_size) - 1.0f;
+      for (int i = 0; i < face_size; ++i) {
+        const float s =
+            2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(face_size) - 1.0f;
+        const glm::vec3 value = map.radiance(glm::normalize(cube_direction(face, s, t)));
+        for (int c = 0; c < 3; ++c) *out++ = value[c];
+      }
+    }
+  }
+  return faces;
+}
+
 }  // namespace prt::bake

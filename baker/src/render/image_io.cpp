@@ -6,13 +6,40 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include "prt/baker/context.hpp"
 
 namespace prt::bake {
 namespace {
+
+std::uint32_t little_endian(const unsigned char* p, int bytes) {
+  std::uint32_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
+  return v;
+}
+
+// Value of `key` in the .npy header dictionary (the text after "'key':"), trimmed.
+std::string header_field(const std::string& header, const std::string& key) {
+  const std::size_t at = header.find("'" + key + "'");
+  if (at == std::string::npos) return "";
+  std::size_t start = header.find(':', at);
+  if (start == std::string::npos) return "";
+  ++start;
+  while (start < header.size() && header[start] == ' ') ++start;
+  std::size_t end = start;
+  if (header[start] == '(') {
+    end = header.find(')', start);
+    if (end != std::string::npos) ++end;
+  } else {
+    end = header.find(',', start);
+  }
+  return end == std::string::npos ? "" : header.substr(start, end - start);
+}
 
 std::string lower_extension(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
@@ -134,6 +161,46 @@ void write_image(const std::string& path, const LinearImage& image, float exposu
     throw Error(path + ": unknown image extension (use .png or .hdr)");
   }
   if (!ok) throw Error(path + ": cannot write the image");
+}
+
+std::vector<glm::vec3> read_npy_vec3(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(path + ": cannot open file");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
+                                         std::istreambuf_iterator<char>());
+  if (bytes.size() < 10 || std::memcmp(bytes.data(), "\x93NUMPY", 6) != 0) {
+    throw Error(path + ": not a NumPy .npy file");
+  }
+  const int major = bytes[6];
+  const int length_bytes = major == 1 ? 2 : 4;
+  const std::size_t prefix = 8 + static_cast<std::size_t>(length_bytes);
+  if ((major != 1 && major != 2) || bytes.size() < prefix) {
+    throw Error(path + ": unsupported .npy version");
+  }
+  const std::size_t header_size = little_endian(&bytes[8], length_bytes);
+  if (bytes.size() < prefix + header_size) throw Error(path + ": truncated .npy header");
+  const std::string header(bytes.begin() + static_cast<std::ptrdiff_t>(prefix),
+                           bytes.begin() + static_cast<std::ptrdiff_t>(prefix + header_size));
+  const std::string descr = header_field(header, "descr");
+  const std::string order = header_field(header, "fortran_order");
+  const std::string shape = header_field(header, "shape");
+  unsigned long long rows = 0;
+  int columns = 0;
+  if ((descr != "'<f4'" && descr != "'float32'") || order != "False" ||
+      std::sscanf(shape.c_str(), "(%llu, %d)", &rows, &columns) != 2 || columns != 3) {
+    throw Error(path + ": expected float32 C-order [N, 3] (descr " + descr + ", shape " + shape +
+                ")");
+  }
+  const std::size_t data = prefix + header_size;
+  if ((bytes.size() - data) / 12 < rows) throw Error(path + ": truncated .npy data");
+  std::vector<glm::vec3> values(static_cast<std::size_t>(rows));
+  for (std::size_t v = 0; v < values.size(); ++v) {
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t bits = little_endian(&bytes[data + 12 * v + 4 * c], 4);
+      std::memcpy(&values[v][c], &bits, 4);
+    }
+  }
+  return values;
 }
 
 }  // namespace prt::bake

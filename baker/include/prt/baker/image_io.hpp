@@ -22,6 +22,9 @@ struct LinearImage {
 // Writes float32 little-endian, C order, shape [values.size(), 3] (.npy format 1.0).
 // Throws Error naming the file if it cannot be written.
 void write_npy_vec3(const std::string& path, const std::vector<glm::vec3>& values);
+// Reads a float32 little-endian C-order array of shape [N, 3] (.npy 1.0/2.0), what
+// write_npy_vec3 writes. Throws Error naming the file on anything else.
+std::vector<glm::vec3> read_npy_vec3(const std::string& path);
 
 // Exposure (in EV, a scale of 2^EV) for a tone-mapped image, metered on the subject: the
 // log-average luminance of the pixels mostly covered by surfaces (coverage >= 0.5) maps to 0.35,
