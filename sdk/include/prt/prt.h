@@ -16,5 +16,6 @@
 #include <prt/prt_types.h>
 #include <prt/prt_version.h>
 #include <prt/prt_wavelet.h>
+#include <prt/prt_wavelet_asset.h>
 
 #endif /* PRT_H */

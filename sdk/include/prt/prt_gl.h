@@ -68,6 +68,21 @@ PRT_API uint32_t prt_gl_sh_output_buffer(const prt_gl_sh_shader* shader);
 PRT_API prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex,
                                   uint32_t vertex_count, float* out_rgb);
 
+/* GPU-side `wavelet` shading of one asset: the sparse rows (WVLT, as stored) uploaded once, a
+ * prepared light (prt_wavelet_prepare_light) uploaded and shaded per frame. Same contract as the
+ * prt_gl_sh_* functions above, with PRT_ERROR_NOT_FOUND when the asset has no WVLT section. */
+typedef struct prt_gl_wavelet_shader prt_gl_wavelet_shader;
+
+PRT_API prt_result prt_gl_wavelet_create(const prt_asset* asset, prt_gl_loader_fn loader,
+                                         void* loader_user, prt_gl_wavelet_shader** out_shader);
+PRT_API void prt_gl_wavelet_destroy(prt_gl_wavelet_shader* shader);
+/* prepared_rgba: the asset's coefficient_count RGBA quadruples (prt_wavelet_asset.h). */
+PRT_API prt_result prt_gl_wavelet_shade(prt_gl_wavelet_shader* shader, const float* prepared_rgba,
+                                        uint32_t first_vertex, uint32_t vertex_count);
+PRT_API uint32_t prt_gl_wavelet_output_buffer(const prt_gl_wavelet_shader* shader);
+PRT_API prt_result prt_gl_wavelet_read(prt_gl_wavelet_shader* shader, uint32_t first_vertex,
+                                       uint32_t vertex_count, float* out_rgb);
+
 #ifdef __cplusplus
 }
 #endif
