@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "sh_internal.h"
+#include "sphere_internal.h"
 
 #define PRT_SH_PI 3.14159265358979323846
 
@@ -91,48 +92,6 @@ prt_result prt_sh_project_latlong(uint32_t order, uint32_t width, uint32_t heigh
   return PRT_OK;
 }
 
-/* Solid angle subtended by the rectangle [0, a] x [0, b] of the plane at unit distance, as seen
- * from the origin: atan(a b / sqrt(a^2 + b^2 + 1)); a texel is the signed sum over its corners. */
-static double corner_solid_angle(double a, double b) {
-  return atan2(a * b, sqrt(a * a + b * b + 1.0));
-}
-
-/* World direction (unnormalised) of face coordinates (sc, tc) on a GL cube face. */
-static void cube_direction(uint32_t face, double sc, double tc, double d[3]) {
-  switch (face) {
-    case 0:
-      d[0] = 1.0;
-      d[1] = -tc;
-      d[2] = -sc;
-      break;
-    case 1:
-      d[0] = -1.0;
-      d[1] = -tc;
-      d[2] = sc;
-      break;
-    case 2:
-      d[0] = sc;
-      d[1] = 1.0;
-      d[2] = tc;
-      break;
-    case 3:
-      d[0] = sc;
-      d[1] = -1.0;
-      d[2] = -tc;
-      break;
-    case 4:
-      d[0] = sc;
-      d[1] = -tc;
-      d[2] = 1.0;
-      break;
-    default:
-      d[0] = -sc;
-      d[1] = -tc;
-      d[2] = -1.0;
-      break;
-  }
-}
-
 prt_result prt_sh_project_cube(uint32_t order, uint32_t face_size, const float* const faces[6],
                                float* out_rgb) {
   double sums[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3];
@@ -157,9 +116,8 @@ prt_result prt_sh_project_cube(uint32_t order, uint32_t face_size, const float* 
         double d[3], inv, solid_angle;
         uint32_t k, c;
         if (radiance[0] == 0.0 && radiance[1] == 0.0 && radiance[2] == 0.0) continue;
-        solid_angle = corner_solid_angle(s1, t1) - corner_solid_angle(s0, t1) -
-                      corner_solid_angle(s1, t0) + corner_solid_angle(s0, t0);
-        cube_direction(face, 0.5 * (s0 + s1), tc, d);
+        solid_angle = prt_cube_rect_solid_angle(s0, s1, t0, t1);
+        prt_cube_direction(face, 0.5 * (s0 + s1), tc, d);
         inv = 1.0 / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         /* World (X, Y, Z) -> SH frame (X, -Z, Y). */
         prt_sh_eval_sh_frame_d(order, d[0] * inv, -d[2] * inv, d[1] * inv, basis);

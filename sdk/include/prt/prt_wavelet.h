@@ -75,8 +75,9 @@ PRT_API double prt_wavelet_texel_solid_angle(uint32_t param, uint32_t size, uint
                                              uint32_t x, uint32_t y);
 
 /* The global index f*size^2 + y*size + x of the texel holding direction dir (need not be unit
- * length; the zero vector and non-finite components give face 0's texel 0). Always an inside
- * texel (§14 for the paraboloid's rim). 0xFFFFFFFF for a bad param or size. */
+ * length). Always an inside texel (§14 for the paraboloid's rim). The zero vector and
+ * non-finite components have no direction: the cube gives texel 0, the paraboloid the texel of
+ * direction (-sqrt 1/2, 0, -sqrt 1/2) (§14). 0xFFFFFFFF for a bad param or size. */
 PRT_API uint32_t prt_wavelet_locate(uint32_t param, uint32_t size, const float dir[3]);
 
 /* The band of coefficient j (§7.2): face * (log2 size + 1) + (level + 1), level from
@@ -96,13 +97,14 @@ PRT_API uint32_t prt_wavelet_band(uint32_t param, uint32_t size, uint32_t j);
  * rotation (row-major 3x3, §12 convention; NULL = identity) onto the texels of a
  * parameterisation: out_rgba = mean radiance per texel (§14). Non-finite and negative channels
  * count as 0. PRT_ERROR_INVALID_ARGUMENT for NULL pointers, bad param/size, a width that is not
- * 2 height, or height 0. */
+ * 2 height, height 0, or a rotation with a non-finite entry. */
 PRT_API prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const float* rgb,
                                                 uint32_t width, uint32_t height,
                                                 const float* rotation, float* out_rgba);
 
 /* The same for six cube faces (face_size^2 RGB floats each, back to back, §13's face order and
- * orientation, as prt_sh_project_cube takes them). */
+ * orientation, as prt_sh_project_cube takes them). PRT_ERROR_INVALID_ARGUMENT as above, and for
+ * face_size 0 or above 65536. */
 PRT_API prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float* faces_rgb,
                                              uint32_t face_size, const float* rotation,
                                              float* out_rgba);

@@ -1,0 +1,336 @@
+/* SPDX-License-Identifier: MIT */
+/* The wavelet light, once per frame (SPEC §14): an environment map resampled onto a
+ * parameterisation, Haar-transformed per face, and cut to the M most important coefficients.
+ * No heap: the target's 4th float accumulates the resampling weight. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "sphere_internal.h"
+#include "wavelet_internal.h"
+
+#define MAX_CUBE_SOURCE_SIZE 65536u
+
+/* A channel value as the light uses it: NaN, infinities and negatives count as 0. */
+static float sanitised(float value) {
+  return (value > 0.0f && value <= FLT_MAX) ? value : 0.0f; /* NaN fails both */
+}
+
+/* The source map, for the nearest-texel fill of empty targets. */
+typedef struct light_source {
+  const float* rgb;
+  uint32_t width, height; /* lat-long */
+  uint32_t face_size;     /* cube faces; 0 for lat-long */
+} light_source;
+
+/* The 3x3 rotation (row-major) in double; NULL is the identity. Returns 0 for a non-finite
+ * entry. */
+static int load_rotation(const float* rotation, double r[9]) {
+  uint32_t i;
+  for (i = 0; i < 9u; ++i) {
+    r[i] = rotation ? (double)rotation[i] : (i % 4u == 0u ? 1.0 : 0.0);
+    if (!isfinite(r[i])) return 0;
+  }
+  return 1;
+}
+
+static const float* nearest_source_texel(const light_source* source, const double e[3]) {
+  if (source->face_size == 0u) {
+    const double u = 0.5 + atan2(e[0], -e[2]) / (2.0 * PRT_SPHERE_PI);
+    const double cos_theta = e[1] > 1.0 ? 1.0 : (e[1] < -1.0 ? -1.0 : e[1]);
+    const double v = acos(cos_theta) / PRT_SPHERE_PI;
+    uint32_t x = (uint32_t)(u * (double)source->width), y = (uint32_t)(v * (double)source->height);
+    if (x >= source->width) x = source->width - 1u;
+    if (y >= source->height) y = source->height - 1u;
+    return source->rgb + 3u * ((size_t)y * source->width + x);
+  } else {
+    const uint32_t n = source->face_size;
+    double sc, tc;
+    const uint32_t face = prt_cube_face_coords(e[0], e[1], e[2], &sc, &tc);
+    return source->rgb +
+           3u * (((size_t)face * n + prt_face_texel(tc, n)) * n + prt_face_texel(sc, n));
+  }
+}
+
+/* Turns the accumulated (sum of L dw, sum of dw) of every target texel into its mean radiance;
+ * a texel nothing landed in takes the source's nearest texel in direction R^T c. */
+static void finish_resample(uint32_t param, uint32_t size, const double r[9],
+                            const light_source* source, float* out_rgba) {
+  const uint32_t faces = prt_wavelet_face_count(param);
+  uint32_t f, x, y, c;
+  for (f = 0; f < faces; ++f) {
+    for (y = 0; y < size; ++y) {
+      for (x = 0; x < size; ++x) {
+        float* texel = out_rgba + 4u * (((size_t)f * size + y) * size + x);
+        const float weight = texel[3];
+        if (weight > 0.0f) {
+          for (c = 0; c < 3u; ++c) texel[c] /= weight;
+        } else if (prt_wavelet_texel_inside(param, size, x, y)) {
+          float centre[3];
+          double e[3];
+          const float* nearest;
+          prt_wavelet_direction(param, size, f, (float)x + 0.5f, (float)y + 0.5f, centre);
+          for (c = 0; c < 3u; ++c)
+            e[c] = r[c] * centre[0] + r[3 + c] * centre[1] + r[6 + c] * centre[2];
+          nearest = nearest_source_texel(source, e);
+          for (c = 0; c < 3u; ++c) texel[c] = sanitised(nearest[c]);
+        } else {
+          texel[0] = texel[1] = texel[2] = 0.0f;
+        }
+        texel[3] = 0.0f;
+      }
+    }
+  }
+}
+
+/* Splats one source texel, turned direction (x, y, z) = R d: radiance * dw and dw into the
+ * target holding that direction. */
+static inline void splat(uint32_t param, uint32_t size, double x, double y, double z,
+                         const float* rgb, float solid_angle, float* out_rgba) {
+  float* target = out_rgba + 4u * (size_t)prt_wavelet_locate_unit(param, size, x, y, z);
+  target[0] += sanitised(rgb[0]) * solid_angle;
+  target[1] += sanitised(rgb[1]) * solid_angle;
+  target[2] += sanitised(rgb[2]) * solid_angle;
+  target[3] += solid_angle;
+}
+
+/* Columns per block of the lat-long loop: their turned azimuth vectors fit a 12 KiB stack table;
+ * each block repeats the per-row set-up (4 trigonometric calls per row). */
+#define COLUMN_BLOCK 512u
+
+/* Per lat-long row: R d = sin t g(f) + cos t R e_y, and the row's solid angle (SPEC §12:
+ * theta in [pi y / H, pi (y + 1) / H], dw = (2 pi / W)(cos theta0 - cos theta1)). */
+typedef struct latlong_row {
+  double sin_theta, up[3];
+  float solid_angle;
+  const float* rgb;
+} latlong_row;
+
+static void setup_row(const float* rgb, uint32_t width, uint32_t height, uint32_t first, uint32_t y,
+                      const double r[9], latlong_row* row) {
+  const double theta = PRT_SPHERE_PI * ((double)y + 0.5) / (double)height;
+  const double cos_top = cos(PRT_SPHERE_PI * (double)y / (double)height);
+  const double cos_bottom = cos(PRT_SPHERE_PI * (double)(y + 1u) / (double)height);
+  const double cos_theta = cos(theta);
+  row->sin_theta = sin(theta);
+  row->up[0] = cos_theta * r[1];
+  row->up[1] = cos_theta * r[4];
+  row->up[2] = cos_theta * r[7];
+  row->solid_angle = (float)(2.0 * PRT_SPHERE_PI / (double)width * (cos_top - cos_bottom));
+  row->rgb = rgb + 3u * ((size_t)y * width + first);
+}
+
+/* Splats columns [0, count) of a block's row; param is a literal at each call, so the inlined
+ * locate has no param branch. */
+static inline void splat_row_for_param(uint32_t param, uint32_t size, const double* turned_azimuth,
+                                       uint32_t count, const latlong_row* row, float* out_rgba) {
+  uint32_t x;
+  for (x = 0; x < count; ++x) {
+    const double* g = turned_azimuth + 3 * x;
+    splat(param, size, row->sin_theta * g[0] + row->up[0], row->sin_theta * g[1] + row->up[1],
+          row->sin_theta * g[2] + row->up[2], row->rgb + 3u * x, row->solid_angle, out_rgba);
+  }
+}
+
+static void splat_row(uint32_t param, uint32_t size, const double* turned_azimuth, uint32_t count,
+                      const latlong_row* row, float* out_rgba) {
+  if (param == PRT_WAVELET_PARAM_CUBE)
+    splat_row_for_param(PRT_WAVELET_PARAM_CUBE, size, turned_azimuth, count, row, out_rgba);
+  else
+    splat_row_for_param(PRT_WAVELET_PARAM_DUAL_PARABOLOID, size, turned_azimuth, count, row,
+                        out_rgba);
+}
+
+/* A lat-long direction is d = sin t (sin f, 0, -cos f) + cos t (0, 1, 0) (SPEC §12), so
+ * R d = sin t g(f) + cos t R e_y with g(f) = R (sin f, 0, -cos f) per column: the loop runs over
+ * blocks of columns, with g tabulated once per block, then over the block's rows. */
+prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const float* rgb,
+                                        uint32_t width, uint32_t height, const float* rotation,
+                                        float* out_rgba) {
+  const double column_step = 2.0 * PRT_SPHERE_PI / (double)width;
+  double r[9], turned_azimuth[3 * COLUMN_BLOCK];
+  latlong_row row;
+  light_source source;
+  uint32_t first, x, y;
+  if (!prt_wavelet_domain_valid(param, size) || !rgb || !out_rgba || height == 0u ||
+      height > 0x7FFFFFFFu || width != 2u * height || !load_rotation(rotation, r))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
+  for (first = 0; first < width; first += COLUMN_BLOCK) {
+    const uint32_t count = width - first < COLUMN_BLOCK ? width - first : COLUMN_BLOCK;
+    for (x = 0; x < count; ++x) {
+      /* Column centre: f = 2 pi ((x + 1/2) / W - 1/2). */
+      const double phi = column_step * ((double)(first + x) + 0.5) - PRT_SPHERE_PI;
+      const double sin_phi = sin(phi), cos_phi = cos(phi);
+      turned_azimuth[3 * x] = r[0] * sin_phi - r[2] * cos_phi;
+      turned_azimuth[3 * x + 1] = r[3] * sin_phi - r[5] * cos_phi;
+      turned_azimuth[3 * x + 2] = r[6] * sin_phi - r[8] * cos_phi;
+    }
+    for (y = 0; y < height; ++y) {
+      setup_row(rgb, width, height, first, y, r, &row);
+      splat_row(param, size, turned_azimuth, count, &row, out_rgba);
+    }
+  }
+  source.rgb = rgb;
+  source.width = width;
+  source.height = height;
+  source.face_size = 0u;
+  finish_resample(param, size, r, &source, out_rgba);
+  return PRT_OK;
+}
+
+prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float* faces_rgb,
+                                     uint32_t face_size, const float* rotation, float* out_rgba) {
+  const double step = 2.0 / (double)face_size;
+  const size_t face_floats = 3u * (size_t)face_size * face_size;
+  double r[9];
+  light_source source;
+  uint32_t i, j, f;
+  if (!prt_wavelet_domain_valid(param, size) || !faces_rgb || !out_rgba || face_size == 0u ||
+      face_size > MAX_CUBE_SOURCE_SIZE || !load_rotation(rotation, r))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
+  /* The six faces share texel solid angles and face coordinates: compute them once per texel. */
+  for (j = 0; j < face_size; ++j) {
+    const double t0 = step * (double)j - 1.0, t1 = t0 + step, tc = 0.5 * (t0 + t1);
+    double corner_top = prt_cube_corner_solid_angle(-1.0, t0);
+    double corner_bottom = prt_cube_corner_solid_angle(-1.0, t1);
+    for (i = 0; i < face_size; ++i) {
+      const double s1 = step * (double)(i + 1u) - 1.0, sc = s1 - 0.5 * step;
+      const double next_top = prt_cube_corner_solid_angle(s1, t0);
+      const double next_bottom = prt_cube_corner_solid_angle(s1, t1);
+      const double solid_angle = fabs(next_bottom - corner_bottom - next_top + corner_top);
+      const double inv_length = 1.0 / sqrt(1.0 + sc * sc + tc * tc);
+      const size_t texel = 3u * ((size_t)j * face_size + i);
+      for (f = 0; f < 6u; ++f) {
+        double d[3];
+        prt_cube_direction(f, sc, tc, d);
+        d[0] *= inv_length;
+        d[1] *= inv_length;
+        d[2] *= inv_length;
+        splat(param, size, r[0] * d[0] + r[1] * d[1] + r[2] * d[2],
+              r[3] * d[0] + r[4] * d[1] + r[5] * d[2], r[6] * d[0] + r[7] * d[1] + r[8] * d[2],
+              faces_rgb + f * face_floats + texel, (float)solid_angle, out_rgba);
+      }
+      corner_top = next_top;
+      corner_bottom = next_bottom;
+    }
+  }
+  source.rgb = faces_rgb;
+  source.width = source.height = 0u;
+  source.face_size = face_size;
+  finish_resample(param, size, r, &source, out_rgba);
+  return PRT_OK;
+}
+
+prt_result prt_wavelet_transform_light(uint32_t param, uint32_t size, float* rgba) {
+  const uint32_t faces = prt_wavelet_face_count(param);
+  uint32_t f;
+  if (!prt_wavelet_domain_valid(param, size) || !rgba) return PRT_ERROR_INVALID_ARGUMENT;
+  for (f = 0; f < faces; ++f) {
+    const prt_result result = prt_haar_forward(size, 4u, rgba + 4u * (size_t)f * size * size);
+    if (result != PRT_OK) return result;
+  }
+  return PRT_OK;
+}
+
+/* ---- Selection: a radix select on the bit patterns of the (non-negative) float weights. ---- */
+
+#define DIGIT_BITS 11u
+#define HISTOGRAM_SIZE (1u << DIGIT_BITS)
+
+typedef struct selection {
+  uint32_t prefix;      /* the threshold's bits found so far */
+  uint32_t prefix_mask; /* which bits those are */
+  uint32_t remaining;   /* how many to keep among the weights matching the prefix */
+  uint32_t histogram[HISTOGRAM_SIZE];
+  uint32_t area[PRT_WAVELET_MAX_SIZE]; /* support area of a detail coefficient by max(x, y) */
+} selection;
+
+/* The digit of pass 0, 1, 2: bits 21..31, 10..20, 0..9. */
+static uint32_t digit_shift(uint32_t pass) {
+  return pass == 0u ? 21u : (pass == 1u ? 10u : 0u);
+}
+static uint32_t digit_mask(uint32_t pass) {
+  return pass == 2u ? 0x3FFu : 0x7FFu;
+}
+
+/* The weight's float bit pattern (orders as the weight, weights being >= 0; NaN counts as 0).
+ * Each product of floats is exact in double and area is a power of two, so the value does not
+ * depend on how the compiler fuses the arithmetic: every pass sees the same bits. */
+static uint32_t weight_bits(const float* coefficient, uint32_t area) {
+  const double luminance = (double)0.2126f * fabs((double)coefficient[0]) +
+                           (double)0.7152f * fabs((double)coefficient[1]) +
+                           (double)0.0722f * fabs((double)coefficient[2]);
+  const float weight = (float)(luminance * (double)area);
+  uint32_t bits;
+  if (weight != weight) return 0u;
+  memcpy(&bits, &weight, sizeof bits);
+  return bits;
+}
+
+/* area[k] = (S >> level)^2 for the level of max(x, y) = k >= 1: level = floor(log2 k). */
+static void tabulate_areas(uint32_t size, uint32_t* area) {
+  uint32_t k, support = size;
+  for (k = 1u; k < size; ++k) {
+    if ((k & (k - 1u)) == 0u && k > 1u) support >>= 1; /* k = 2^level starts a level */
+    area[k] = support * support;
+  }
+}
+
+/* One pass over every detail coefficient in index order: passes 0..2 histogram the next digit
+ * of the weights that match the prefix; pass 3 keeps those above the threshold and the first
+ * `remaining` equal to it, and zeroes the rest. */
+static void selection_pass(uint32_t faces, uint32_t size, uint32_t pass, selection* state,
+                           float* rgba) {
+  uint32_t f, x, y;
+  for (f = 0; f < faces; ++f) {
+    for (y = 0; y < size; ++y) {
+      for (x = (y == 0u ? 1u : 0u); x < size; ++x) {
+        float* coefficient = rgba + 4u * (((size_t)f * size + y) * size + x);
+        const uint32_t bits = weight_bits(coefficient, state->area[x > y ? x : y]);
+        if (pass < 3u) {
+          if ((bits & state->prefix_mask) == state->prefix)
+            ++state->histogram[(bits >> digit_shift(pass)) & digit_mask(pass)];
+        } else if (bits > state->prefix || (bits == state->prefix && state->remaining > 0u)) {
+          if (bits == state->prefix) --state->remaining;
+        } else {
+          memset(coefficient, 0, 4u * sizeof(float));
+        }
+      }
+    }
+  }
+}
+
+/* After a histogram pass: the digit of the M-th largest weight among those matching. */
+static void choose_digit(uint32_t pass, selection* state) {
+  uint32_t digit = digit_mask(pass) + 1u, above = 0u;
+  while (digit > 0u) {
+    --digit;
+    if (above + state->histogram[digit] >= state->remaining) break;
+    above += state->histogram[digit];
+  }
+  state->remaining -= above;
+  state->prefix |= digit << digit_shift(pass);
+  state->prefix_mask |= digit_mask(pass) << digit_shift(pass);
+}
+
+prt_result prt_wavelet_select_light(uint32_t param, uint32_t size, uint32_t m, float* rgba) {
+  const uint32_t faces = prt_wavelet_face_count(param);
+  selection state;
+  uint32_t pass;
+  if (!prt_wavelet_domain_valid(param, size) || !rgba) return PRT_ERROR_INVALID_ARGUMENT;
+  if (m >= faces * (size * size - 1u)) return PRT_OK;
+  state.prefix = 0u;
+  state.prefix_mask = 0u;
+  state.remaining = m;
+  tabulate_areas(size, state.area);
+  /* m = 0: the threshold stays above every weight (none equal with remaining 0 is kept). */
+  if (m == 0u) state.prefix = 0xFFFFFFFFu;
+  for (pass = (m == 0u ? 3u : 0u); pass <= 3u; ++pass) {
+    if (pass < 3u) memset(state.histogram, 0, sizeof state.histogram);
+    selection_pass(faces, size, pass, &state, rgba);
+    if (pass < 3u) choose_digit(pass, &state);
+  }
+  return PRT_OK;
+}
