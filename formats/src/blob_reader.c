@@ -14,6 +14,7 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_VNRM, PRT_BLOB_LAYOUT_VERSION_1, 12u, "vertex normals (3 x f32)"},
     {PRT_BLOB_TAG_TRIS, PRT_BLOB_LAYOUT_VERSION_1, 12u, "triangles (3 x u32)"},
     {PRT_BLOB_TAG_SHTR, PRT_BLOB_LAYOUT_VERSION_1, 0u, "sh transfer (element = vertex)"},
+    {PRT_BLOB_TAG_WVLT, PRT_BLOB_LAYOUT_VERSION_1, 0u, "wavelet transport (element = vertex)"},
 };
 
 const prt_blob_kind* prt_blob_find_kind(uint32_t tag, uint8_t layout_version) {
@@ -240,8 +241,8 @@ static long find_known(const void* data, const prt_blob_header* h, uint32_t tag,
   return -1;
 }
 
-/* Relations between kinds: TRIS, VNRM and SHTR need VPOS; VNRM and SHTR have one element per
- * vertex. */
+/* Relations between kinds: TRIS, VNRM, SHTR and WVLT need VPOS; VNRM, SHTR and WVLT have one
+ * element per vertex. */
 static prt_blob_status check_dependencies(const void* data, const prt_blob_header* h, char* msg,
                                           size_t cap) {
   prt_blob_section vpos, other;
@@ -260,6 +261,13 @@ static prt_blob_status check_dependencies(const void* data, const prt_blob_heade
     if (other.element_count != vpos.element_count)
       return fail(PRT_BLOB_CORRUPT, msg, cap,
                   "'SHTR' has %" PRIu64 " transfer vectors for %" PRIu64 " vertices",
+                  other.element_count, vpos.element_count);
+  }
+  if (find_known(data, h, PRT_BLOB_TAG_WVLT, &other) >= 0) {
+    if (!has_vpos) return fail(PRT_BLOB_CORRUPT, msg, cap, "section 'WVLT' needs a 'VPOS' section");
+    if (other.element_count != vpos.element_count)
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'WVLT' has %" PRIu64 " transport rows for %" PRIu64 " vertices",
                   other.element_count, vpos.element_count);
   }
   return PRT_BLOB_OK;
@@ -424,6 +432,138 @@ static prt_blob_status check_shtr(const prt_blob_section* s, const uint8_t* p, s
   return PRT_BLOB_OK;
 }
 
+static int f32_is_finite(float f) {
+  return f == f && f - f == 0.0f;
+}
+
+/* Band and vertex scales of a WVLT section: finite and >= 0. */
+static prt_blob_status check_wvlt_scales(const uint8_t* p, const prt_blob_wvlt_layout* l,
+                                         uint32_t vertices, char* msg, size_t cap) {
+  uint32_t k, v, c;
+  for (k = 0; k < l->bands; ++k) {
+    float scale = load_f32(p + l->band_scale + 4u * k);
+    if (!f32_is_finite(scale))
+      return fail(PRT_BLOB_NON_FINITE, msg, cap, "'WVLT': band scale %" PRIu32 " is not finite", k);
+    if (scale < 0.0f)
+      return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': band scale %" PRIu32 " is negative", k);
+  }
+  for (v = 0; v < vertices; ++v)
+    for (c = 0; c < 3; ++c) {
+      float scale = load_f32(p + l->vertex_scale + 12u * (uint64_t)v + 4u * c);
+      if (!f32_is_finite(scale))
+        return fail(PRT_BLOB_NON_FINITE, msg, cap,
+                    "'WVLT': vertex %" PRIu32 " scale %" PRIu32 " is not finite", v, c);
+      if (scale < 0.0f)
+        return fail(PRT_BLOB_CORRUPT, msg, cap,
+                    "'WVLT': vertex %" PRIu32 " scale %" PRIu32 " is negative", v, c);
+    }
+  return PRT_BLOB_OK;
+}
+
+/* One block's pairs: indices strictly increasing, values in -127..127 and not 0. */
+static prt_blob_status check_wvlt_block(const uint8_t* pairs, uint32_t count, uint32_t v,
+                                        uint32_t k, char* msg, size_t cap) {
+  uint32_t i;
+  for (i = 0; i < count; ++i) {
+    uint8_t value = pairs[2u * i + 1u];
+    if (i > 0 && pairs[2u * i] <= pairs[2u * i - 2u])
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'WVLT': vertex %" PRIu32 " block %" PRIu32
+                  ": index %u follows %u (indices must strictly increase)",
+                  v, k, (unsigned)pairs[2u * i], (unsigned)pairs[2u * i - 2u]);
+    if (value == 0u || value == 0x80u)
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'WVLT': vertex %" PRIu32 " block %" PRIu32 " index %u: value %d is not allowed",
+                  v, k, (unsigned)pairs[2u * i], value == 0u ? 0 : -128);
+  }
+  return PRT_BLOB_OK;
+}
+
+/* Row starts, block counts and pairs of a WVLT section (sizes already checked). */
+static prt_blob_status check_wvlt_rows(const uint8_t* p, const prt_blob_wvlt_layout* l,
+                                       uint32_t vertices, uint32_t pair_count, char* msg,
+                                       size_t cap) {
+  uint32_t v, k;
+  if (prt_le_load_u32(p + l->row_start) != 0)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': row start of vertex 0 is not 0");
+  for (v = 0; v < vertices; ++v) {
+    const uint32_t start = prt_le_load_u32(p + l->row_start + 4u * (uint64_t)v);
+    const uint32_t end = prt_le_load_u32(p + l->row_start + 4u * ((uint64_t)v + 1u));
+    const uint8_t* counts = p + l->counts + 2u * (uint64_t)v * l->blocks;
+    uint64_t at = start; /* <= pair_count: checked for the previous vertex (or 0) */
+    if (end < start || end > pair_count)
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'WVLT': row starts of vertex %" PRIu32 " (%" PRIu32 " .. %" PRIu32
+                  ") are not increasing within the %" PRIu32 " pairs",
+                  v, start, end, pair_count);
+    for (k = 0; k < l->blocks; ++k) {
+      const uint32_t count = prt_le_load_u16(counts + 2u * k);
+      prt_blob_status st;
+      if (count > PRT_BLOB_WVLT_BLOCK)
+        return fail(PRT_BLOB_CORRUPT, msg, cap,
+                    "'WVLT': vertex %" PRIu32 " block %" PRIu32 " counts %" PRIu32
+                    " non-zeros (at most 256)",
+                    v, k, count);
+      if (at + count > end)
+        return fail(PRT_BLOB_CORRUPT, msg, cap,
+                    "'WVLT': vertex %" PRIu32 " block %" PRIu32
+                    ": block counts exceed the row's %" PRIu32 " pairs",
+                    v, k, end - start);
+      st = check_wvlt_block(p + l->pairs + 2u * at, count, v, k, msg, cap);
+      if (st != PRT_BLOB_OK) return st;
+      at += count;
+    }
+    if (at != end)
+      return fail(PRT_BLOB_CORRUPT, msg, cap,
+                  "'WVLT': vertex %" PRIu32 ": block counts sum to %" PRIu64
+                  " but the row has %" PRIu32 " pairs",
+                  v, at - start, end - start);
+  }
+  return PRT_BLOB_OK;
+}
+
+/* The `wavelet` transport section (SPEC.md §7.2): every header field, the exact size, zero
+ * padding, finite non-negative scales, row starts, block counts, indices and values. */
+static prt_blob_status check_wvlt(const prt_blob_section* s, const uint8_t* p, size_t n,
+                                  uint64_t vertex_count, char* msg, size_t cap) {
+  prt_blob_wvlt_layout l;
+  uint32_t param, size, vertices, quantizer, pair_count;
+  prt_blob_status st;
+  if (n < PRT_BLOB_WVLT_HEADER_SIZE)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': %zu bytes cannot hold the 32-byte header", n);
+  param = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_PARAM);
+  size = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_SIZE);
+  vertices = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_VERTICES);
+  quantizer = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_QUANTIZER);
+  pair_count = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_PAIR_COUNT);
+  if (param != PRT_BLOB_WVLT_PARAM_CUBE && param != PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': param %" PRIu32 " is not 0 or 1", param);
+  if (!prt_blob_wvlt_layout_of(param, size, vertices, pair_count, &l))
+    return fail(PRT_BLOB_CORRUPT, msg, cap,
+                "'WVLT': face size %" PRIu32 " is not a power of two in 16..128", size);
+  if (quantizer > 1u)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': quantizer %" PRIu32 " is not 0 or 1",
+                quantizer);
+  if (prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_RESERVED) != 0)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': reserved header field is not zero");
+  if ((uint64_t)vertices != vertex_count || (uint64_t)vertices != s->element_count)
+    return fail(PRT_BLOB_CORRUPT, msg, cap,
+                "'WVLT': header says %" PRIu32 " vertices, element count %" PRIu64
+                ", 'VPOS' has %" PRIu64,
+                vertices, s->element_count, vertex_count);
+  if ((uint64_t)n != l.raw_size)
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': %zu raw bytes, the header implies %" PRIu64, n,
+                l.raw_size);
+  if (!is_zero(p + l.payload_end, (size_t)(l.raw_size - l.payload_end)))
+    return fail(PRT_BLOB_CORRUPT, msg, cap, "'WVLT': padding is not zero");
+  if (prt_le_load_u32(p + l.row_start + 4u * (uint64_t)vertices) != pair_count)
+    return fail(PRT_BLOB_CORRUPT, msg, cap,
+                "'WVLT': the last row start is not the pair count %" PRIu32, pair_count);
+  st = check_wvlt_scales(p, &l, vertices, msg, cap);
+  if (st != PRT_BLOB_OK) return st;
+  return check_wvlt_rows(p, &l, vertices, pair_count, msg, cap);
+}
+
 prt_blob_status prt_blob_check_content(const prt_blob_section* s, const void* raw,
                                        uint64_t vertex_count, char* msg, size_t cap) {
   const uint8_t* p = (const uint8_t*)raw;
@@ -456,6 +596,8 @@ prt_blob_status prt_blob_check_content(const prt_blob_section* s, const void* ra
     }
   } else if (s->tag == PRT_BLOB_TAG_SHTR) {
     return check_shtr(s, p, n, vertex_count, msg, cap);
+  } else if (s->tag == PRT_BLOB_TAG_WVLT) {
+    return check_wvlt(s, p, n, vertex_count, msg, cap);
   }
   return PRT_BLOB_OK;
 }

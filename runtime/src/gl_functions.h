@@ -2,7 +2,7 @@
 /* Private to the runtime: the few OpenGL 4.3 core types, constants and entry points the GL
  * backend uses, declared here so that the runtime includes no GL header and links no GL
  * library. Values are those of the Khronos registry (GL/glcorearb.h). Every entry point is
- * loaded through the application's prt_gl_loader_fn (gl_sh.c). */
+ * loaded through the application's prt_gl_loader_fn (gl_common.c). */
 #ifndef PRT_RUNTIME_GL_FUNCTIONS_H
 #define PRT_RUNTIME_GL_FUNCTIONS_H
 
@@ -46,7 +46,7 @@ typedef int64_t prt_GLint64;
 #define PRT_GL_BUFFER_UPDATE_BARRIER_BIT 0x00000200u
 #define PRT_GL_SHADER_STORAGE_BARRIER_BIT 0x00002000u
 
-/* The entry points (gl_sh.c loads each one named in kGlFunctions). */
+/* The entry points (gl_common.c loads each one named in kGlFunctions). */
 typedef struct prt_gl_functions {
   prt_GLenum(PRT_GL_APIENTRY* GetError)(void);
   void(PRT_GL_APIENTRY* GetIntegerv)(prt_GLenum pname, prt_GLint* data);

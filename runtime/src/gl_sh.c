@@ -31,7 +31,7 @@ prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint3
 #include <stdio.h>
 #include <string.h>
 
-#include "gl_functions.h"
+#include "gl_common.h"
 #include "sh_internal.h"
 
 /* Vertices per work group, and per dispatch (GL guarantees 65535 groups in x). */
@@ -39,7 +39,6 @@ prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint3
 #define MAX_GROUPS_PER_DISPATCH 65535u
 /* The light block: vec4 base, then 3 order² weights rounded up to whole vec4s. */
 #define MAX_LIGHT_FLOATS (4u + 3u * PRT_BLOB_SHTR_MAX_ORDER * PRT_BLOB_SHTR_MAX_ORDER + 3u)
-#define LOG_EXCERPT 300
 
 /* buffers[]: the quantised transfer (SSBO binding 0), the folded light (uniform block binding 0)
  * and the radiance (SSBO binding 2). */
@@ -56,39 +55,6 @@ struct prt_gl_sh_shader {
   prt_GLuint program;
   prt_GLuint buffers[BINDING_COUNT];
 };
-
-/* ---- entry points ---------------------------------------------------------------------- */
-
-typedef struct gl_function_slot {
-  const char* name;
-  size_t offset; /* of the pointer in prt_gl_functions */
-} gl_function_slot;
-
-#define SLOT(fn) \
-  { "gl" #fn, offsetof(prt_gl_functions, fn) }
-static const gl_function_slot kGlFunctions[] = {
-    SLOT(GetError),         SLOT(GetIntegerv),      SLOT(GetInteger64v),
-    SLOT(CreateShader),     SLOT(ShaderSource),     SLOT(CompileShader),
-    SLOT(GetShaderiv),      SLOT(GetShaderInfoLog), SLOT(DeleteShader),
-    SLOT(CreateProgram),    SLOT(AttachShader),     SLOT(DetachShader),
-    SLOT(LinkProgram),      SLOT(GetProgramiv),     SLOT(GetProgramInfoLog),
-    SLOT(DeleteProgram),    SLOT(UseProgram),       SLOT(ProgramUniform1ui),
-    SLOT(GenBuffers),       SLOT(DeleteBuffers),    SLOT(BindBuffer),
-    SLOT(BindBufferBase),   SLOT(BufferData),       SLOT(BufferSubData),
-    SLOT(GetBufferSubData), SLOT(DispatchCompute),  SLOT(MemoryBarrier)};
-#undef SLOT
-
-/* Fills every entry point through the loader; returns the first missing name, or NULL. */
-static const char* load_gl_functions(prt_gl_loader_fn loader, void* user, prt_gl_functions* gl) {
-  size_t i;
-  for (i = 0; i < sizeof kGlFunctions / sizeof kGlFunctions[0]; ++i) {
-    void* address = loader(user, kGlFunctions[i].name);
-    if (!address) return kGlFunctions[i].name;
-    /* Object-to-function pointer conversion through memcpy: POSIX guarantees equal sizes. */
-    memcpy((char*)gl + kGlFunctions[i].offset, &address, sizeof address);
-  }
-  return NULL;
-}
 
 /* ---- the compute shader ---------------------------------------------------------------- */
 
@@ -181,13 +147,8 @@ static const char kShaderMain[] =
     "}\n";
 
 static prt_result compile_program(prt_gl_sh_shader* s) {
-  const prt_gl_functions* gl = &s->gl;
-  prt_context* context = s->asset->context;
   char header[256];
   const prt_GLchar* sources[3];
-  prt_GLint ok = 0;
-  char log[LOG_EXCERPT + 1] = "";
-  prt_GLuint shader;
   snprintf(header, sizeof header,
            "#version 430 core\n#define LOCAL_SIZE %u\n#define ORDER2 %u\n#define CHANNELS %u\n"
            "#define BITS %u\n#define WEIGHT_VEC4S %u\n",
@@ -196,76 +157,23 @@ static prt_result compile_program(prt_gl_sh_shader* s) {
   sources[0] = header;
   sources[1] = kShaderDeclarations;
   sources[2] = kShaderMain;
-  shader = gl->CreateShader(PRT_GL_COMPUTE_SHADER);
-  if (!shader)
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: glCreateShader(GL_COMPUTE_SHADER) failed");
-  gl->ShaderSource(shader, 3, sources, NULL);
-  gl->CompileShader(shader);
-  gl->GetShaderiv(shader, PRT_GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    gl->GetShaderInfoLog(shader, (prt_GLsizei)sizeof log, NULL, log);
-    gl->DeleteShader(shader);
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: the compute shader does not compile: %s", log);
-  }
-  s->program = gl->CreateProgram();
-  gl->AttachShader(s->program, shader);
-  gl->LinkProgram(s->program);
-  gl->DetachShader(s->program, shader);
-  gl->DeleteShader(shader);
-  gl->GetProgramiv(s->program, PRT_GL_LINK_STATUS, &ok);
-  if (!ok) {
-    gl->GetProgramInfoLog(s->program, (prt_GLsizei)sizeof log, NULL, log);
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: the compute shader does not link: %s", log);
-  }
-  return PRT_OK;
+  return prt_gl_compile_compute(s->asset->context, &s->gl, "prt_gl_sh_create", sources, 3,
+                                &s->program);
 }
 
 /* ---- buffers --------------------------------------------------------------------------- */
-
-static int host_is_little_endian(void) {
-  const uint32_t one = 1;
-  uint8_t first;
-  memcpy(&first, &one, 1);
-  return first == 1;
-}
-
-/* Uploads the stored values as uint words. They are little-endian in the blob: used in place on
- * a little-endian host, re-read word by word into a temporary copy otherwise. */
-static prt_result upload_quantised(prt_gl_sh_shader* s, const uint8_t* values, size_t bytes) {
-  const prt_allocator* allocator = &s->asset->allocator;
-  uint32_t* words;
-  size_t i;
-  if (!values || host_is_little_endian()) { /* NULL: an asset without vertices */
-    s->gl.BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)bytes, values,
-                     PRT_GL_STATIC_DRAW);
-    return PRT_OK;
-  }
-  words = (uint32_t*)prt_internal_alloc(allocator, bytes, 16);
-  if (!words)
-    return prt_internal_fail(s->asset->context, PRT_ERROR_OUT_OF_MEMORY,
-                             "prt_gl_sh_create: out of memory (%zu bytes)", bytes);
-  for (i = 0; i < bytes / 4u; ++i) words[i] = prt_le_load_u32(values + 4u * i);
-  s->gl.BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)bytes, words, PRT_GL_STATIC_DRAW);
-  prt_internal_free(allocator, words, bytes);
-  return PRT_OK;
-}
 
 /* Creates the three buffers (bound to the generic SSBO target only while filling them). */
 static prt_result create_buffers(prt_gl_sh_shader* s, const uint8_t* values, size_t value_bytes,
                                  size_t radiance_bytes) {
   const prt_gl_functions* gl = &s->gl;
-  prt_GLenum error;
+  prt_context* context = s->asset->context;
   prt_result r;
-  int drained;
-  /* Drain errors the application left pending, so that the check below is about our calls. */
-  for (drained = 0; drained < 16 && gl->GetError() != PRT_GL_NO_ERROR; ++drained) {
-  }
+  prt_gl_drain_errors(gl);
   gl->GenBuffers(BINDING_COUNT, s->buffers);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_QUANTISED]);
-  r = upload_quantised(s, values, value_bytes);
+  r = prt_gl_upload_le_words(context, &s->asset->allocator, gl, "prt_gl_sh_create",
+                             PRT_GL_SHADER_STORAGE_BUFFER, 0, 0, values, value_bytes);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_LIGHT]);
   gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)(4u * s->light_floats), NULL,
                  PRT_GL_DYNAMIC_DRAW);
@@ -274,54 +182,11 @@ static prt_result create_buffers(prt_gl_sh_shader* s, const uint8_t* values, siz
                  PRT_GL_DYNAMIC_COPY);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
   if (r != PRT_OK) return r;
-  error = gl->GetError();
-  if (error == PRT_GL_OUT_OF_MEMORY)
-    return prt_internal_fail(s->asset->context, PRT_ERROR_OUT_OF_MEMORY,
-                             "prt_gl_sh_create: GL_OUT_OF_MEMORY creating %zu + %zu bytes of "
-                             "buffers",
-                             value_bytes, radiance_bytes);
-  if (error != PRT_GL_NO_ERROR)
-    return prt_internal_fail(s->asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: GL error 0x%04x creating the buffers",
-                             (unsigned)error);
-  return PRT_OK;
+  return prt_gl_check_upload(context, gl, "prt_gl_sh_create",
+                             (uint64_t)value_bytes + radiance_bytes);
 }
 
 /* ---- create / destroy ------------------------------------------------------------------ */
-
-static prt_result check_context(prt_context* context, const prt_gl_functions* gl) {
-  prt_GLint major = 0, minor = 0;
-  gl->GetIntegerv(PRT_GL_MAJOR_VERSION, &major);
-  gl->GetIntegerv(PRT_GL_MINOR_VERSION, &minor);
-  if (major < 4 || (major == 4 && minor < 3))
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: needs OpenGL 4.3 (compute shaders, SSBOs); the "
-                             "current context is %d.%d",
-                             (int)major, (int)minor);
-  return PRT_OK;
-}
-
-/* Every SSBO must fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE (at least 2^27 bytes in GL 4.3), and
- * below 4 GiB so that the shader's uint indices cannot wrap. */
-static prt_result check_sizes(prt_context* context, const prt_gl_functions* gl,
-                              uint64_t value_bytes, uint64_t radiance_bytes) {
-  prt_GLint64 max_block = 0;
-  gl->GetInteger64v(PRT_GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  if (max_block <= 0 || value_bytes > (uint64_t)max_block || radiance_bytes > (uint64_t)max_block ||
-      value_bytes > UINT32_MAX || radiance_bytes > UINT32_MAX ||
-      value_bytes > (uint64_t)PTRDIFF_MAX || radiance_bytes > (uint64_t)PTRDIFF_MAX)
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: the asset needs shader storage blocks of %llu "
-                             "(transfer) and %llu (radiance) bytes; this GL allows %lld",
-                             (unsigned long long)value_bytes, (unsigned long long)radiance_bytes,
-                             (long long)max_block);
-  return PRT_OK;
-}
-
-/* GL is allowed when the context's backend limit is AUTO (none) or GL (backend.c). */
-static int gl_allowed(const prt_context* context) {
-  return context->backend_limit == PRT_BACKEND_AUTO || context->backend_limit >= PRT_BACKEND_GL;
-}
 
 static prt_result open_asset(const prt_asset* asset, prt_sh_transfer_info* info,
                              const uint8_t** params) {
@@ -343,7 +208,6 @@ prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, voi
                             prt_gl_sh_shader** out_shader) {
   prt_gl_sh_shader local;
   prt_gl_sh_shader* s;
-  const char* missing;
   uint64_t value_bytes, radiance_bytes;
   prt_result r;
   if (out_shader) *out_shader = NULL;
@@ -351,7 +215,7 @@ prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, voi
   if (!loader || !out_shader)
     return prt_internal_fail(asset->context, PRT_ERROR_INVALID_ARGUMENT,
                              "prt_gl_sh_create: loader and out_shader must not be NULL");
-  if (!gl_allowed(asset->context))
+  if (!prt_gl_allowed(asset->context))
     return prt_internal_fail(asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
                              "prt_gl_sh_create: the context's backend limit (%s) excludes gl",
                              prt_backend_name(asset->context->backend_limit));
@@ -361,11 +225,7 @@ prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, voi
   if (r != PRT_OK) return r;
   local.coefficients = local.info.channels * local.info.order * local.info.order;
   local.light_floats = 4u + (3u * local.info.order * local.info.order + 3u) / 4u * 4u;
-  missing = load_gl_functions(loader, loader_user, &local.gl);
-  if (missing)
-    return prt_internal_fail(asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "prt_gl_sh_create: the GL loader has no %s", missing);
-  r = check_context(asset->context, &local.gl);
+  r = prt_gl_open(asset->context, "prt_gl_sh_create", loader, loader_user, &local.gl);
   /* Whole uint words: the section is padded to 4 bytes, so the last word is inside it. */
   value_bytes =
       ((uint64_t)local.info.vertex_count * local.coefficients * (local.info.bits / 8u) + 3u) &
@@ -373,7 +233,11 @@ prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, voi
   radiance_bytes = 12u * (uint64_t)local.info.vertex_count;
   if (value_bytes == 0) value_bytes = 4; /* empty assets still get valid buffers */
   if (radiance_bytes == 0) radiance_bytes = 12;
-  if (r == PRT_OK) r = check_sizes(asset->context, &local.gl, value_bytes, radiance_bytes);
+  if (r == PRT_OK) {
+    const uint64_t bytes[2] = {value_bytes, radiance_bytes};
+    const char* const names[2] = {"transfer", "radiance"};
+    r = prt_gl_check_block_sizes(asset->context, &local.gl, "prt_gl_sh_create", bytes, names, 2);
+  }
   if (r != PRT_OK) return r;
 
   s = (prt_gl_sh_shader*)prt_internal_alloc(&asset->allocator, sizeof *s, 16);

@@ -47,6 +47,38 @@ std::vector<float> project_environment(const prt::bake::EnvMap& map, std::uint32
   return coefficients;
 }
 
+std::vector<float> wavelet_light(const prt::bake::EnvMap& map, const prt_asset* asset,
+                                 const prt_wavelet_info& info, double degrees,
+                                 std::uint32_t light_coefficients) {
+  if (map.rotated()) throw ViewerError("wavelet_light: the map must not be rotated");
+  float rotation[9];
+  prt::bake::rotation_about_y_row_major(degrees, rotation);
+  std::vector<float> light(4u * info.coefficient_count);
+  if (map.mapping() == prt::bake::EnvMapping::LatLong) {
+    check(prt_wavelet_resample_latlong(
+              info.param, info.size, map.pixels().data(), static_cast<std::uint32_t>(map.width()),
+              static_cast<std::uint32_t>(map.height()), rotation, light.data()),
+          "prt_wavelet_resample_latlong");
+  } else {
+    const std::uint32_t face_size = cube_face_size(map);
+    const std::vector<std::vector<float>> faces =
+        prt::bake::resample_to_cube(map, static_cast<int>(face_size));
+    std::vector<float> packed;
+    packed.reserve(6u * 3u * face_size * face_size);
+    for (const std::vector<float>& face : faces)
+      packed.insert(packed.end(), face.begin(), face.end());
+    check(prt_wavelet_resample_cube(info.param, info.size, packed.data(), face_size, rotation,
+                                    light.data()),
+          "prt_wavelet_resample_cube");
+  }
+  check(prt_wavelet_transform_light(info.param, info.size, light.data()),
+        "prt_wavelet_transform_light");
+  check(prt_wavelet_select_light(info.param, info.size, light_coefficients, light.data()),
+        "prt_wavelet_select_light");
+  check(prt_wavelet_prepare_light(asset, light.data(), light.data()), "prt_wavelet_prepare_light");
+  return light;
+}
+
 void rotate_environment(std::vector<float>* coefficients, std::uint32_t order, double degrees) {
   float rotation[9];
   prt::bake::rotation_about_y_row_major(degrees, rotation);

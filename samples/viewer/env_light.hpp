@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The light the viewer shades with: an environment map (read by the baker's importer, any of
-// its three mappings) projected to SH by the RUNTIME, as a game would do it, then rotated.
+// its three mappings) turned into the technique's light by the RUNTIME, as a game would do it:
+// projected to SH then rotated (`sh`), or resampled with the rotation onto the wavelet cube,
+// transformed, selected and prepared (`wavelet`).
 #pragma once
+
+#include <prt/prt.h>
 
 #include <cstdint>
 #include <vector>
@@ -25,5 +29,15 @@ std::uint32_t cube_face_size(const prt::bake::EnvMap& map);
 // Rotates coefficients in place about world +Y by `degrees` with prt_sh_rotate (light from d
 // comes from R d, R = [[c,0,s],[0,1,0],[-s,0,c]]).
 void rotate_environment(std::vector<float>* coefficients, std::uint32_t order, double degrees);
+
+// The `wavelet` light of `map` (no rotation of its own) for `asset`: resampled onto the asset's
+// parameterisation turned by `degrees` about +Y (prt_wavelet_resample_latlong, or
+// prt_wavelet_resample_cube after resampling cross and probe maps to cube faces as above),
+// Haar-transformed, `light_coefficients` detail coefficients kept by area-weighted selection
+// (plus the scaling ones), and prepared (band scales folded in): info.coefficient_count RGBA
+// quadruples. Throws ViewerError when the runtime refuses.
+std::vector<float> wavelet_light(const prt::bake::EnvMap& map, const prt_asset* asset,
+                                 const prt_wavelet_info& info, double degrees,
+                                 std::uint32_t light_coefficients);
 
 }  // namespace prt::view

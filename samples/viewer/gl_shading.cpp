@@ -17,19 +17,26 @@ namespace {
 struct GlContextDeleter {
   void operator()(headless_gl* gl) const { headless_gl_destroy(gl); }
 };
-struct GlShaderDeleter {
-  void operator()(prt_gl_sh_shader* shader) const { prt_gl_sh_destroy(shader); }
-};
 
-std::string runtime_message(const BlobScene& scene, const char* call, prt_result result) {
+std::string runtime_message(const BlobScene& scene, const std::string& call, prt_result result) {
   const char* message = prt_context_last_message(scene.context());
-  return std::string("backend gl: ") + call + " failed: " + prt_result_string(result) +
+  return "backend gl: " + call + " failed: " + prt_result_string(result) +
          (message && *message ? std::string(": ") + message : std::string());
 }
 
-}  // namespace
+// The prt_gl_<technique>_* calls of one technique, so that one loop drives both.
+template <typename Shader>
+struct GlTechnique {
+  const char* name;  // "sh" or "wavelet", for messages
+  prt_result (*create)(const prt_asset*, prt_gl_loader_fn, void*, Shader**);
+  void (*destroy)(Shader*);
+  prt_result (*shade)(Shader*, const float*, std::uint32_t, std::uint32_t);
+  prt_result (*read)(Shader*, std::uint32_t, std::uint32_t, float*);
+};
 
-ShadingRun shade_vertices_gl(const BlobScene& scene, const std::vector<float>& light, int frames) {
+template <typename Shader>
+ShadingRun run_gl(const GlTechnique<Shader>& technique, const BlobScene& scene,
+                  const std::vector<float>& light, int frames) {
   char error[512] = {0};
   std::unique_ptr<headless_gl, GlContextDeleter> gl(headless_gl_create(error, sizeof error));
   if (!gl) throw ViewerError(std::string("backend gl: no headless GL context: ") + error);
@@ -37,29 +44,44 @@ ShadingRun shade_vertices_gl(const BlobScene& scene, const std::vector<float>& l
   const auto finish = reinterpret_cast<FinishFn>(headless_gl_get_proc(gl.get(), "glFinish"));
   if (!finish) throw ViewerError("backend gl: the GL loader has no glFinish");
 
-  prt_gl_sh_shader* raw = nullptr;
-  const prt_result created = prt_gl_sh_create(scene.asset(), headless_gl_get_proc, gl.get(), &raw);
-  if (created != PRT_OK) throw ViewerError(runtime_message(scene, "prt_gl_sh_create", created));
-  std::unique_ptr<prt_gl_sh_shader, GlShaderDeleter> shader(raw);
+  const std::string prefix = std::string("prt_gl_") + technique.name + "_";
+  Shader* raw = nullptr;
+  const prt_result created = technique.create(scene.asset(), headless_gl_get_proc, gl.get(), &raw);
+  if (created != PRT_OK) throw ViewerError(runtime_message(scene, prefix + "create", created));
+  std::unique_ptr<Shader, void (*)(Shader*)> shader(raw, technique.destroy);
 
-  const std::uint32_t vertices = scene.transfer().vertex_count;
+  const std::uint32_t vertices = scene.vertex_count();
   ShadingRun run;
   run.backend = "gl";
   run.isa = headless_gl_renderer(gl.get());
   for (int frame = 0; frame < std::max(frames, 1); ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    const prt_result result = prt_gl_sh_shade(shader.get(), light.data(), 0, vertices);
+    const prt_result result = technique.shade(shader.get(), light.data(), 0, vertices);
     finish();
     const auto stop = std::chrono::steady_clock::now();
-    if (result != PRT_OK) throw ViewerError(runtime_message(scene, "prt_gl_sh_shade", result));
+    if (result != PRT_OK) throw ViewerError(runtime_message(scene, prefix + "shade", result));
     run.frame_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
   }
   run.radiance.assign(3u * vertices, 0.0f);
-  const prt_result read = prt_gl_sh_read(shader.get(), 0, vertices, run.radiance.data());
-  if (read != PRT_OK) throw ViewerError(runtime_message(scene, "prt_gl_sh_read", read));
+  const prt_result read = technique.read(shader.get(), 0, vertices, run.radiance.data());
+  if (read != PRT_OK) throw ViewerError(runtime_message(scene, prefix + "read", read));
   run.median_ms = median(run.frame_ms);
   shader.reset();  // GL objects go while the context is still current
   return run;
+}
+
+}  // namespace
+
+ShadingRun shade_vertices_gl(const BlobScene& scene, const std::vector<float>& light, int frames) {
+  if (scene.technique() == Technique::Sh) {
+    const GlTechnique<prt_gl_sh_shader> sh{"sh", prt_gl_sh_create, prt_gl_sh_destroy,
+                                           prt_gl_sh_shade, prt_gl_sh_read};
+    return run_gl(sh, scene, light, frames);
+  }
+  const GlTechnique<prt_gl_wavelet_shader> wavelet{"wavelet", prt_gl_wavelet_create,
+                                                   prt_gl_wavelet_destroy, prt_gl_wavelet_shade,
+                                                   prt_gl_wavelet_read};
+  return run_gl(wavelet, scene, light, frames);
 }
 
 }  // namespace prt::view

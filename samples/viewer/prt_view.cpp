@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
-// prt-view: draws an `sh` blob lit by an environment map with runtime-shaded vertex colours.
+// prt-view: draws an `sh` or `wavelet` blob lit by an environment map with runtime-shaded
+// vertex colours.
 // Headless for now (a small CPU rasteriser writes the image; the windowed GLFW viewer comes
 // later). Exit status: 0 ok, 1 failure (the message names the file and the problem), 2 bad
 // arguments.
 //
 //   prt-view BLOB --env MAP --headless --out IMG.png [--rotate DEG] [--backend auto|cpu|simd|gl]
-//            [--vertex-out V.npy] [--reference REF.npy --error-out HEAT.png] [--frames N] ...
+//            [--vertex-out V.npy] [--reference REF.npy --error-out HEAT.png] [--frames N]
+//            [--light-coefficients M] ...
 //   prt-view --montage OUT.png --montage-columns N IMG.png...   (tiles PNGs, for the demo)
 #include <prt/prt.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -37,7 +40,8 @@ struct Options {
   bool headless = false, exposure_given = false;
   float exposure_ev = 0.0f, error_scale = 0.25f;
   int frames = 1, supersample = 2, montage_columns = 3;
-  int width = 0, height = 0;  // from --size
+  std::uint32_t light_coefficients = 0xFFFFFFFFu;  // wavelet: detail coefficients kept (all)
+  int width = 0, height = 0;                       // from --size
 };
 
 void parse_size(const std::string& text, int* width, int* height) {
@@ -95,6 +99,53 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
       options.error_out.c_str(), options.error_scale);
 }
 
+// The `sh` light: the map projected by the runtime at the blob's order, then rotated.
+std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map,
+                            const Options& options) {
+  const double degrees = options.rotate_degrees;
+  const prt_sh_transfer_info& transfer = scene.transfer();
+  std::printf("%s: %u vertices, %u triangles, sh order %u, %s transfer, %u channel(s)\n",
+              scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
+              transfer.order, transfer_kind(transfer.kind), transfer.channels);
+  std::vector<float> light = project_environment(map, transfer.order);
+  rotate_environment(&light, transfer.order, degrees);
+  std::printf(
+      "%s: %dx%d %s map, projected to order %u by the runtime (%s), rotated %g deg "
+      "about +Y\n",
+      options.env.c_str(), map.width(), map.height(), prt::bake::env_mapping_name(map.mapping()),
+      transfer.order,
+      map.mapping() == prt::bake::EnvMapping::LatLong
+          ? "prt_sh_project_latlong"
+          : ("prt_sh_project_cube, faces of " + std::to_string(cube_face_size(map))).c_str(),
+      degrees);
+  return light;
+}
+
+// The `wavelet` light: the map resampled by the runtime onto the blob's parameterisation, turned,
+// transformed, selected and prepared.
+std::vector<float> wavelet_light(const BlobScene& scene, const prt::bake::EnvMap& map,
+                                 const Options& options) {
+  const prt_wavelet_info& info = scene.wavelet();
+  const std::uint32_t details = info.coefficient_count - info.faces;
+  const std::uint32_t kept = std::min(options.light_coefficients, details);
+  std::printf(
+      "%s: %u vertices, %u triangles, wavelet %s %u, %.1f non-zeros per vertex (%.0f bytes), "
+      "%s quantiser\n",
+      scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
+      info.param == PRT_WAVELET_PARAM_CUBE ? "cube" : "dual paraboloid", info.size,
+      static_cast<double>(info.pair_count) / std::max(1u, info.vertex_count),
+      2.0 * info.pair_count / std::max(1u, info.vertex_count),
+      info.quantizer == 0 ? "per-vertex" : "per face and level");
+  std::vector<float> light =
+      prt::view::wavelet_light(map, scene.asset(), info, options.rotate_degrees, kept);
+  std::printf(
+      "%s: %dx%d %s map, resampled onto the blob's %u coefficients by the runtime, rotated %g deg "
+      "about +Y, %u + %u light coefficients kept (area-weighted)\n",
+      options.env.c_str(), map.width(), map.height(), prt::bake::env_mapping_name(map.mapping()),
+      info.coefficient_count, options.rotate_degrees, info.faces, kept);
+  return light;
+}
+
 int run(const Options& options) {
   if (!options.montage.empty()) {
     write_montage(options.montage, options.inputs, options.montage_columns, 4);
@@ -106,33 +157,19 @@ int run(const Options& options) {
   const ViewBackend backend = parse_backend(options.backend);
 
   const BlobScene scene(options.inputs.front());
-  const prt_sh_transfer_info& transfer = scene.transfer();
-  std::printf("%s: %u vertices, %u triangles, sh order %u, %s transfer, %u channel(s)\n",
-              scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
-              transfer.order, transfer_kind(transfer.kind), transfer.channels);
-
   prt::bake::Context ctx;
   ctx.log = [](prt::bake::LogLevel level, const std::string& text) {
     if (level >= prt::bake::LogLevel::Warning) std::fprintf(stderr, "prt-view: %s\n", text.c_str());
   };
   prt::bake::EnvMap map =
       prt::bake::load_envmap(options.env, prt::bake::parse_env_mapping(options.env_mapping), ctx);
-  std::vector<float> light = project_environment(map, transfer.order);
-  rotate_environment(&light, transfer.order, options.rotate_degrees);
-  std::printf(
-      "%s: %dx%d %s map, projected to order %u by the runtime (%s), rotated %g deg "
-      "about +Y\n",
-      options.env.c_str(), map.width(), map.height(), prt::bake::env_mapping_name(map.mapping()),
-      transfer.order,
-      map.mapping() == prt::bake::EnvMapping::LatLong
-          ? "prt_sh_project_latlong"
-          : ("prt_sh_project_cube, faces of " + std::to_string(cube_face_size(map))).c_str(),
-      options.rotate_degrees);
-
+  const std::vector<float> light = scene.technique() == Technique::Sh
+                                       ? sh_light(scene, map, options)
+                                       : wavelet_light(scene, map, options);
   const ShadingRun run = shade_vertices(scene, light, backend, options.frames);
   std::printf("shading: backend %s (%s), %zu frame(s), median %.4f ms per frame (%u vertices)\n",
               run.backend.c_str(), run.isa.c_str(), run.frame_ms.size(), run.median_ms,
-              transfer.vertex_count);
+              scene.vertex_count());
   const std::vector<glm::vec3> shaded = as_vec3(run.radiance);
   if (!options.vertex_out.empty()) {
     prt::bake::write_npy_vec3(options.vertex_out, shaded);
@@ -163,7 +200,8 @@ int run(const Options& options) {
 }
 
 void add_options(CLI::App& app, Options& o) {
-  app.add_option("INPUT", o.inputs, "The baked `sh` blob (.prtk); with --montage, the PNGs to tile")
+  app.add_option("INPUT", o.inputs,
+                 "The baked `sh` or `wavelet` blob (.prtk); with --montage, the PNGs to tile")
       ->required();
   app.add_option("--env", o.env, "Environment map (.hdr): lat-long, vertical cross or probe");
   app.add_option("--env-mapping", o.env_mapping, "auto|latlong|cross|probe")
@@ -200,6 +238,9 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--frames", o.frames, "Shade N times and print the median time per frame")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  app.add_option("--light-coefficients", o.light_coefficients,
+                 "wavelet: light detail coefficients kept per frame by area-weighted selection "
+                 "(default: all); the faces' scaling coefficients are always kept");
   app.add_option("--montage", o.montage, "Tile the INPUT PNGs into this PNG and exit");
   app.add_option("--montage-columns", o.montage_columns, "Tiles per row of --montage")
       ->check(CLI::Range(1, 64))
@@ -231,7 +272,7 @@ void check_combination(Options& o) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "prt-view: an `sh` blob shaded by the prtkit runtime under an environment map "
+      "prt-view: an `sh` or `wavelet` blob shaded by the prtkit runtime under an environment map "
       "(prtkit " PRT_VERSION_STRING ")"};
   prt::view::Options options;
   prt::view::add_options(app, options);

@@ -24,9 +24,10 @@ prt_backend to_runtime(ViewBackend backend) {
 }
 
 // Why `backend` failed, in the runtime's words: the result and the backend query's note.
-std::string backend_failure(const prt_context* context, prt_backend backend, prt_result result) {
-  std::string text = std::string("backend ") + prt_backend_name(backend) +
-                     ": prt_sh_shade_on failed: " + prt_result_string(result);
+std::string backend_failure(const prt_context* context, const char* call, prt_backend backend,
+                            prt_result result) {
+  std::string text = std::string("backend ") + prt_backend_name(backend) + ": " + call +
+                     " failed: " + prt_result_string(result);
   prt_backend_info info;
   if (prt_backend_get_info(context, backend, &info) == PRT_OK && info.note && *info.note) {
     text += std::string(" (") + info.note + ")";
@@ -60,7 +61,8 @@ ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& ligh
   const prt_backend requested = to_runtime(backend);
   const prt_backend used =
       requested == PRT_BACKEND_AUTO ? prt_context_backend(scene.context()) : requested;
-  const std::uint32_t vertices = scene.transfer().vertex_count;
+  const std::uint32_t vertices = scene.vertex_count();
+  const bool sh = scene.technique() == Technique::Sh;
 
   ShadingRun run;
   run.radiance.assign(3u * vertices, 0.0f);
@@ -74,10 +76,15 @@ ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& ligh
   }
   for (int frame = 0; frame < std::max(frames, 1); ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    const prt_result result =
-        prt_sh_shade_on(scene.asset(), requested, light.data(), 0, vertices, run.radiance.data());
+    const prt_result result = sh ? prt_sh_shade_on(scene.asset(), requested, light.data(), 0,
+                                                   vertices, run.radiance.data())
+                                 : prt_wavelet_shade_on(scene.asset(), requested, light.data(), 0,
+                                                        vertices, run.radiance.data());
     const auto stop = std::chrono::steady_clock::now();
-    if (result != PRT_OK) throw ViewerError(backend_failure(scene.context(), used, result));
+    if (result != PRT_OK) {
+      throw ViewerError(backend_failure(
+          scene.context(), sh ? "prt_sh_shade_on" : "prt_wavelet_shade_on", used, result));
+    }
     run.frame_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
   }
   run.median_ms = median(run.frame_ms);

@@ -23,9 +23,10 @@ struct ShadingRun {
   double median_ms = 0.0;
 };
 
-// Shades all vertices `frames` (>= 1) times under `light` (order² RGB coefficients) and keeps
-// the last result. CPU-side backends go through prt_sh_shade_on (auto = the context's best);
-// gl through prt_gl_sh_* on a headless EGL context. A frame's time covers shading every vertex
+// Shades all vertices `frames` (>= 1) times under `light` (`sh`: order² RGB coefficients;
+// `wavelet`: the prepared RGBA light) and keeps the last result. CPU-side backends go through
+// prt_sh_shade_on / prt_wavelet_shade_on (auto = the context's best); gl through prt_gl_sh_* /
+// prt_gl_wavelet_* on a headless EGL context. A frame's time covers shading every vertex
 // (for gl: the dispatch and a glFinish, not the read-back). Throws ViewerError with the
 // runtime's reason when the backend cannot be used.
 ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& light,

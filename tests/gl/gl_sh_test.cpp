@@ -20,25 +20,10 @@ using prt_test::LoadedAsset;
 using prt_test::ShaderPtr;
 using prt_test::Transfer;
 
-// GL values for the state checks (GL/glcorearb.h).
-constexpr unsigned kGlCopyReadBuffer = 0x8F36, kGlBufferSize = 0x8764,
-                   kGlShaderStorageBufferBinding = 0x90D3, kGlCurrentProgram = 0x8B8D,
-                   kGlUniformBufferBinding = 0x8A28;
-using BindBufferFn = void (*)(unsigned, unsigned);
-using GetErrorFn = unsigned (*)(void);
-using GetBufferSubDataFn = void (*)(unsigned, ptrdiff_t, ptrdiff_t, void*);
-using GetBufferParameterivFn = void (*)(unsigned, unsigned, int*);
-using GetIntegervFn = void (*)(unsigned, int*);
-using GetIntegeriVFn = void (*)(unsigned, unsigned, int*);
-using GetInteger64vFn = void (*)(unsigned, int64_t*);
-
-template <typename Fn>
-Fn gl_function(const char* name) {
-  void* address = headless_gl_get_proc(nullptr, name);
-  Fn fn = nullptr;
-  std::memcpy(&fn, &address, sizeof fn);
-  return fn;
-}
+using prt_test::CountingAllocator;
+using prt_test::gl_function;
+using prt_test::lying_loader;
+using namespace prt_test::gl_names;
 
 // An `sh` asset in its own context.
 struct GlAsset {
@@ -278,36 +263,8 @@ TEST(GlSh, MissingEntryPointIsUnsupportedAndNamed) {
   }
 }
 
-// Loader entries that lie about the context: an old version, or a tiny SSBO limit.
-GetIntegervFn g_real_get_integerv;
-GetInteger64vFn g_real_get_integer64v;
-void old_version_get_integerv(unsigned pname, int* data) {
-  g_real_get_integerv(pname, data);
-  if (pname == 0x821B) *data = 3;  // GL_MAJOR_VERSION
-  if (pname == 0x821C) *data = 3;  // GL_MINOR_VERSION
-}
-void small_ssbo_get_integer64v(unsigned pname, int64_t* data) {
-  g_real_get_integer64v(pname, data);
-  if (pname == 0x90DE) *data = 1024;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
-}
-template <typename Fn>
-void* as_address(Fn fn) {
-  void* address;
-  std::memcpy(&address, &fn, sizeof address);
-  return address;
-}
-void* lying_loader(void* user, const char* name) {
-  const char* lie = static_cast<const char*>(user);
-  if (std::strcmp(lie, "version") == 0 && std::strcmp(name, "glGetIntegerv") == 0)
-    return as_address(&old_version_get_integerv);
-  if (std::strcmp(lie, "ssbo") == 0 && std::strcmp(name, "glGetInteger64v") == 0)
-    return as_address(&small_ssbo_get_integer64v);
-  return headless_gl_get_proc(nullptr, name);
-}
-
 TEST(GlSh, ContextOlderThan43IsUnsupported) {
   PRT_REQUIRE_GL(gl);
-  g_real_get_integerv = gl_function<GetIntegervFn>("glGetIntegerv");
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
   prt_gl_sh_shader* shader = nullptr;
   char lie[] = "version";
@@ -318,7 +275,6 @@ TEST(GlSh, ContextOlderThan43IsUnsupported) {
 
 TEST(GlSh, AssetLargerThanTheSsboLimitIsUnsupported) {
   PRT_REQUIRE_GL(gl);
-  g_real_get_integer64v = gl_function<GetInteger64vFn>("glGetInteger64v");
   // 100 vertices * 12 bytes of output > 1024 bytes.
   const GlAsset a(prt_test::random_transfer(1, 100, 1, 8, 1));
   prt_gl_sh_shader* shader = nullptr;
@@ -388,22 +344,6 @@ TEST(GlSh, NullArguments) {
   EXPECT_EQ(prt_gl_sh_output_buffer(nullptr), 0u);
   prt_gl_sh_destroy(nullptr);  // ignored
 }
-
-// Counts live allocations; fails every allocation once `fail` is set.
-struct CountingAllocator {
-  int live = 0;
-  bool fail = false;
-  static void* alloc(void* user, size_t size, size_t align) {
-    auto* self = static_cast<CountingAllocator*>(user);
-    if (self->fail) return nullptr;
-    ++self->live;
-    return std::aligned_alloc(align, (size + align - 1) / align * align);
-  }
-  static void free(void* user, void* ptr, size_t) {
-    --static_cast<CountingAllocator*>(user)->live;
-    std::free(ptr);
-  }
-};
 
 TEST(GlSh, ShaderComesFromTheAssetsAllocator) {
   PRT_REQUIRE_GL(gl);

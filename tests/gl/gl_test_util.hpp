@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Shared by the GL tests: the headless context (or a stated skip), contexts with limits, loader
-// wrappers, and the float-rounding tolerance every backend is held to.
+// wrappers (hiding an entry point, lying about the version or the SSBO limit), a counting
+// allocator, and the float-rounding tolerances every backend is held to (sh and wavelet).
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -14,8 +16,11 @@
 
 #include <prt/prt.h>
 #include <prt/prt_gl.h>
+#include <prt/prt_wavelet.h>
+#include <prt/prt_wavelet_asset.h>
 
 #include "../runtime/sh_blob_test_util.hpp"
+#include "../runtime/wavelet_blob_test_util.hpp"
 #include "headless_gl.h"
 
 namespace prt_test {
@@ -70,6 +75,11 @@ struct ShaderDeleter {
   void operator()(prt_gl_sh_shader* s) const { prt_gl_sh_destroy(s); }
 };
 using ShaderPtr = std::unique_ptr<prt_gl_sh_shader, ShaderDeleter>;
+
+struct WaveletShaderDeleter {
+  void operator()(prt_gl_wavelet_shader* s) const { prt_gl_wavelet_destroy(s); }
+};
+using WaveletShaderPtr = std::unique_ptr<prt_gl_wavelet_shader, WaveletShaderDeleter>;
 
 // A light with the spread of a real environment's projection: a bright sky term, a "sun"
 // (the SH projection of a delta light, which excites every band) and a small random rest.
@@ -131,6 +141,96 @@ struct LoaderOverride {
     auto* self = static_cast<LoaderOverride*>(user);
     if (self->hidden && std::strcmp(name, self->hidden) == 0) return nullptr;
     return headless_gl_get_proc(self->gl, name);
+  }
+};
+
+// The tolerance of a `wavelet` shade against the exact double sum (wvlt_reference_shade), from
+// the same bound: every backend computes vs * sum_j q_j (L_j bs_j) with the prepared light
+// rounded once (L bs), one product per pair (q is an exact 8-bit integer), pairs - 1 additions
+// in any order (stored order, blocked, lane split, fused or not) and one final product by vs, so
+// the computed value errs by at most gamma_n sum_j |q_j bs_j vs L_j| with n = pairs + 3; n =
+// pairs + 4 leaves a margin for a final conversion. Doubled, as above, so that it also holds
+// between two float backends; `tiny` absorbs flushed denormals.
+inline double wavelet_tolerance(size_t pairs, double magnitude) {
+  const double u = std::ldexp(1.0, -24), n = double(pairs) + 4.0;
+  return 2.0 * (n * u / (1.0 - n * u)) * magnitude + 1e-30;
+}
+
+// The prepared light computed here, independently of prt_wavelet_prepare_light:
+// prepared[j] = float(L[j] * bs[band(j)]) with the band from the test util's own formula.
+inline std::vector<float> wavelet_prepared(const WvltTransport& t,
+                                           const std::vector<float>& light) {
+  std::vector<float> prepared(light.size());
+  for (uint32_t j = 0; j < t.coefficients(); ++j)
+    for (uint32_t c = 0; c < 4; ++c)
+      prepared[4 * size_t(j) + c] =
+          c == 3 ? 0.0f : float(double(light[4 * size_t(j) + c]) * t.band_scale[t.band(j)]);
+  return prepared;
+}
+
+// GL entry points and values for the state checks (GL/glcorearb.h), fetched from the headless
+// context's loader.
+namespace gl_names {
+constexpr unsigned kGlCopyReadBuffer = 0x8F36, kGlBufferSize = 0x8764,
+                   kGlShaderStorageBufferBinding = 0x90D3, kGlCurrentProgram = 0x8B8D,
+                   kGlUniformBufferBinding = 0x8A28;
+using BindBufferFn = void (*)(unsigned, unsigned);
+using GetErrorFn = unsigned (*)(void);
+using GetBufferSubDataFn = void (*)(unsigned, ptrdiff_t, ptrdiff_t, void*);
+using GetBufferParameterivFn = void (*)(unsigned, unsigned, int*);
+using GetIntegervFn = void (*)(unsigned, int*);
+using GetIntegeriVFn = void (*)(unsigned, unsigned, int*);
+using GetInteger64vFn = void (*)(unsigned, int64_t*);
+}  // namespace gl_names
+
+template <typename Fn>
+Fn gl_function(const char* name) {
+  void* address = headless_gl_get_proc(nullptr, name);
+  Fn fn = nullptr;
+  std::memcpy(&fn, &address, sizeof fn);
+  return fn;
+}
+
+template <typename Fn>
+void* as_address(Fn fn) {
+  void* address;
+  std::memcpy(&address, &fn, sizeof address);
+  return address;
+}
+
+// A loader that lies about the context: user = "version" answers GL 3.3, user = "ssbo" a
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE of 1024 bytes; everything else is the real entry point.
+inline void old_version_get_integerv(unsigned pname, int* data) {
+  gl_function<gl_names::GetIntegervFn>("glGetIntegerv")(pname, data);
+  if (pname == 0x821B) *data = 3;  // GL_MAJOR_VERSION
+  if (pname == 0x821C) *data = 3;  // GL_MINOR_VERSION
+}
+inline void small_ssbo_get_integer64v(unsigned pname, int64_t* data) {
+  gl_function<gl_names::GetInteger64vFn>("glGetInteger64v")(pname, data);
+  if (pname == 0x90DE) *data = 1024;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+}
+inline void* lying_loader(void* user, const char* name) {
+  const char* lie = static_cast<const char*>(user);
+  if (std::strcmp(lie, "version") == 0 && std::strcmp(name, "glGetIntegerv") == 0)
+    return as_address(&old_version_get_integerv);
+  if (std::strcmp(lie, "ssbo") == 0 && std::strcmp(name, "glGetInteger64v") == 0)
+    return as_address(&small_ssbo_get_integer64v);
+  return headless_gl_get_proc(nullptr, name);
+}
+
+// Counts live allocations; fails every allocation once `fail` is set.
+struct CountingAllocator {
+  int live = 0;
+  bool fail = false;
+  static void* alloc(void* user, size_t size, size_t align) {
+    auto* self = static_cast<CountingAllocator*>(user);
+    if (self->fail) return nullptr;
+    ++self->live;
+    return std::aligned_alloc(align, (size + align - 1) / align * align);
+  }
+  static void free(void* user, void* ptr, size_t) {
+    --static_cast<CountingAllocator*>(user)->live;
+    std::free(ptr);
   }
 };
 

@@ -96,7 +96,19 @@ extern "C" {
  * (u8 index, i8 value) pairs (SPEC.md §7.2); element = vertex, raw size given by the header. */
 #define PRT_BLOB_TAG_WVLT PRT_BLOB_TAG('W', 'V', 'L', 'T')
 #define PRT_BLOB_WVLT_HEADER_SIZE 32u
-#define PRT_BLOB_WVLT_BLOCK 256u
+#define PRT_BLOB_WVLT_BLOCK 256u        /* coefficients per block; also the most non-zeros in one */
+#define PRT_BLOB_WVLT_OFF_PARAM 0u      /* u32: 0 cube, 1 dual paraboloid */
+#define PRT_BLOB_WVLT_OFF_SIZE 4u       /* u32: face size S, power of two 16..128 */
+#define PRT_BLOB_WVLT_OFF_VERTICES 8u   /* u32: V = VPOS element count */
+#define PRT_BLOB_WVLT_OFF_QUANTIZER 12u /* u32: 0 per vertex, 1 per face and level */
+#define PRT_BLOB_WVLT_OFF_KEEP 16u      /* u32, informational */
+#define PRT_BLOB_WVLT_OFF_BOUNCES 20u   /* u32, informational */
+#define PRT_BLOB_WVLT_OFF_PAIR_COUNT 24u /* u32: P, total stored non-zeros */
+#define PRT_BLOB_WVLT_OFF_RESERVED 28u   /* u32, zero */
+#define PRT_BLOB_WVLT_PARAM_CUBE 0u
+#define PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID 1u
+#define PRT_BLOB_WVLT_MIN_SIZE 16u
+#define PRT_BLOB_WVLT_MAX_SIZE 128u
 #define PRT_BLOB_LAYOUT_VERSION_1 1u /* the layout version of every 1.0 kind */
 
 /* ---- Little-endian load/store, byte by byte ------------------------------------------------- */
@@ -123,6 +135,48 @@ static inline void prt_le_store_u32(uint8_t* p, uint32_t v) {
 static inline void prt_le_store_u64(uint8_t* p, uint64_t v) {
   prt_le_store_u32(p, (uint32_t)v);
   prt_le_store_u32(p + 4, (uint32_t)(v >> 32));
+}
+
+/* ---- WVLT layout (SPEC.md §7.2) ---------------------------------------------------------------
+ */
+
+/* Where the parts of a WVLT section lie, from its header fields; all offsets in bytes from the
+ * section's first byte. With V < 2^32, P < 2^32 and at most 384 blocks nothing overflows 64 bits.
+ */
+typedef struct prt_blob_wvlt_layout {
+  uint32_t faces;        /* F: 6 cube, 2 dual paraboloid */
+  uint32_t bands;        /* F * (log2 S + 1) band scales */
+  uint32_t coefficients; /* F * S^2 per row */
+  uint32_t blocks;       /* B = coefficients / 256 per row */
+  uint64_t band_scale;   /* f32[bands] */
+  uint64_t vertex_scale; /* f32[V][3] */
+  uint64_t row_start;    /* u32[V + 1] */
+  uint64_t counts;       /* u16[V][B] */
+  uint64_t pairs;        /* u8[P][2] */
+  uint64_t payload_end;  /* pairs + 2 P */
+  uint64_t raw_size;     /* payload_end rounded up to a multiple of 4 */
+} prt_blob_wvlt_layout;
+
+/* Fills *out for valid param and size and returns 1; returns 0 (out untouched) otherwise. */
+static inline int prt_blob_wvlt_layout_of(uint32_t param, uint32_t size, uint32_t vertices,
+                                          uint32_t pair_count, prt_blob_wvlt_layout* out) {
+  uint32_t log2_size = 0;
+  if (param != PRT_BLOB_WVLT_PARAM_CUBE && param != PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID) return 0;
+  if (size < PRT_BLOB_WVLT_MIN_SIZE || size > PRT_BLOB_WVLT_MAX_SIZE || (size & (size - 1u)) != 0)
+    return 0;
+  while ((1u << log2_size) < size) ++log2_size;
+  out->faces = param == PRT_BLOB_WVLT_PARAM_CUBE ? 6u : 2u;
+  out->bands = out->faces * (log2_size + 1u);
+  out->coefficients = out->faces * size * size;
+  out->blocks = out->coefficients / PRT_BLOB_WVLT_BLOCK;
+  out->band_scale = PRT_BLOB_WVLT_HEADER_SIZE;
+  out->vertex_scale = out->band_scale + 4u * (uint64_t)out->bands;
+  out->row_start = out->vertex_scale + 12u * (uint64_t)vertices;
+  out->counts = out->row_start + 4u * ((uint64_t)vertices + 1u);
+  out->pairs = out->counts + 2u * (uint64_t)vertices * out->blocks;
+  out->payload_end = out->pairs + 2u * (uint64_t)pair_count;
+  out->raw_size = (out->payload_end + 3u) & ~(uint64_t)3u;
+  return 1;
 }
 
 /* ---- CRC-32C (Castagnoli) ------------------------------------------------------------------- */

@@ -1,0 +1,54 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the runtime: what every GL compute backend (gl_sh.c, gl_wavelet.c) does the same
+ * way — loading the entry points, checking the context, compiling the program, uploading
+ * little-endian words and checking the upload. Only compiled with PRT_HAS_GL. Every function
+ * that can fail records the failure in `context` with `function` (the public entry point, e.g.
+ * "prt_gl_sh_create") at the start of the message. */
+#ifndef PRT_RUNTIME_GL_COMMON_H
+#define PRT_RUNTIME_GL_COMMON_H
+
+#include "gl_functions.h"
+#include "internal.h"
+
+/* Fills every entry point of prt_gl_functions through the loader; returns the first missing
+ * name, or NULL when all are there. */
+const char* prt_gl_load_functions(prt_gl_loader_fn loader, void* user, prt_gl_functions* gl);
+
+/* Loads the entry points and checks the version (4.3+): UNSUPPORTED_BACKEND naming the missing
+ * entry point or the context's version. */
+prt_result prt_gl_open(prt_context* context, const char* function, prt_gl_loader_fn loader,
+                       void* user, prt_gl_functions* gl);
+
+/* GL is allowed when the context's backend limit is AUTO (none) or GL. */
+int prt_gl_allowed(const prt_context* context);
+
+/* Every SSBO must fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE and stay below 4 GiB (the shaders index
+ * with uint). `names` describes the buffers in the message. UNSUPPORTED_BACKEND otherwise. */
+prt_result prt_gl_check_block_sizes(prt_context* context, const prt_gl_functions* gl,
+                                    const char* function, const uint64_t* bytes,
+                                    const char* const* names, int count);
+
+/* Compiles sources (the #version line first) into a compute program; UNSUPPORTED_BACKEND
+ * quoting the log when it does not compile or link. *out_program is set (possibly to a program
+ * that failed to link, for the caller to delete) or 0. */
+prt_result prt_gl_compile_compute(prt_context* context, const prt_gl_functions* gl,
+                                  const char* function, const prt_GLchar* const* sources,
+                                  int source_count, prt_GLuint* out_program);
+
+/* Discards GL errors the application left pending, so that the next check is about our calls. */
+void prt_gl_drain_errors(const prt_gl_functions* gl);
+
+/* After buffer creation: OUT_OF_MEMORY for GL_OUT_OF_MEMORY, UNSUPPORTED_BACKEND for another
+ * error, PRT_OK when GL reports none. */
+prt_result prt_gl_check_upload(prt_context* context, const prt_gl_functions* gl,
+                               const char* function, uint64_t bytes);
+
+/* glBufferData of `bytes` (a multiple of 4) little-endian words into the buffer bound to
+ * `target`, at `offset` when `sub` (glBufferSubData) — as they are on a little-endian host,
+ * through a temporary word-by-word copy otherwise. */
+prt_result prt_gl_upload_le_words(prt_context* context, const prt_allocator* allocator,
+                                  const prt_gl_functions* gl, const char* function,
+                                  prt_GLenum target, int sub, size_t offset, const uint8_t* data,
+                                  size_t bytes);
+
+#endif /* PRT_RUNTIME_GL_COMMON_H */

@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the runtime: the sparse rows of a WVLT section (formats/SPEC.md §7.2) as the shading
+ * loops see them, the bounds checks every loop makes while it walks a row, and the SIMD kernels
+ * of technique `wavelet` (one file per instruction set, compiled with that ISA's flags; only
+ * wavelet_asset.c calls them, and only when the context's SIMD ISA allows it).
+ *
+ * The light is prepared once per frame (prt_wavelet_prepare_light): band scales folded in, RGBA
+ * per coefficient. Vertex v then shades as
+ *   radiance[c] = vs[v][c] * sum over the row's pairs (block k, index i, value q) of
+ *                 q * prepared[256 k + i][c],
+ * so a pair costs one 16-byte load of the light and one multiply-add of four lanes. */
+#ifndef PRT_WAVELET_SHADE_SIMD_H
+#define PRT_WAVELET_SHADE_SIMD_H
+
+#include <prt/format/blob_layout.h>
+#include <prt/prt_types.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+/* The parts of a WVLT section one shading call reads, and the prepared light. */
+typedef struct prt_wavelet_rows {
+  const uint8_t* vertex_scale; /* f32[V][3] */
+  const uint8_t* row_start;    /* u32[V + 1] */
+  const uint8_t* counts;       /* u16[V][blocks] */
+  const uint8_t* pairs;        /* u8[pair_count][2] */
+  const float* light;          /* prepared light: 4 floats per coefficient, 256 * blocks of them */
+  uint32_t blocks;
+  uint32_t pair_count;
+} prt_wavelet_rows;
+
+static inline float prt_wavelet_load_f32(const uint8_t* p) {
+  uint32_t bits = prt_le_load_u32(p);
+  float f;
+  memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+/* Row v's pair range [*start, *end); 0 when the row starts are not increasing within the
+ * section's pairs (possible only in a blob loaded with quick validation). */
+static inline int prt_wavelet_row_range(const prt_wavelet_rows* rows, uint32_t v, uint32_t* start,
+                                        uint32_t* end) {
+  *start = prt_le_load_u32(rows->row_start + 4u * (size_t)v);
+  *end = prt_le_load_u32(rows->row_start + 4u * ((size_t)v + 1u));
+  return *start <= *end && *end <= rows->pair_count;
+}
+
+/* Vertex v's scale, channel c. */
+static inline float prt_wavelet_vertex_scale(const prt_wavelet_rows* rows, uint32_t v, uint32_t c) {
+  return prt_wavelet_load_f32(rows->vertex_scale + 12u * (size_t)v + 4u * c);
+}
+
+/* Shades vertices [first, first+count) into out_rgb (3 floats each). PRT_OK, or
+ * PRT_ERROR_CORRUPT at the first row with a block count above 256 or block counts that disagree
+ * with its row starts (reads stay inside the section; out_rgb is then partly written). */
+typedef prt_result (*prt_wavelet_kernel)(const prt_wavelet_rows* rows, uint32_t first,
+                                         uint32_t count, float* out_rgb);
+
+#if defined(PRT_HAS_X86_SIMD)
+prt_result prt_wavelet_shade_sse41(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,
+                                   float* out_rgb);
+prt_result prt_wavelet_shade_avx2(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,
+                                  float* out_rgb);
+#endif
+
+#endif /* PRT_WAVELET_SHADE_SIMD_H */
