@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* libFuzzer target: validate (quick, full) and load (copying, borrowed; quick, full) arbitrary
- * bytes, then read every decoded section end to end, so that any out-of-bounds access shows up
- * under AddressSanitizer. Built with -fsanitize=fuzzer when PRT_BUILD_FUZZERS=ON, otherwise with
+ * bytes, then read every decoded section end to end and shade with every technique the blob
+ * holds (CPU and SIMD), so that any out-of-bounds access shows up under AddressSanitizer. Built with -fsanitize=fuzzer when PRT_BUILD_FUZZERS=ON, otherwise with
  * fuzz_replay.c as a plain program that replays files (a CTest test runs it on the golden blob). */
 #include <prt/prt.h>
 
@@ -26,6 +26,43 @@ static unsigned touch_sections(const prt_asset* asset) {
   return sum;
 }
 
+/* Shades the first vertices of the blob's `sh` and `wavelet` sections on the CPU and SIMD
+ * backends (a corrupt row may return an error at quick validation; never after full validation,
+ * which promises every row is well formed). */
+static void shade_techniques(const prt_asset* asset, prt_validation level) {
+  static const prt_backend backends[2] = {PRT_BACKEND_CPU, PRT_BACKEND_SIMD};
+  float out[3 * 16];
+  prt_sh_transfer_info sh;
+  prt_wavelet_info wavelet;
+  int b;
+  if (prt_sh_get_transfer_info(asset, &sh) == PRT_OK) {
+    float light[3 * 256] = {0.0f};
+    const uint32_t count = sh.vertex_count < 16u ? sh.vertex_count : 16u;
+    light[0] = light[1] = light[2] = 1.0f;
+    for (b = 0; b < 2; ++b) (void)prt_sh_shade_on(asset, backends[b], light, 0, count, out);
+  }
+  if (prt_wavelet_get_info(asset, &wavelet) == PRT_OK) {
+    const uint32_t count = wavelet.vertex_count < 16u ? wavelet.vertex_count : 16u;
+    float* light = (float*)calloc(4u * (size_t)wavelet.coefficient_count, sizeof(float));
+    float* row = (float*)malloc(3u * (size_t)wavelet.coefficient_count * sizeof(float));
+    prt_result r;
+    if (!light || !row) abort();
+    light[0] = light[1] = light[2] = 1.0f;
+    r = prt_wavelet_prepare_light(asset, light, light);
+    if (level == PRT_VALIDATE_FULL && r != PRT_OK) abort();
+    for (b = 0; b < 2; ++b) {
+      r = prt_wavelet_shade_on(asset, backends[b], light, 0, count, out);
+      if (level == PRT_VALIDATE_FULL && r != PRT_OK && r != PRT_ERROR_UNSUPPORTED_BACKEND) abort();
+    }
+    if (wavelet.vertex_count > 0) {
+      r = prt_wavelet_decode_row(asset, 0, row);
+      if (level == PRT_VALIDATE_FULL && r != PRT_OK) abort();
+    }
+    free(row);
+    free(light);
+  }
+}
+
 static prt_result load_and_touch(prt_context* context, const void* data, size_t size,
                                  prt_validation level, int borrowed) {
   prt_asset* asset = NULL;
@@ -34,6 +71,7 @@ static prt_result load_and_touch(prt_context* context, const void* data, size_t 
   if (r == PRT_OK) {
     volatile unsigned sink = touch_sections(asset);
     (void)sink;
+    shade_techniques(asset, level);
   } else if (asset != NULL) {
     abort(); /* a failed load must not hand out an asset */
   }
