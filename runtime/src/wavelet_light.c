@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The wavelet light, once per frame (SPEC §14): an environment map resampled onto a
  * parameterisation, Haar-transformed per face, and cut to the M most important coefficients.
- * No heap: the target's 4th float accumulates the resampling weight. */
+ * No heap: the target's 4th float accumulates the landed solid angle (0 = nothing landed). */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -21,7 +21,33 @@ typedef struct light_source {
   const float* rgb;
   uint32_t width, height; /* lat-long */
   uint32_t face_size;     /* cube faces; 0 for lat-long */
+  double largest_texel;   /* the largest source texel's solid angle */
 } light_source;
+
+/* The largest texel solid angle of a lat-long map (the rows next to the equator) and of cube
+ * faces (the face centre: at most the texel around (0, 0) of the face plane). */
+static double latlong_largest_texel(uint32_t width, uint32_t height) {
+  const uint32_t y = height / 2u;
+  const double top = cos(PRT_SPHERE_PI * (double)(y > 0u ? y - 1u : 0u) / (double)height);
+  const double equator = cos(PRT_SPHERE_PI * (double)y / (double)height);
+  const double bottom = cos(PRT_SPHERE_PI * (double)(y + 1u) / (double)height);
+  const double band = fmax(top - equator, equator - bottom);
+  return 2.0 * PRT_SPHERE_PI / (double)width * band;
+}
+
+static double cube_largest_texel(uint32_t face_size) {
+  const double half = 1.0 / (double)face_size; /* a texel centred on the face centre */
+  return prt_cube_rect_solid_angle(-half, half, -half, half);
+}
+
+/* The smallest texel solid angle of the target: the cube's corner texel; on the paraboloid the
+ * Jacobian 4/(1+r^2)^2 is at least 1 inside the disc, so (2/S)^2 bounds it from below. */
+static double target_smallest_texel(uint32_t param, uint32_t size) {
+  const double step = 2.0 / (double)size;
+  if (param == PRT_WAVELET_PARAM_CUBE)
+    return prt_cube_rect_solid_angle(-1.0, -1.0 + step, -1.0, -1.0 + step);
+  return step * step;
+}
 
 /* The 3x3 rotation (row-major) in double; NULL is the identity. Returns 0 for a non-finite
  * entry. */
@@ -52,30 +78,47 @@ static const float* nearest_source_texel(const light_source* source, const doubl
   }
 }
 
-/* Turns the accumulated (sum of L dw, sum of dw) of every target texel into its mean radiance;
- * a texel nothing landed in takes the source's nearest texel in direction R^T c. */
+/* The value of a target texel nothing landed in: the source's nearest texel in direction R^T c
+ * (outside paraboloid texels: 0). */
+static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint32_t x, uint32_t y,
+                             const double r[9], const light_source* source, float* texel) {
+  float centre[3];
+  double e[3];
+  const float* nearest;
+  uint32_t c;
+  if (!prt_wavelet_texel_inside(param, size, x, y)) {
+    texel[0] = texel[1] = texel[2] = 0.0f;
+    return;
+  }
+  prt_wavelet_direction(param, size, face, (float)x + 0.5f, (float)y + 0.5f, centre);
+  for (c = 0; c < 3u; ++c) e[c] = r[c] * centre[0] + r[3 + c] * centre[1] + r[6 + c] * centre[2];
+  nearest = nearest_source_texel(source, e);
+  for (c = 0; c < 3u; ++c) texel[c] = sanitised(nearest[c]);
+}
+
+/* Turns what landed in every target texel (sum of L dw in RGB, sum of dw in the 4th float) into
+ * radiance (SPEC §14). When every source texel is at most as large as the smallest target texel
+ * the power is divided by the texel's own solid angle dw, so the source's power is kept exactly:
+ * a sun a few source texels wide keeps its power however many source texels happen to land in its
+ * target (their count varies by +-25 % at S = 64 from a 1k map; dividing by the landed dw would
+ * make that a +-25 % error in the sun). A coarser source is divided by the landed dw instead (the
+ * mean radiance of what landed: a constant map stays constant). A texel nothing landed in takes
+ * the nearest source texel. dw depends on (x, y) only, so it is computed once for all faces. */
 static void finish_resample(uint32_t param, uint32_t size, const double r[9],
                             const light_source* source, float* out_rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
+  const int keep_power = source->largest_texel <= target_smallest_texel(param, size);
   uint32_t f, x, y, c;
-  for (f = 0; f < faces; ++f) {
-    for (y = 0; y < size; ++y) {
-      for (x = 0; x < size; ++x) {
+  for (y = 0; y < size; ++y) {
+    for (x = 0; x < size; ++x) {
+      const double solid_angle = prt_wavelet_texel_solid_angle(param, size, 0u, x, y);
+      for (f = 0; f < faces; ++f) {
         float* texel = out_rgba + 4u * (((size_t)f * size + y) * size + x);
-        const float weight = texel[3];
-        if (weight > 0.0f) {
-          for (c = 0; c < 3u; ++c) texel[c] /= weight;
-        } else if (prt_wavelet_texel_inside(param, size, x, y)) {
-          float centre[3];
-          double e[3];
-          const float* nearest;
-          prt_wavelet_direction(param, size, f, (float)x + 0.5f, (float)y + 0.5f, centre);
-          for (c = 0; c < 3u; ++c)
-            e[c] = r[c] * centre[0] + r[3 + c] * centre[1] + r[6 + c] * centre[2];
-          nearest = nearest_source_texel(source, e);
-          for (c = 0; c < 3u; ++c) texel[c] = sanitised(nearest[c]);
+        if (texel[3] > 0.0f) {
+          const float inverse = (float)(1.0 / (keep_power ? solid_angle : (double)texel[3]));
+          for (c = 0; c < 3u; ++c) texel[c] *= inverse;
         } else {
-          texel[0] = texel[1] = texel[2] = 0.0f;
+          fill_empty_texel(param, size, f, x, y, r, source, texel);
         }
         texel[3] = 0.0f;
       }
@@ -175,6 +218,7 @@ prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const flo
   source.width = width;
   source.height = height;
   source.face_size = 0u;
+  source.largest_texel = latlong_largest_texel(width, height);
   finish_resample(param, size, r, &source, out_rgba);
   return PRT_OK;
 }
@@ -219,6 +263,7 @@ prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float*
   source.rgb = faces_rgb;
   source.width = source.height = 0u;
   source.face_size = face_size;
+  source.largest_texel = cube_largest_texel(face_size);
   finish_resample(param, size, r, &source, out_rgba);
   return PRT_OK;
 }
