@@ -1,4 +1,5 @@
-# Test fixture: the demo scene and sky, baked with `sh` at a small order, for the viewer tests.
+# Test fixture: the demo scene and sky, baked with `sh` at a small order and with `wavelet` on a
+# small cube, for the viewer tests.
 # cmake -DPRT_BAKE=... -DOUT=... -P bake_demo_blob.cmake
 file(MAKE_DIRECTORY ${OUT})
 execute_process(COMMAND ${PRT_BAKE} demo-scene ${OUT} --sky-width 128 RESULT_VARIABLE status)
@@ -9,4 +10,9 @@ execute_process(COMMAND ${PRT_BAKE} bake ${OUT}/demo_scene.glb --technique sh --
                         -o ${OUT}/demo_sh4.prtk RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "prt-bake bake failed (${status})")
+endif()
+execute_process(COMMAND ${PRT_BAKE} bake ${OUT}/demo_scene.glb --technique wavelet --cube 16
+                        --keep 200 -o ${OUT}/demo_wavelet16.prtk RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "prt-bake bake --technique wavelet failed (${status})")
 endif()

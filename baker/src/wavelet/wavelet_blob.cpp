@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// The WVLT section encoder and the `wavelet` blob (formats/SPEC.md §7.2).
+#include "prt/baker/wavelet_blob.hpp"
+
+#include <prt/prt.h>
+#include <prt/prt_wavelet.h>
+
+#include <cmath>
+#include <cstring>
+
+#include <prt/format/blob_writer.hpp>
+
+namespace prt::bake {
+namespace {
+
+constexpr std::size_t kWvltHeaderBytes = 32;
+constexpr std::uint32_t kBlockSize = 256;
+
+class ByteWriter {
+ public:
+  explicit ByteWriter(std::size_t size) : bytes_(size, 0) {}
+  void u8(std::uint8_t v) { bytes_[at_++] = v; }
+  void u16(std::uint16_t v) {
+    u8(static_cast<std::uint8_t>(v));
+    u8(static_cast<std::uint8_t>(v >> 8));
+  }
+  void u32(std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void f32(float v) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, 4);
+    u32(bits);
+  }
+  std::size_t position() const { return at_; }
+  std::vector<std::uint8_t> take() { return std::move(bytes_); }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  std::size_t at_ = 0;
+};
+
+// Flattens the scene's meshes: positions, normals (non-finite stored as 0), triangles.
+struct FlatMesh {
+  std::vector<float> positions, normals;
+  std::vector<std::uint32_t> triangles;
+  bool all_normals = true;
+};
+
+FlatMesh flatten(const Scene& scene) {
+  FlatMesh out;
+  for (const Mesh& mesh : scene.meshes) {
+    const auto base = static_cast<std::uint32_t>(out.positions.size() / 3);
+    for (const glm::vec3& p : mesh.positions)
+      out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
+    out.all_normals = out.all_normals && mesh.normals.size() == mesh.positions.size();
+    for (const glm::vec3& n : mesh.normals) {
+      const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+      out.normals.insert(out.normals.end(),
+                         {finite ? n.x : 0.0f, finite ? n.y : 0.0f, finite ? n.z : 0.0f});
+    }
+    for (std::uint32_t i : mesh.indices) out.triangles.push_back(base + i);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_wvlt_section(const QuantizedWavelet& qw) {
+  const std::size_t vertices = qw.vertex_count, blocks = qw.block_count();
+  const std::size_t pairs = qw.pair_count();
+  std::size_t size = kWvltHeaderBytes + 4 * qw.band_scale.size() + 12 * vertices +
+                     4 * (vertices + 1) + 2 * vertices * blocks + 2 * pairs;
+  size = (size + 3) / 4 * 4;
+  ByteWriter out(size);
+  const std::uint32_t header[8] = {qw.param,
+                                   qw.size,
+                                   static_cast<std::uint32_t>(vertices),
+                                   static_cast<std::uint32_t>(qw.quantizer),
+                                   qw.keep,
+                                   qw.bounces,
+                                   static_cast<std::uint32_t>(pairs),
+                                   0};
+  for (std::uint32_t h : header) out.u32(h);
+  for (float b : qw.band_scale) out.f32(b);
+  for (float s : qw.vertex_scale) out.f32(s);
+  for (std::uint32_t r : qw.row_start) out.u32(r);
+  for (std::size_t v = 0; v < vertices; ++v) {  // block counts
+    std::vector<std::uint16_t> count(blocks, 0);
+    for (std::uint32_t p = qw.row_start[v]; p < qw.row_start[v + 1]; ++p) {
+      ++count[qw.index[p] / kBlockSize];
+    }
+    for (std::uint16_t c : count) out.u16(c);
+  }
+  // Pairs: row by row, and within a row ascending index is block by block, ascending in block.
+  for (std::size_t p = 0; p < pairs; ++p) {
+    out.u8(static_cast<std::uint8_t>(qw.index[p] % kBlockSize));
+    out.u8(static_cast<std::uint8_t>(qw.q[p]));
+  }
+  return out.take();
+}
+
+std::vector<std::uint8_t> build_wavelet_blob(const Scene& scene, const QuantizedWavelet& quantized,
+                                             const std::string& info) {
+  if (scene.vertex_count() != quantized.vertex_count) {
+    throw Error("wavelet blob: the transport has " + std::to_string(quantized.vertex_count) +
+                " vertices, the scene " + std::to_string(scene.vertex_count()));
+  }
+  const FlatMesh mesh = flatten(scene);
+  using prt::format::Compression;
+  using prt::format::SectionOptions;
+  SectionOptions optional;
+  optional.compression = Compression::kZstd;
+  SectionOptions required = optional;
+  required.required = true;
+  const std::size_t vertices = scene.vertex_count();
+  prt::format::BlobWriter writer;
+  writer.set_producer("prtkit " PRT_VERSION_STRING);
+  if (!info.empty()) writer.add_section(PRT_BLOB_TAG_INFO, info.data(), info.size(), info.size());
+  // Stored as in memory: the baker builds on little-endian hosts only (as the sh blob).
+  writer.add_section(PRT_BLOB_TAG_VPOS, mesh.positions.data(),
+                     mesh.positions.size() * sizeof(float), vertices, required);
+  if (mesh.all_normals) {
+    writer.add_section(PRT_BLOB_TAG_VNRM, mesh.normals.data(), mesh.normals.size() * sizeof(float),
+                       vertices, optional);
+  }
+  writer.add_section(PRT_BLOB_TAG_TRIS, mesh.triangles.data(),
+                     mesh.triangles.size() * sizeof(std::uint32_t), mesh.triangles.size() / 3,
+                     required);
+  const std::vector<std::uint8_t> wvlt = encode_wvlt_section(quantized);
+  writer.add_section(PRT_SECTION_WVLT, wvlt.data(), wvlt.size(), vertices, required);
+  return writer.finish();
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The texels of a `wavelet` parameterisation as the transport bake needs them (private header):
+// solid angles, the exact "entirely below the horizon" test, jittered sample directions and the
+// Jacobian that weights them. Directions and solid angles come from the runtime (prt_wavelet.h),
+// so bake and runtime cannot disagree on the texel layout.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace prt::bake::wavelet {
+
+class TexelGrid {
+ public:
+  // Throws Error for a bad param or size.
+  TexelGrid(std::uint32_t param, std::uint32_t size);
+
+  std::uint32_t param() const { return param_; }
+  std::uint32_t size() const { return size_; }
+  std::uint32_t faces() const { return faces_; }
+  std::uint32_t count() const { return faces_ * size_ * size_; }
+  double solid_angle(std::uint32_t j) const { return solid_angle_[j]; }
+
+  // True when max(0, n.w) = 0 everywhere on texel j (or the texel carries no direction).
+  bool below_horizon(std::uint32_t j, const glm::vec3& n) const;
+
+  // The direction at continuous face coordinates (u, v) and its Jacobian relative to the texel
+  // (d omega / du dv up to a per-face constant). False when (u, v) has no direction.
+  bool sample(std::uint32_t face, float u, float v, glm::vec3* dir, double* jacobian) const;
+
+ private:
+  std::uint32_t param_, size_, faces_;
+  std::vector<double> solid_angle_;
+  std::vector<glm::vec3> corner_;  // cube: (size+1)^2 corner directions per face
+};
+
+}  // namespace prt::bake::wavelet
