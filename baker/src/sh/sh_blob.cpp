@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "prt/baker/sh_blob.hpp"
 
+#include "../common/technique_blob.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -85,18 +87,6 @@ void measure_error(const ShTransfer& transfer, QuantizedShTransfer& out) {
   out.rms_abs_error = count > 0 ? std::sqrt(sum_sq / count) : 0.0;
 }
 
-struct ContextDeleter {
-  void operator()(prt_context* context) const { prt_context_destroy(context); }
-};
-struct AssetDeleter {
-  void operator()(prt_asset* asset) const { prt_asset_destroy(asset); }
-};
-
-std::string runtime_failure(const char* what, prt_result result, const prt_context* context) {
-  return std::string(what) + " failed (" + std::to_string(static_cast<int>(result)) +
-         "): " + prt_context_last_message(context);
-}
-
 // Compares the decoded transfer with the float one value by value.
 void compare_decoded(const std::vector<float>& decoded, const ShTransfer& transfer,
                      const QuantizedShTransfer& quantized, ShBlobCheck& check) {
@@ -137,7 +127,7 @@ ShBlobCheck check_sh_blob(const std::vector<std::uint8_t>& blob, const ShTransfe
     check.message = "cannot create a runtime context";
     return check;
   }
-  const std::unique_ptr<prt_context, ContextDeleter> context(raw_context);
+  const RuntimeContextPtr context(raw_context);
   prt_asset* raw_asset = nullptr;
   prt_result result =
       prt_asset_load_memory(context.get(), blob.data(), blob.size(), PRT_VALIDATE_FULL, &raw_asset);
@@ -145,7 +135,7 @@ ShBlobCheck check_sh_blob(const std::vector<std::uint8_t>& blob, const ShTransfe
     check.message = runtime_failure("prt_asset_load_memory (full validation)", result, raw_context);
     return check;
   }
-  const std::unique_ptr<prt_asset, AssetDeleter> asset(raw_asset);
+  const RuntimeAssetPtr asset(raw_asset);
   prt_sh_transfer_info info{};
   result = prt_sh_get_transfer_info(asset.get(), &info);
   if (result != PRT_OK) {
@@ -275,44 +265,9 @@ std::vector<std::uint8_t> build_sh_blob(const Scene& scene, const QuantizedShTra
     throw Error("SH blob: the transfer has " + std::to_string(quantized.vertex_count) +
                 " vertices, the scene " + std::to_string(scene.vertex_count()));
   }
-  std::vector<float> positions, normals;
-  std::vector<std::uint32_t> triangles;
-  bool all_normals = true;
-  for (const Mesh& mesh : scene.meshes) {
-    const auto base = static_cast<std::uint32_t>(positions.size() / 3);
-    for (const glm::vec3& p : mesh.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
-    all_normals = all_normals && mesh.normals.size() == mesh.positions.size();
-    // A non-finite normal (the bake gave that vertex zero transfer) is stored as (0, 0, 0): full
-    // validation rejects NaN, and zero says "no usable normal" as the bake treated it.
-    for (const glm::vec3& n : mesh.normals) {
-      const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
-      normals.insert(normals.end(),
-                     {finite ? n.x : 0.0f, finite ? n.y : 0.0f, finite ? n.z : 0.0f});
-    }
-    for (std::uint32_t i : mesh.indices) triangles.push_back(base + i);
-  }
-  using prt::format::Compression;
-  using prt::format::SectionOptions;
-  SectionOptions optional;
-  optional.compression = Compression::kZstd;
-  SectionOptions required = optional;
-  required.required = true;
-
-  const std::size_t vertices = scene.vertex_count();
-  prt::format::BlobWriter writer;
-  writer.set_producer("prtkit " PRT_VERSION_STRING);
-  if (!info.empty()) writer.add_section(PRT_BLOB_TAG_INFO, info.data(), info.size(), info.size());
-  // The floats and indices are stored as in memory: the baker builds on little-endian hosts only.
-  writer.add_section(PRT_BLOB_TAG_VPOS, positions.data(), positions.size() * sizeof(float),
-                     vertices, required);
-  if (all_normals) {
-    writer.add_section(PRT_BLOB_TAG_VNRM, normals.data(), normals.size() * sizeof(float), vertices,
-                       optional);
-  }
-  writer.add_section(PRT_BLOB_TAG_TRIS, triangles.data(), triangles.size() * sizeof(std::uint32_t),
-                     triangles.size() / 3, required);
+  prt::format::BlobWriter writer = start_technique_blob(scene, info);
   const std::vector<std::uint8_t> shtr = encode_shtr_section(quantized);
-  writer.add_section(kShtrTag, shtr.data(), shtr.size(), vertices, required);
+  writer.add_section(kShtrTag, shtr.data(), shtr.size(), scene.vertex_count(), required_section());
   return writer.finish();
 }
 

@@ -2,6 +2,8 @@
 // The WVLT section encoder and the `wavelet` blob (formats/SPEC.md §7.2).
 #include "prt/baker/wavelet_blob.hpp"
 
+#include "../common/technique_blob.hpp"
+
 #include <prt/prt.h>
 #include <prt/prt_wavelet.h>
 
@@ -39,30 +41,6 @@ class ByteWriter {
   std::vector<std::uint8_t> bytes_;
   std::size_t at_ = 0;
 };
-
-// Flattens the scene's meshes: positions, normals (non-finite stored as 0), triangles.
-struct FlatMesh {
-  std::vector<float> positions, normals;
-  std::vector<std::uint32_t> triangles;
-  bool all_normals = true;
-};
-
-FlatMesh flatten(const Scene& scene) {
-  FlatMesh out;
-  for (const Mesh& mesh : scene.meshes) {
-    const auto base = static_cast<std::uint32_t>(out.positions.size() / 3);
-    for (const glm::vec3& p : mesh.positions)
-      out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
-    out.all_normals = out.all_normals && mesh.normals.size() == mesh.positions.size();
-    for (const glm::vec3& n : mesh.normals) {
-      const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
-      out.normals.insert(out.normals.end(),
-                         {finite ? n.x : 0.0f, finite ? n.y : 0.0f, finite ? n.z : 0.0f});
-    }
-    for (std::uint32_t i : mesh.indices) out.triangles.push_back(base + i);
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -106,29 +84,10 @@ std::vector<std::uint8_t> build_wavelet_blob(const Scene& scene, const Quantized
     throw Error("wavelet blob: the transport has " + std::to_string(quantized.vertex_count) +
                 " vertices, the scene " + std::to_string(scene.vertex_count()));
   }
-  const FlatMesh mesh = flatten(scene);
-  using prt::format::Compression;
-  using prt::format::SectionOptions;
-  SectionOptions optional;
-  optional.compression = Compression::kZstd;
-  SectionOptions required = optional;
-  required.required = true;
-  const std::size_t vertices = scene.vertex_count();
-  prt::format::BlobWriter writer;
-  writer.set_producer("prtkit " PRT_VERSION_STRING);
-  if (!info.empty()) writer.add_section(PRT_BLOB_TAG_INFO, info.data(), info.size(), info.size());
-  // Stored as in memory: the baker builds on little-endian hosts only (as the sh blob).
-  writer.add_section(PRT_BLOB_TAG_VPOS, mesh.positions.data(),
-                     mesh.positions.size() * sizeof(float), vertices, required);
-  if (mesh.all_normals) {
-    writer.add_section(PRT_BLOB_TAG_VNRM, mesh.normals.data(), mesh.normals.size() * sizeof(float),
-                       vertices, optional);
-  }
-  writer.add_section(PRT_BLOB_TAG_TRIS, mesh.triangles.data(),
-                     mesh.triangles.size() * sizeof(std::uint32_t), mesh.triangles.size() / 3,
-                     required);
+  prt::format::BlobWriter writer = start_technique_blob(scene, info);
   const std::vector<std::uint8_t> wvlt = encode_wvlt_section(quantized);
-  writer.add_section(PRT_SECTION_WVLT, wvlt.data(), wvlt.size(), vertices, required);
+  writer.add_section(PRT_SECTION_WVLT, wvlt.data(), wvlt.size(), scene.vertex_count(),
+                     required_section());
   return writer.finish();
 }
 

@@ -15,22 +15,12 @@
 
 #include "prt/baker/wavelet_blob.hpp"
 
+#include "../common/technique_blob.hpp"
+
 namespace prt::bake {
 namespace {
 
 constexpr double kEps = std::numeric_limits<float>::epsilon();
-
-struct ContextDeleter {
-  void operator()(prt_context* context) const { prt_context_destroy(context); }
-};
-struct AssetDeleter {
-  void operator()(prt_asset* asset) const { prt_asset_destroy(asset); }
-};
-
-std::string failure(const char* what, prt_result result, const prt_context* context) {
-  return std::string(what) + " failed (" + std::to_string(static_cast<int>(result)) +
-         "): " + prt_context_last_message(context);
-}
 
 bool header_matches(const prt_wavelet_info& info, const QuantizedWavelet& q) {
   return info.param == q.param && info.size == q.size &&
@@ -95,11 +85,11 @@ std::string check_shading(const prt_asset* asset, const prt_context* context,
   }
   std::vector<float> prepared(light.size());
   prt_result r = prt_wavelet_prepare_light(asset, light.data(), prepared.data());
-  if (r != PRT_OK) return failure("prt_wavelet_prepare_light", r, context);
+  if (r != PRT_OK) return runtime_failure("prt_wavelet_prepare_light", r, context);
   std::vector<float> shaded(q.vertex_count * 3);
   r = prt_wavelet_shade(asset, prepared.data(), 0, static_cast<std::uint32_t>(q.vertex_count),
                         shaded.data());
-  if (r != PRT_OK) return failure("prt_wavelet_shade", r, context);
+  if (r != PRT_OK) return runtime_failure("prt_wavelet_shade", r, context);
   std::size_t failures = 0;
   for (std::size_t v = 0; v < q.vertex_count; ++v) {
     const double pairs = q.row_start[v + 1] - q.row_start[v];
@@ -133,19 +123,19 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
     check.message = "cannot create a runtime context";
     return check;
   }
-  const std::unique_ptr<prt_context, ContextDeleter> context(raw_context);
+  const RuntimeContextPtr context(raw_context);
   prt_asset* raw_asset = nullptr;
   prt_result r =
       prt_asset_load_memory(raw_context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &raw_asset);
   if (r != PRT_OK) {
-    check.message = failure("prt_asset_load_memory (full validation)", r, raw_context);
+    check.message = runtime_failure("prt_asset_load_memory (full validation)", r, raw_context);
     return check;
   }
-  const std::unique_ptr<prt_asset, AssetDeleter> asset(raw_asset);
+  const RuntimeAssetPtr asset(raw_asset);
   prt_wavelet_info info{};
   r = prt_wavelet_get_info(raw_asset, &info);
   if (r != PRT_OK) {
-    check.message = failure("prt_wavelet_get_info", r, raw_context);
+    check.message = runtime_failure("prt_wavelet_get_info", r, raw_context);
     return check;
   }
   if (!header_matches(info, quantized) || transport.vertex_count != quantized.vertex_count) {
@@ -157,7 +147,7 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
   for (std::size_t v : sample_vertices(quantized)) {
     r = prt_wavelet_decode_row(raw_asset, static_cast<std::uint32_t>(v), decoded.data());
     if (r != PRT_OK) {
-      check.message = failure("prt_wavelet_decode_row", r, raw_context);
+      check.message = runtime_failure("prt_wavelet_decode_row", r, raw_context);
       return check;
     }
     failures += check_row(decoded, v, transport, quantized, check);
