@@ -61,7 +61,8 @@ std::size_t check_row(const std::vector<float>& decoded, std::size_t v, const Wa
     }
   }
   for (std::uint64_t p = t.row_start[v]; p < t.row_start[v + 1]; ++p) {
-    const double step = double(q.band_scale[wavelet_band(q.size, t.index[p])]) * q.grey_step[v];
+    const double step =
+        double(q.band_scale[wavelet_band(q.param, q.size, t.index[p])]) * q.grey_step[v];
     if (std::abs(double(t.value[p])) > 127.5 * step) continue;  // clamped (percentile scale)
     for (int c = 0; c < 3; ++c) {
       const double rho = t.albedo[v][c], exact = rho * t.value[p];
@@ -96,7 +97,8 @@ std::string check_shading(const prt_asset* asset, const prt_context* context,
     for (int c = 0; c < 3; ++c) {
       double sum = 0.0, magnitude = 0.0;
       for (std::uint32_t p = q.row_start[v]; p < q.row_start[v + 1]; ++p) {
-        const double term = double(q.q[p]) * q.band_scale[wavelet_band(q.size, q.index[p])] *
+        const double term = double(q.q[p]) *
+                            q.band_scale[wavelet_band(q.param, q.size, q.index[p])] *
                             q.vertex_scale[v * 3 + c] * light[std::size_t(q.index[p]) * 4 + c];
         sum += term;
         magnitude += std::abs(term);

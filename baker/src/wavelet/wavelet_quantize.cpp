@@ -24,14 +24,14 @@ std::vector<float> band_magnitudes(const WaveletTransport& t, std::uint32_t band
   std::vector<float> largest(bands, 0.0f);
   if (percentile >= 1.0) {
     for (std::size_t p = 0; p < t.index.size(); ++p) {
-      float& m = largest[wavelet_band(t.size, t.index[p])];
+      float& m = largest[wavelet_band(t.param, t.size, t.index[p])];
       m = std::max(m, std::abs(t.value[p]));
     }
     return largest;
   }
   std::vector<std::vector<float>> values(bands);
   for (std::size_t p = 0; p < t.index.size(); ++p) {
-    values[wavelet_band(t.size, t.index[p])].push_back(std::abs(t.value[p]));
+    values[wavelet_band(t.param, t.size, t.index[p])].push_back(std::abs(t.value[p]));
   }
   for (std::uint32_t b = 0; b < bands; ++b) {
     if (values[b].empty()) continue;
@@ -68,10 +68,8 @@ WaveletQuantizer parse_wavelet_quantizer(const char* name) {
               "' (vertex or band)");
 }
 
-std::uint32_t wavelet_band(std::uint32_t size, std::uint32_t j) {
-  const std::uint32_t texels = size * size, within = j % texels;
-  const int level = prt_haar_level(size, within % size, within / size);
-  return (j / texels) * (log2_size(size) + 1) + static_cast<std::uint32_t>(level + 1);
+std::uint32_t wavelet_band(std::uint32_t param, std::uint32_t size, std::uint32_t j) {
+  return prt_wavelet_band(param, size, j);
 }
 
 std::uint32_t wavelet_band_count(std::uint32_t param, std::uint32_t size) {
@@ -113,7 +111,7 @@ QuantizedWavelet quantize_wavelet_transport(const WaveletTransport& t, WaveletQu
     out.grey_step[v] = grey;
     for (int c = 0; c < 3; ++c) out.vertex_scale[v * 3 + c] = t.albedo[v][c] * grey;
     for (std::uint64_t p = t.row_start[v]; p < t.row_start[v + 1]; ++p) {
-      const double step = double(out.band_scale[wavelet_band(t.size, t.index[p])]) * grey;
+      const double step = double(out.band_scale[wavelet_band(t.param, t.size, t.index[p])]) * grey;
       double q = step > 0.0 ? std::round(double(t.value[p]) / step) : 0.0;
       if (std::abs(q) > 127.0) {
         q = std::clamp(q, -127.0, 127.0);

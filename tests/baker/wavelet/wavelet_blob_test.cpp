@@ -53,18 +53,12 @@ Scene triangle_scene(std::size_t vertices) {
   return scene;
 }
 
-TEST(WaveletQuantizer, BandsFollowTheSpec) {
-  // Band = face * 5 + level + 1 at S = 16 (levels -1..3): by hand from §7.2.
-  EXPECT_EQ(wavelet_band(16, 0), 0u);      // face 0 scaling
-  EXPECT_EQ(wavelet_band(16, 1), 1u);      // (1, 0): level 0
-  EXPECT_EQ(wavelet_band(16, 2), 2u);      // (2, 0): level 1
-  EXPECT_EQ(wavelet_band(16, 300), 9u);    // face 1, (12, 2): level 3
-  EXPECT_EQ(wavelet_band(16, 1535), 29u);  // face 5, (15, 15): level 3
-  EXPECT_EQ(wavelet_band(16, 257), 6u);    // face 1, (1, 0)
-  EXPECT_EQ(wavelet_band_count(PRT_WAVELET_PARAM_CUBE, 16), 30u);
-  EXPECT_EQ(wavelet_band_count(PRT_WAVELET_PARAM_DUAL_PARABOLOID, 128), 16u);
-  for (std::uint32_t j = 0; j < 1536; j += 7)
-    EXPECT_EQ(wavelet_band(16, j), prt_wavelet_band(0, 16, j));
+// The band numbering itself is the runtime's prt_wavelet_band (tested by hand in
+// tests/wavelet/wavelet_domain_test.cpp); here only the band count the quantiser sizes its table
+// by.
+TEST(WaveletQuantizer, BandCountFollowsTheSpec) {
+  EXPECT_EQ(wavelet_band_count(PRT_WAVELET_PARAM_CUBE, 16), 30u);  // 6 faces x (log2 16 + 1)
+  EXPECT_EQ(wavelet_band_count(PRT_WAVELET_PARAM_DUAL_PARABOLOID, 128), 16u);  // 2 x 8
 }
 
 TEST(WaveletQuantizer, VertexScaleIsTheRowMaxOver127) {

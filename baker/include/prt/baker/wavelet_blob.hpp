@@ -30,8 +30,8 @@ enum class WaveletQuantizer : std::uint32_t { Vertex = 0, Band = 1 };
 const char* wavelet_quantizer_name(WaveletQuantizer quantizer);
 WaveletQuantizer parse_wavelet_quantizer(const char* name);
 
-// The band of coefficient j (§7.2): face * (log2 S + 1) + Haar level + 1.
-std::uint32_t wavelet_band(std::uint32_t size, std::uint32_t j);
+// The band of coefficient j (§7.2): face * (log2 S + 1) + Haar level + 1 (prt_wavelet_band).
+std::uint32_t wavelet_band(std::uint32_t param, std::uint32_t size, std::uint32_t j);
 std::uint32_t wavelet_band_count(std::uint32_t param, std::uint32_t size);
 
 struct QuantizedWavelet {
@@ -55,11 +55,11 @@ struct QuantizedWavelet {
   std::uint32_t block_count() const { return coefficient_count / 256; }
   // t[v][c][j] of §7.2 for stored pair p of vertex v, computed as a reader does.
   float dequantized(std::size_t v, int c, std::size_t p) const {
-    return float(q[p]) * band_scale[wavelet_band(size, index[p])] * vertex_scale[v * 3 + c];
+    return float(q[p]) * band_scale[wavelet_band(param, size, index[p])] * vertex_scale[v * 3 + c];
   }
   // The grey value of pair p of vertex v: q * bs * grey_step.
   double grey(std::size_t v, std::size_t p) const {
-    return double(q[p]) * band_scale[wavelet_band(size, index[p])] * grey_step[v];
+    return double(q[p]) * band_scale[wavelet_band(param, size, index[p])] * grey_step[v];
   }
 };
 
