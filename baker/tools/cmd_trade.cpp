@@ -35,6 +35,7 @@
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sh_blob.hpp"
 #include "prt/baker/sh_transfer.hpp"
+#include "trade_common.hpp"
 
 namespace prt::bake::cli {
 namespace {
@@ -57,21 +58,6 @@ struct Setting {
   std::string sweeps;
 };
 
-// An environment as the trade uses it: the map (for the reference) and its SH light as the
-// runtime projects it, at the largest order swept (lower orders are its leading coefficients:
-// each coefficient's projection does not depend on the order).
-struct Light {
-  std::string name;
-  std::unique_ptr<EnvMap> map;
-  std::string projection;  // which projection made `rgb`
-  std::vector<float> rgb;  // coefficient-major RGB
-};
-
-struct Reference {
-  std::vector<glm::vec3> radiance;
-  double noise = 0.0;  // the renderer's own relative RMSE estimate
-};
-
 struct Row {
   std::string map, projection, sweeps;
   std::uint32_t order = 0, rays = 0;
@@ -82,16 +68,6 @@ struct Row {
   double bake_seconds = 0.0, rays_traced = 0.0;
   double quant_max_abs = 0.0, quant_rms_abs = 0.0, transfer_max_abs = 0.0;
 };
-
-std::string format(const char* fmt, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, fmt, value);
-  return buffer;
-}
-
-std::string stem(const std::string& path) {
-  return fs::path(path).stem().string();
-}
 
 // --- settings -----------------------------------------------------------------------------------
 
@@ -137,167 +113,31 @@ void check_options(const TradeOptions& o) {
   if (o.frames < 1) throw Error("--frames: must be >= 1");
 }
 
-// --- lights -------------------------------------------------------------------------------------
-
-void check_runtime(prt_result result, const std::string& what) {
-  if (result != PRT_OK) throw Error(what + ": " + prt_result_string(result));
-}
-
-// The runtime's projection must agree with the baker's, which reads the map in its own mapping
-// (EnvMap::texel) by separate code: a wrong face order or orientation would show here.
-void check_against_baker_projection(Light& light, std::uint32_t order, const Context& ctx) {
-  const std::vector<float> baker = project_env_sh(*light.map, order).to_float();
-  double largest = 0.0, difference = 0.0;
-  for (std::size_t i = 0; i < baker.size(); ++i) {
-    largest = std::max(largest, double(std::abs(baker[i])));
-    difference = std::max(difference, double(std::abs(baker[i] - light.rgb[i])));
-  }
-  const double relative = largest > 0.0 ? difference / largest : difference;
-  ctx.info(light.name + ": " + light.projection + " projection agrees with the baker's to " +
-           format("%.2g of the largest coefficient", relative));
-  if (relative > 1e-4) {
-    throw Error(light.map->source() + ": the runtime's SH projection differs from the baker's by " +
-                format("%.3g of the largest coefficient", relative));
-  }
-  light.projection += format(" (= baker to %.0e)", relative);
-}
-
-Light load_light(const std::string& path, std::uint32_t order, const Context& ctx) {
-  Light light;
-  light.name = stem(path);
-  light.map = std::make_unique<EnvMap>(load_envmap(path, EnvMapping::Auto, ctx));
-  const EnvMap& map = *light.map;
-  light.rgb.resize(std::size_t(order) * order * 3);
-  switch (map.mapping()) {
-    case EnvMapping::LatLong:
-      light.projection = "runtime lat-long";
-      check_runtime(prt_sh_project_latlong(order, map.width(), map.height(), map.pixels().data(),
-                                           std::size_t(map.width()) * 3, light.rgb.data()),
-                    path + ": prt_sh_project_latlong");
-      break;
-    case EnvMapping::VerticalCross: {
-      light.projection = "runtime cube";
-      const auto faces = resample_to_cube(map, map.face_size());
-      const float* pointers[6];
-      for (int i = 0; i < 6; ++i) pointers[i] = faces[i].data();
-      check_runtime(prt_sh_project_cube(order, map.face_size(), pointers, light.rgb.data()),
-                    path + ": prt_sh_project_cube");
-      break;
-    }
-    default:  // the runtime takes lat-long and cube maps only; the baker projects the others
-      light.projection = "baker " + std::string(env_mapping_name(map.mapping()));
-      light.rgb = project_env_sh(map, order).to_float();
-      return light;
-  }
-  check_against_baker_projection(light, order, ctx);
-  return light;
-}
-
 // --- reference cache ----------------------------------------------------------------------------
 
-// A cached reference's radiance, or false when the file is missing or unreadable (then it is
-// rendered again).
-bool cached_radiance(const std::string& path, std::vector<glm::vec3>* radiance) {
-  if (!std::filesystem::exists(path)) return false;
-  try {
-    *radiance = read_npy_vec3(path);
-    return true;
-  } catch (const Error&) {
-    return false;
-  }
-}
-
-std::string albedo_key(const TradeOptions& o) {
-  if (o.albedo.empty()) return "material";
-  std::string key = o.albedo;
-  std::replace(key.begin(), key.end(), ',', '-');
-  return key;
-}
-
-Reference reference_for(const Scene& scene, const Light& light, int bounces, const TradeOptions& o,
-                        const Context& ctx) {
-  const std::string key = stem(o.scene) + "_" + light.name + "_b" + std::to_string(bounces) +
-                          "_spp" + std::to_string(o.ref_spp) + "_seed" + std::to_string(o.seed) +
-                          "_albedo-" + albedo_key(o);
-  const std::string npy = o.cache_dir + "/" + key + ".npy", noise_file = npy + ".noise";
-  Reference ref;
-  std::ifstream noise_in(noise_file);
-  if (noise_in >> ref.noise && cached_radiance(npy, &ref.radiance) &&
-      ref.radiance.size() == scene.vertex_count()) {
-    ctx.info("reference " + key + ": from the cache (" + format("noise %.3f %%)", 100 * ref.noise));
-    return ref;
-  }
-  ReferenceSettings settings;
-  settings.bounces = bounces;
-  settings.spp = o.ref_spp;
-  settings.seed = o.seed;
-  if (!o.albedo.empty()) {
-    settings.override_albedo = true;
-    settings.albedo = parse_albedo(o.albedo);
-  }
-  ctx.info("reference " + key + ": rendering");
-  const ReferenceRenderer renderer(scene, *light.map, settings, ctx);
-  VertexRadiance result = renderer.render_vertices(ctx);
-  ctx.info(format("  noise %.3f %%, ", 100 * result.relative_rmse) +
-           format("%.1f s", result.stats.seconds));
-  write_npy_vec3(npy, result.radiance);
-  std::ofstream noise_out(noise_file);
-  noise_out.precision(17);
-  noise_out << result.relative_rmse << "\n";
-  if (!noise_out) throw Error(noise_file + ": cannot write");
-  ref.radiance = std::move(result.radiance);
-  ref.noise = result.relative_rmse;
-  return ref;
+Reference reference_for(const Scene& scene, const ShLight& light, int bounces,
+                        const TradeOptions& o, const Context& ctx) {
+  ReferenceRequest request;
+  request.scene_path = o.scene;
+  request.map_name = light.name;
+  request.albedo = o.albedo;
+  request.cache_dir = o.cache_dir;
+  request.bounces = bounces;
+  request.spp = o.ref_spp;
+  request.seed = o.seed;
+  return cached_reference(scene, *light.map, request, ctx);
 }
 
 // --- runtime shading ----------------------------------------------------------------------------
-
-struct RuntimeAsset {
-  std::unique_ptr<prt_context, decltype(&prt_context_destroy)> context{nullptr,
-                                                                       &prt_context_destroy};
-  std::unique_ptr<prt_asset, decltype(&prt_asset_destroy)> asset{nullptr, &prt_asset_destroy};
-};
-
-RuntimeAsset load_runtime_asset(const std::vector<std::uint8_t>& blob) {
-  RuntimeAsset loaded;
-  prt_context* context = nullptr;
-  check_runtime(prt_context_create(nullptr, &context), "prt_context_create");
-  loaded.context.reset(context);
-  prt_asset* asset = nullptr;
-  const prt_result result =
-      prt_asset_load_memory(context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &asset);
-  if (result != PRT_OK) {
-    throw Error(std::string("loading the blob through the runtime: ") +
-                prt_context_last_message(context));
-  }
-  loaded.asset.reset(asset);
-  return loaded;
-}
 
 // Median milliseconds of `frames` shadings of every vertex on `backend` (after one warm-up), or
 // -1 when the backend is not available. `out` receives the last frame's radiance.
 double time_shading(const prt_asset* asset, prt_backend backend, const float* light,
                     std::uint32_t vertices, int frames, std::vector<float>* out) {
   out->resize(std::size_t(vertices) * 3);
-  const prt_result first = prt_sh_shade_on(asset, backend, light, 0, vertices, out->data());
-  if (first == PRT_ERROR_UNSUPPORTED_BACKEND) return -1.0;
-  check_runtime(first, std::string("prt_sh_shade_on(") + prt_backend_name(backend) + ")");
-  std::vector<double> ms;
-  for (int f = 0; f < frames; ++f) {
-    const auto start = std::chrono::steady_clock::now();
-    prt_sh_shade_on(asset, backend, light, 0, vertices, out->data());
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                     .count());
-  }
-  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
-  return ms[ms.size() / 2];
-}
-
-std::vector<glm::vec3> as_vec3(const std::vector<float>& rgb) {
-  std::vector<glm::vec3> out(rgb.size() / 3);
-  for (std::size_t v = 0; v < out.size(); ++v)
-    out[v] = glm::vec3(rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2]);
-  return out;
+  return median_frame_ms(
+      frames, std::string("prt_sh_shade_on(") + prt_backend_name(backend) + ")",
+      [&] { return prt_sh_shade_on(asset, backend, light, 0, vertices, out->data()); });
 }
 
 // The leading order^2 coefficients of a light projected at a higher order.
@@ -336,7 +176,7 @@ Baked bake_setting(const Scene& scene, const EmbreeScene& rays, const Setting& s
   return baked;
 }
 
-Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const Light& light,
+Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const ShLight& light,
             const Reference& ref, const TradeOptions& o) {
   const std::uint32_t vertices = static_cast<std::uint32_t>(baked.transfer.vertex_count);
   const std::vector<float> l = truncated(light.rgb, s.order);
@@ -366,25 +206,8 @@ Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const 
 
 // --- output -------------------------------------------------------------------------------------
 
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const std::size_t colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(colon + 2);
-    }
-  }
-  return "unknown";
-}
-
-// The error with the reference's noise taken out: the two are independent, so their squares add.
 double without_noise(const Row& r) {
-  return std::sqrt(std::max(0.0, r.error * r.error - r.ref_noise * r.ref_noise));
-}
-
-std::string ms_text(double ms) {
-  return ms < 0.0 ? "n/a" : format("%.3f", ms);
+  return noise_removed(r.error, r.ref_noise);
 }
 
 void write_csv(const std::string& path, const std::vector<Row>& rows, const TradeOptions& o,
@@ -418,7 +241,7 @@ std::string joined(const std::vector<std::uint32_t>& values) {
 }
 
 void write_markdown(const std::string& path, const std::vector<Row>& rows,
-                    const std::vector<Light>& lights, const TradeOptions& o, const Scene& scene,
+                    const std::vector<ShLight>& lights, const TradeOptions& o, const Scene& scene,
                     unsigned threads, const std::string& simd_note) {
   std::ofstream md(path);
   md << "# Technique sh: speed versus accuracy (prt-bake trade)\n\n";
@@ -442,7 +265,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
   md << "Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
      << " hardware threads; bake on " << threads << " threads; SIMD backend: " << simd_note
      << ".\n";
-  for (const Light& light : lights) {
+  for (const ShLight& light : lights) {
     md << "\n## " << light.name << " (" << env_mapping_name(light.map->mapping()) << ", "
        << light.map->width() << "x" << light.map->height() << ", light by " << light.projection
        << ")\n\n";
@@ -464,19 +287,6 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
   if (!md) throw Error(path + ": cannot write");
 }
 
-std::string simd_description() {
-  prt_context* context = nullptr;
-  if (prt_context_create(nullptr, &context) != PRT_OK) return "unknown";
-  prt_backend_info info{};
-  std::string text = "unknown";
-  if (prt_backend_get_info(context, PRT_BACKEND_SIMD, &info) == PRT_OK) {
-    text = info.usable ? std::string("usable, ") + prt_simd_isa_name(info.isa)
-                       : std::string("not usable (") + (info.note ? info.note : "") + ")";
-  }
-  prt_context_destroy(context);
-  return text;
-}
-
 // --- the command --------------------------------------------------------------------------------
 
 void run_trade(TradeOptions o, const CommandEnv& env) {
@@ -490,17 +300,17 @@ void run_trade(TradeOptions o, const CommandEnv& env) {
   for (const Setting& s : settings) max_order = std::max(max_order, s.order);
 
   const Scene scene = import_scene(o.scene, ctx);
-  std::vector<Light> lights;
-  for (const std::string& path : o.envs) lights.push_back(load_light(path, max_order, ctx));
+  std::vector<ShLight> lights;
+  for (const std::string& path : o.envs) lights.push_back(load_sh_light(path, max_order, ctx));
   std::set<std::string> names;
-  for (const Light& light : lights) {
+  for (const ShLight& light : lights) {
     if (!names.insert(light.name).second)
       throw Error("--env: two maps are named '" + light.name + "'");
   }
   std::set<int> bounce_counts;
   for (const Setting& s : settings) bounce_counts.insert(s.bounces);
   std::map<std::pair<std::string, int>, Reference> references;
-  for (const Light& light : lights) {
+  for (const ShLight& light : lights) {
     for (int b : bounce_counts)
       references[{light.name, b}] = reference_for(scene, light, b, o, ctx);
   }
@@ -514,7 +324,7 @@ void run_trade(TradeOptions o, const CommandEnv& env) {
              std::to_string(s.bounces) + " bounces");
     const Baked baked = bake_setting(scene, rays, s, o, ctx);
     const RuntimeAsset runtime = load_runtime_asset(baked.blob);
-    for (const Light& light : lights) {
+    for (const ShLight& light : lights) {
       rows.push_back(
           measure(baked, runtime.asset.get(), s, light, references.at({light.name, s.bounces}), o));
       const Row& r = rows.back();

@@ -31,5 +31,6 @@ void add_info_command(CLI::App& app, CommandEnv& env);
 void add_env_sh_command(CLI::App& app, CommandEnv& env);
 void add_bake_command(CLI::App& app, CommandEnv& env);
 void add_trade_command(CLI::App& app, CommandEnv& env);
+void add_trade_wavelet_command(CLI::App& app, CommandEnv& env);
 
 }  // namespace prt::bake::cli
