@@ -304,59 +304,10 @@ void register_shading() {
       }
 }
 
-// Rays like the bake's: kBakeRays per vertex, leaving it by the bake's offset policy along its
-// normal, cosine-distributed about the normal.
-struct VertexRays {
-  std::vector<glm::vec3> origins, directions;  // one origin per kBakeRays directions
-};
-
-const VertexRays& vertex_rays() {
-  static const VertexRays rays = [] {
-    VertexRays r;
-    const Scene& scene = mesh_scene();
-    const EmbreeScene policy(scene, Context{});
-    std::mt19937_64 rng(1);
-    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-    for (const Mesh& mesh : scene.meshes)
-      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-        const glm::vec3 n = mesh.normals[v];
-        if (!(glm::dot(n, n) > 0.5f)) continue;
-        r.origins.push_back(policy.offset_origin(mesh.positions[v], n));
-        const Frame frame(n);
-        for (uint32_t k = 0; k < kBakeRays; ++k)
-          r.directions.push_back(frame.to_world(cosine_hemisphere({uniform(rng), uniform(rng)})));
-      }
-    return r;
-  }();
-  return rays;
-}
-
 void BM_RawEmbreeOccluded1(benchmark::State& state) {
   static const prt_bench::RawEmbree raw(mesh_scene());
-  const VertexRays& rays = vertex_rays();
-  prt_bench::set_ftz_daz();
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  std::size_t next = 0, occluded = 0;
-  int64_t traced = 0;
-  double seconds = 0.0, cpu_seconds = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = prt_bench::thread_cpu_seconds();
-    for (int i = 0; i < 4096; ++i, next = (next + 1) % rays.directions.size()) {
-      const glm::vec3 o = rays.origins[next / kBakeRays], d = rays.directions[next];
-      RTCRay ray{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, 0.0f, INFINITY, 0xFFFFFFFFu, 0, 0};
-      rtcOccluded1(raw.scene, &context, &ray);
-      occluded += ray.tfar < 0.0f;
-    }
-    cpu_seconds += prt_bench::thread_cpu_seconds() - cpu_start;
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    traced += 4096;
-  }
-  benchmark::DoNotOptimize(occluded);
-  state.counters["rays/s"] = benchmark::Counter(double(traced), benchmark::Counter::kIsRate);
-  state.counters["occluded"] = double(occluded) / double(traced);
-  g_figures.raw_rays = {double(traced) / seconds, double(traced) / cpu_seconds};
+  static const prt_bench::VertexRays rays = prt_bench::cosine_vertex_rays(mesh_scene(), kBakeRays);
+  g_figures.raw_rays = prt_bench::raw_occluded_rate(state, raw, rays);
 }
 BENCHMARK(BM_RawEmbreeOccluded1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
 

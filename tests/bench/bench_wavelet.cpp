@@ -9,6 +9,9 @@
 //    read per second as a share of the triad on as many threads — the rows streamed (pairs,
 //    block counts, row start, vertex scale) alone, and with the light gathers (16 B per pair,
 //    mostly cache hits) added;
+//  - bake throughput: compute_wavelet_transport of the Stanford bunny (every 16th vertex, cube
+//    N = 32, one ray per texel, 1 thread) in rays/s as a share of raw rtcOccluded1 on the same
+//    mesh (bench_embree.hpp; skipped without the shared assets);
 //  - the per-frame light update: resample a 1k lat-long map (spiaggia_di_mondello_1k.hdr, or a
 //    synthetic sky with a sun when the shared assets are absent) under a rotation that changes
 //    every frame, Haar-transform, keep M coefficients, prepare for the asset; ms per step.
@@ -30,10 +33,12 @@
 #include <string>
 #include <vector>
 
+#include "bench_embree.hpp"
 #include "bench_triad.hpp"
 #include "bench_wavelet_asset.hpp"
 #include "prt/baker/context.hpp"
 #include "prt/baker/envmap.hpp"
+#include "prt/baker/wavelet_transport.hpp"
 
 namespace {
 
@@ -61,8 +66,82 @@ struct Figures {
   prt_bench::WaveletTraffic traffic;
   std::vector<LightFigure> light;
   std::string env_name;
+  prt_bench::Rate bake_rays, raw_rays;  // rays/s
+  std::string bake_skipped;
   std::mutex mutex;
 } g_figures;
+
+// --- Bake throughput against raw Embree -------------------------------------------------------
+
+constexpr uint32_t kBakeSize = 32, kBakeStride = 16;
+
+std::filesystem::path bunny_path() {
+  return std::filesystem::path(PRT_SHARED_DIR) / "assets/meshes/stanford-bunny.obj";
+}
+
+const prt::bake::Scene& bunny() {
+  static const prt::bake::Scene scene =
+      prt::bake::import_scene(bunny_path().string(), prt::bake::Context{});
+  return scene;
+}
+
+bool skip_without_bunny(benchmark::State& state) {
+  if (std::filesystem::exists(bunny_path())) return false;
+  g_figures.bake_skipped = "skipped: " + bunny_path().string() + " not found";
+  state.SkipWithError(g_figures.bake_skipped.c_str());
+  return true;
+}
+
+void BM_RawEmbreeOccluded1(benchmark::State& state) {
+  if (skip_without_bunny(state)) return;
+  static const prt_bench::RawEmbree raw(bunny());
+  static const prt_bench::VertexRays rays = prt_bench::cosine_vertex_rays(bunny(), 64);
+  g_figures.raw_rays = prt_bench::raw_occluded_rate(state, raw, rays);
+}
+BENCHMARK(BM_RawEmbreeOccluded1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
+
+void BM_BakeWavelet(benchmark::State& state) {
+  if (skip_without_bunny(state)) return;
+  const prt::bake::EmbreeScene embree(bunny(), prt::bake::Context{});
+  prt::bake::WaveletTransportSettings settings;
+  settings.size = kBakeSize;
+  settings.keep = prt::bake::default_wavelet_keep(PRT_WAVELET_PARAM_CUBE, kBakeSize);
+  settings.vertex_stride = kBakeStride;
+  prt::bake::Context one_thread;
+  one_thread.threads = 1;  // compared with single-threaded raw Embree
+  uint64_t rays = 0;
+  double seconds = 0.0, cpu_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = prt_bench::process_cpu_seconds();
+    const prt::bake::WaveletTransport transport =
+        prt::bake::compute_wavelet_transport(bunny(), &embree, settings, one_thread);
+    cpu_seconds += prt_bench::process_cpu_seconds() - cpu_start;
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    rays += transport.rays_traced;
+    benchmark::DoNotOptimize(transport.value.data());
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+  g_figures.bake_rays = {double(rays) / seconds, double(rays) / cpu_seconds};
+}
+BENCHMARK(BM_BakeWavelet)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+void print_bake() {
+  const Figures& f = g_figures;
+  if (!f.bake_skipped.empty()) {
+    std::printf("\n  bake: %s\n", f.bake_skipped.c_str());
+    return;
+  }
+  if (!(f.bake_rays.cpu > 0.0 && f.raw_rays.cpu > 0.0)) return;  // filtered out
+  std::printf(
+      "\n  bake (cube %u, 1 ray per texel above the horizon, every %u-th bunny vertex, 1 thread) "
+      "vs raw rtcOccluded1 (same mesh, rays from its vertices about their normals):\n",
+      kBakeSize, kBakeStride);
+  std::printf("    by CPU time:   %.2f vs %.2f Mrays/s = %.0f %%\n", f.bake_rays.cpu * 1e-6,
+              f.raw_rays.cpu * 1e-6, 100.0 * f.bake_rays.cpu / f.raw_rays.cpu);
+  std::printf("    by wall clock: %.2f vs %.2f Mrays/s = %.0f %%\n", f.bake_rays.wall * 1e-6,
+              f.raw_rays.wall * 1e-6, 100.0 * f.bake_rays.wall / f.raw_rays.wall);
+}
 
 prt_bench::Rate shading_total(int backend, int threads) {
   prt_bench::Rate sum;
@@ -350,6 +429,7 @@ void print_summary() {
                   1e3 * l.select, 1e3 * l.prepare,
                   1e3 * (l.resample + l.transform + l.select + l.prepare));
   }
+  print_bake();
   std::printf("\n");
 }
 
