@@ -189,7 +189,7 @@ TEST(WaveletExtremes, SunOfTenToTheFiveCastsASharpShadow) {
   ASSERT_EQ(a.load(b.blob), PRT_OK) << a.message();
   const EnvMap map = sun_map();
   const std::vector<glm::vec3> shaded =
-      test::runtime_shade(a, test::power_light(map, PRT_WAVELET_PARAM_CUBE, 64));
+      test::runtime_shade(a, test::runtime_light(map, PRT_WAVELET_PARAM_CUBE, 64));
   auto relative_to = [&](const glm::vec3& p) {
     std::vector<glm::dvec3> out;
     for (const glm::vec3& q : quad) out.push_back(glm::dvec3(q - p));
@@ -210,7 +210,7 @@ TEST(WaveletExtremes, SunOfTenToTheFiveCastsASharpShadow) {
   Context ctx;
   const WaveletTransport all = compute_wavelet_transport(scene, nullptr, s, ctx);
   const std::vector<glm::vec3> exact =
-      shade_wavelet_transport(all, test::power_light(map, PRT_WAVELET_PARAM_CUBE, 64));
+      shade_wavelet_transport(all, test::runtime_light(map, PRT_WAVELET_PARAM_CUBE, 64));
   EXPECT_NEAR(exact[37].g, lit, 0.02 * lit);
   EXPECT_NEAR(exact[40].g, dark, 0.02 * dark);
 }

@@ -87,7 +87,7 @@ struct RuntimeAsset {
   const char* message() const { return prt_context_last_message(context); }
 };
 
-// resample -> transform -> select(m) for a lat-long map.
+// The runtime's per-frame light of a lat-long map: resample -> transform -> select(m).
 inline std::vector<float> runtime_light(const EnvMap& map, std::uint32_t param, std::uint32_t size,
                                         std::uint32_t m = 0xFFFFFFFFu) {
   std::vector<float> light(std::size_t(prt_wavelet_coefficient_count(param, size)) * 4);
@@ -96,32 +96,6 @@ inline std::vector<float> runtime_light(const EnvMap& map, std::uint32_t param, 
             PRT_OK);
   EXPECT_EQ(prt_wavelet_transform_light(param, size, light.data()), PRT_OK);
   EXPECT_EQ(prt_wavelet_select_light(param, size, m, light.data()), PRT_OK);
-  return light;
-}
-
-// A light whose texel values conserve each texel's power exactly: the sum of L_s dw_s of the
-// lat-long texels whose centres it holds, over its own solid angle (the map must be finer than
-// the cube), then the runtime's Haar transform; every coefficient kept.
-inline std::vector<float> power_light(const EnvMap& map, std::uint32_t param, std::uint32_t size) {
-  std::vector<double> sum(std::size_t(prt_wavelet_coefficient_count(param, size)) * 4, 0.0);
-  for (int y = 0; y < map.height(); ++y) {
-    for (int x = 0; x < map.width(); ++x) {
-      glm::vec3 d;
-      float omega;
-      if (!map.texel(x, y, &d, &omega)) continue;
-      const std::uint32_t j = prt_wavelet_locate(param, size, &d.x);
-      for (int c = 0; c < 3; ++c) sum[4 * j + c] += double(omega) * map.texel_value(x, y)[c];
-    }
-  }
-  std::vector<float> light(sum.size(), 0.0f);
-  const std::uint32_t texels = size * size;
-  for (std::size_t j = 0; j < sum.size() / 4; ++j) {
-    const double w =
-        prt_wavelet_texel_solid_angle(param, size, std::uint32_t(j / texels),
-                                      std::uint32_t(j % size), std::uint32_t((j % texels) / size));
-    for (int c = 0; c < 3; ++c) light[4 * j + c] = w > 0 ? float(sum[4 * j + c] / w) : 0.0f;
-  }
-  EXPECT_EQ(prt_wavelet_transform_light(param, size, light.data()), PRT_OK);
   return light;
 }
 
