@@ -251,24 +251,18 @@ prt_result resample(const TradeLight& light, std::uint32_t param, std::uint32_t 
   return prt_wavelet_resample_cube(param, size, light.faces.data(), light.face_size, nullptr, rgba);
 }
 
-// The light in Haar coefficients with every term (resample + transform). Its power,
-// sum_j L_j dw_j, is checked against the SH light's DC term (integral of L = L_00 / Y_00),
-// which the SH projection computes by separate code: a wrong face or orientation shows there.
+// The light in Haar coefficients with every term (resample + transform). Its power, the sum of
+// its texels (SPEC §14: power per texel), is checked against the SH light's DC term (integral of
+// L = L_00 / Y_00), which the SH projection computes by separate code: a wrong face or
+// orientation shows there.
 std::vector<float> wavelet_light(const TradeLight& light, std::uint32_t param, std::uint32_t size,
                                  const Context& ctx, std::vector<std::string>* notes) {
   const std::uint32_t count = prt_wavelet_coefficient_count(param, size);
   std::vector<float> rgba(std::size_t(count) * 4);
   check_runtime(resample(light, param, size, rgba.data()), "prt_wavelet_resample");
-  const std::uint32_t faces = prt_wavelet_face_count(param);
   double power = 0.0;
-  for (std::uint32_t f = 0; f < faces; ++f) {
-    for (std::uint32_t y = 0; y < size; ++y) {
-      for (std::uint32_t x = 0; x < size; ++x) {
-        const std::size_t j = (std::size_t(f) * size + y) * size + x;
-        power += prt_wavelet_texel_solid_angle(param, size, f, x, y) *
-                 (rgba[4 * j] + rgba[4 * j + 1] + rgba[4 * j + 2]) / 3.0;
-      }
-    }
+  for (std::size_t j = 0; j < count; ++j) {
+    power += (double(rgba[4 * j]) + rgba[4 * j + 1] + rgba[4 * j + 2]) / 3.0;
   }
   const double y00 = 0.28209479177387814;
   const std::vector<float>& sh = light.sh.rgb;
@@ -731,7 +725,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
   md << "Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
      << " hardware threads; bakes on " << threads
      << " threads; SIMD backend: " << simd_description() << ".\n";
-  md << "\nLight check (power of the runtime's wavelet light, sum L_j dw_j, against the SH "
+  md << "\nLight check (power of the runtime's wavelet light, sum of its texels P_j, against the SH "
         "projection's DC term, beyond 2 %): "
      << (notes.empty() ? "every light passed.\n" : "\n\n");
   for (const std::string& note : notes) md << "- " << note << "\n";

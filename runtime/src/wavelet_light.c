@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The wavelet light, once per frame (SPEC §14): an environment map resampled onto a
- * parameterisation, Haar-transformed per face, and cut to the M most important coefficients.
+ * parameterisation as power per texel, Haar-transformed per face, and cut to the M most
+ * important coefficients.
  * No heap: the target's 4th float accumulates the landed solid angle (0 = nothing landed). */
 #include <float.h>
 #include <math.h>
@@ -97,13 +98,14 @@ static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint3
 }
 
 /* Turns what landed in every target texel (sum of L dw in RGB, sum of dw in the 4th float) into
- * radiance (SPEC §14). When every source texel is at most as large as the smallest target texel
- * the power is divided by the texel's own solid angle dw, so the source's power is kept exactly:
- * a sun a few source texels wide keeps its power however many source texels happen to land in its
- * target (their count varies by +-25 % at S = 64 from a 1k map; dividing by the landed dw would
- * make that a +-25 % error in the sun). A coarser source is divided by the landed dw instead (the
- * mean radiance of what landed: a constant map stays constant). A texel nothing landed in takes
- * the nearest source texel. dw depends on (x, y) only, so it is computed once for all faces. */
+ * the texel's power, radiance x its solid angle dw (SPEC §14). When every source texel is at most
+ * as large as the smallest target texel, the landed power is the texel's power as it is, so the
+ * source's power is kept exactly: a sun a few source texels wide keeps its power however many
+ * source texels happen to land in its target (their count varies by +-25 % at S = 64 from a 1k
+ * map; scaling by dw over the landed solid angle would make that a +-25 % error in the sun). A
+ * coarser source gives the mean radiance of what landed times dw (a constant map gives L dw). A
+ * texel nothing landed in takes the nearest source texel's radiance times dw. dw depends on
+ * (x, y) only, so it is computed once for all faces. */
 static void finish_resample(uint32_t param, uint32_t size, const double r[9],
                             const light_source* source, float* out_rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
@@ -114,11 +116,12 @@ static void finish_resample(uint32_t param, uint32_t size, const double r[9],
       const double solid_angle = prt_wavelet_texel_solid_angle(param, size, 0u, x, y);
       for (f = 0; f < faces; ++f) {
         float* texel = out_rgba + 4u * (((size_t)f * size + y) * size + x);
-        if (texel[3] > 0.0f) {
-          const float inverse = (float)(1.0 / (keep_power ? solid_angle : (double)texel[3]));
-          for (c = 0; c < 3u; ++c) texel[c] *= inverse;
-        } else {
+        if (texel[3] <= 0.0f) {
           fill_empty_texel(param, size, f, x, y, r, source, texel);
+          for (c = 0; c < 3u; ++c) texel[c] = (float)((double)texel[c] * solid_angle);
+        } else if (!keep_power) {
+          const double scale = solid_angle / (double)texel[3];
+          for (c = 0; c < 3u; ++c) texel[c] = (float)((double)texel[c] * scale);
         }
         texel[3] = 0.0f;
       }

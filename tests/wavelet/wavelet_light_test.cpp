@@ -111,7 +111,8 @@ std::vector<float> resample_cube(uint32_t param, uint32_t size, const std::vecto
 }
 
 // A source coarser than the target: every texel takes a source texel's radiance (a big source
-// texel landed whole, or the nearest one), so a constant map stays exactly constant.
+// texel landed whole, or the nearest one) times its own solid angle (SPEC §14), so a constant map
+// L gives exactly L dw_j on every texel.
 void expect_constant(uint32_t param, uint32_t size, const std::vector<float>& light,
                      const float rgb[3], const char* what) {
   // Each texel is a ratio of two float sums of up to ~2000 terms (the lat-long pole rows): each
@@ -120,19 +121,19 @@ void expect_constant(uint32_t param, uint32_t size, const std::vector<float>& li
   for (uint32_t j = 0; j < texel_count(param, size); ++j) {
     const bool in = inside(param, size, j);
     for (int c = 0; c < 3; ++c) {
-      const float expected = in ? rgb[c] : 0.0f;
-      if (std::fabs(light[4 * j + c] - expected) > 1e-4f * rgb[c]) ++wrong;
+      const double expected = in ? rgb[c] * solid_angle(param, size, j) : 0.0;
+      if (std::fabs(light[4 * j + c] - expected) > 1e-4 * expected) ++wrong;
     }
     if (light[4 * j + 3] != 0.0f) ++wrong;
   }
   EXPECT_EQ(wrong, 0u) << what << " param " << param << " size " << size;
 }
 
-// A source finer than the target: each texel holds the power landed in it over its own solid
-// angle (SPEC §14), so a constant map keeps its power 4 pi L exactly (every target here receives
-// ~20 or more source texels), while single texels differ from L by the share of boundary source
-// texels they happen to receive: on the cube never by a factor 2 (the paraboloid's rim texels
-// also collect the directions of the outside texels next to them, so the bound is the cube's).
+// A source finer than the target: each texel holds the power landed in it (SPEC §14), so a
+// constant map keeps its power 4 pi L exactly (every target here receives ~20 or more source
+// texels), while single texels differ from L dw_j by the share of boundary source texels they
+// happen to receive: on the cube never by a factor 2 (the paraboloid's rim texels also collect
+// the directions of the outside texels next to them, so the bound is the cube's).
 void expect_constant_power(uint32_t param, uint32_t size, const std::vector<float>& light,
                            const float rgb[3], const char* what) {
   double power[3] = {0, 0, 0};
@@ -140,8 +141,8 @@ void expect_constant_power(uint32_t param, uint32_t size, const std::vector<floa
   for (uint32_t j = 0; j < texel_count(param, size); ++j) {
     if (!inside(param, size, j)) continue;
     for (int c = 0; c < 3; ++c) {
-      power[c] += double(light[4 * j + c]) * solid_angle(param, size, j);
-      const double ratio = light[4 * j + c] / rgb[c];
+      power[c] += double(light[4 * j + c]);
+      const double ratio = light[4 * j + c] / (rgb[c] * solid_angle(param, size, j));
       if (param == kCube && !(ratio >= 0.5 && ratio <= 2.0)) ++outside_band;
     }
   }
@@ -188,7 +189,7 @@ TEST(WaveletLight, SmallSunKeepsItsPowerExactly) {
         const std::vector<float> light = resample_latlong(param, size, map, width, r.m);
         double power = 0.0;
         for (uint32_t j = 0; j < texel_count(param, size); ++j)
-          power += double(light[4 * j]) * solid_angle(param, size, j);
+          power += double(light[4 * j]);
         EXPECT_NEAR(power / source_power, 1.0, 1e-5) << param << " " << size << " " << place;
       }
   }
@@ -211,9 +212,9 @@ TEST(WaveletLight, ConstantCubeStaysConstantOrKeepsItsPowerForAnyRotation) {
   }
 }
 
-// Sum L_j dw_j over the target = sum L_s dw_s over a source finer than the target. On the
-// paraboloid the inside texels' solid angles over-cover the sphere by their lattice excess, which
-// bounds the deviation there.
+// Sum P_j over the target = sum L_s dw_s over a source finer than the target. On the paraboloid
+// the inside texels' solid angles over-cover the sphere by their lattice excess, which bounds the
+// deviation there.
 TEST(WaveletLight, PowerOfAFineMapIsConserved) {
   const uint32_t width = 1024, height = 512;
   const std::vector<float> map = random_map(size_t(width) * height, 11);
@@ -230,7 +231,7 @@ TEST(WaveletLight, PowerOfAFineMapIsConserved) {
       double power[3] = {0, 0, 0}, covered = 0;
       for (uint32_t j = 0; j < texel_count(param, size); ++j) {
         covered += solid_angle(param, size, j);
-        for (int c = 0; c < 3; ++c) power[c] += light[4 * j + c] * solid_angle(param, size, j);
+        for (int c = 0; c < 3; ++c) power[c] += light[4 * j + c];
       }
       const double excess = std::fabs(covered / (4 * kPi) - 1);
       for (int c = 0; c < 3; ++c)
@@ -346,7 +347,9 @@ TEST(WaveletLight, CoarseSourceFillsEveryTexelFromTheNearestSourceTexel) {
       const double v = std::acos(std::clamp(e[1], -1.0, 1.0)) / kPi;
       const uint32_t x = std::min(width - 1, uint32_t(u * width));
       const uint32_t y = std::min(height - 1, uint32_t(v * height));
-      if (light[4 * j] == map[3 * (y * width + x)]) ++from_nearest;
+      // The nearest texel's radiance times the texel's solid angle, rounded once (SPEC §14).
+      const float expected = float(double(map[3 * (y * width + x)]) * solid_angle(param, size, j));
+      if (light[4 * j] == expected) ++from_nearest;
     }
     EXPECT_EQ(empty, 0u);
     // All but the (32) targets a source centre landed in, and some near seams.
@@ -387,16 +390,16 @@ TEST(WaveletLight, CubeAndLatLongSourcesAgree) {
   for (uint32_t param : {kCube, kParaboloid}) {
     const std::vector<float> a = resample_latlong(param, 16, map, width, r.m);
     const std::vector<float> b = resample_cube(param, 16, faces, face_size, r.m);
-    // Each target holds the power that landed in it over its solid angle, and which boundary
-    // source texels land in it differs between the two sources, so single texels differ by a few
-    // per cent; what shading sees, the power weighted by a smooth transport, agrees closely: the
-    // cosine-weighted power about several normals (a smooth function of the texel) within 2e-3.
+    // Each target holds the power that landed in it, and which boundary source texels land in it
+    // differs between the two sources, so single texels differ by a few per cent; what shading
+    // sees, the power weighted by a smooth transport, agrees closely: the cosine-weighted power
+    // about several normals (a smooth function of the texel) within 2e-3.
     for (const double* n : {kAxes[0], kAxes[2], kAxes[5], kAxes[6]}) {
       double sa = 0.0, sb = 0.0;
       for (uint32_t j = 0; j < texel_count(param, 16); ++j) {
         const double cosine = std::max(0.0, dot(n, texel_centre(param, 16, j)));
-        sa += a[4 * j] * solid_angle(param, 16, j) * cosine;
-        sb += b[4 * j] * solid_angle(param, 16, j) * cosine;
+        sa += a[4 * j] * cosine;
+        sb += b[4 * j] * cosine;
       }
       EXPECT_NEAR(sa / sb, 1.0, 2e-3) << param;
     }

@@ -52,7 +52,7 @@ bool wavelet_usable(const glm::vec3& p, const glm::vec3& n) {
 // Calls visit(j, w, weight) for every jittered sample direction w of every texel j not entirely
 // below the horizon of n with n.w > 0, weight = dw_j / pi * J cos / sum of the texel's J (k x k
 // samples; those off the paraboloid's disc skipped, the centre when all are): so the weights of
-// an unoccluded texel sum to its T_j.
+// an unoccluded texel sum to its integral of cos / pi (dw_j times the T_j of an open sky).
 template <typename Visit>
 void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::uint32_t vertex_key,
                      std::uint32_t samples, Visit visit) {
@@ -104,7 +104,10 @@ std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
                     }
                     sum[j] += weight;
                   });
-  for (std::uint32_t j = 0; j < grid.count(); ++j) row[j] = static_cast<float>(sum[j]);
+  // The samples' weights integrate over the texel; the transport is the texel's mean (§14).
+  for (std::uint32_t j = 0; j < grid.count(); ++j) {
+    row[j] = sum[j] == 0.0 ? 0.0f : static_cast<float>(sum[j] / grid.solid_angle(j));
+  }
   return traced;
 }
 

@@ -95,7 +95,9 @@ PRT_API uint32_t prt_wavelet_band(uint32_t param, uint32_t size, uint32_t j);
 
 /* Resamples a lat-long map (SPEC §12: width = 2 height, rows from the top, RGB floats) turned by
  * rotation (row-major 3x3, §12 convention; NULL = identity) onto the texels of a
- * parameterisation: out_rgba = mean radiance per texel (§14). Non-finite and negative channels
+ * parameterisation: out_rgba = the power per texel, i.e. its mean radiance times its solid angle
+ * (§14; a vertex's radiance is then sum_j T_j P_j with T_j its transport's mean over texel j; a
+ * source finer than the texels keeps its power exactly). Non-finite and negative channels
  * count as 0. PRT_ERROR_INVALID_ARGUMENT for NULL pointers, bad param/size, a width that is not
  * 2 height, height 0, or a rotation with a non-finite entry. */
 PRT_API prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const float* rgb,
@@ -109,7 +111,8 @@ PRT_API prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, cons
                                              uint32_t face_size, const float* rotation,
                                              float* out_rgba);
 
-/* Haar-transforms every face of a light in place (texel values -> coefficients, §14). */
+/* Haar-transforms every face of a light in place (texel powers -> coefficients, §14). A game
+ * that builds its own texel light writes radiance x prt_wavelet_texel_solid_angle per texel. */
 PRT_API prt_result prt_wavelet_transform_light(uint32_t param, uint32_t size, float* rgba);
 
 /* Keeps every face's scaling coefficient and the m detail coefficients of largest area-weighted

@@ -3,14 +3,13 @@
 // formats/SPEC.md §7.2 and §14).
 //
 // For a vertex with unit normal n, the transport of texel j of the parameterisation (the cube of
-// 6 S x S faces or the dual paraboloid of 2) is
-//   T_j = integral over texel j of V(w) max(0, n.w) / pi dw
-// (grey: the albedo is kept per vertex and goes into the blob's vertex scale). It is estimated
-// with k x k jittered (stratified) rays per texel in the face's (u, v) coordinates, each sample
-// weighted by the parameterisation's Jacobian: T_j = dw_j * sum_i J_i f_i / sum_i J_i, with dw_j
-// the runtime's texel solid angle, so a texel that sees the sky everywhere gets exactly
-// dw_j * mean cosine / pi and the light (the mean radiance per texel, §14) multiplies it
-// consistently. Texels entirely below the horizon (exact test: the sign of n.w over a cube
+// 6 S x S faces or the dual paraboloid of 2) is the mean over the texel
+//   T_j = (1 / dw_j) integral over texel j of V(w) max(0, n.w) / pi dw
+// (grey: the albedo is kept per vertex and goes into the blob's vertex scale; the light texel is
+// the power over the texel, §14). It is estimated with k x k jittered (stratified) rays per texel
+// in the face's (u, v) coordinates, each sample weighted by the parameterisation's Jacobian:
+// T_j = sum_i J_i f_i / sum_i J_i, so a texel that sees the sky everywhere gets exactly its
+// mean cosine / pi. Texels entirely below the horizon (exact test: the sign of n.w over a cube
 // texel is that of a linear function of (s, t), so its corners decide; for the paraboloid the
 // separable quadratic is maximised exactly) get 0 and no rays. Rays leave the vertex by the Embree
 // scene's offset policy, like the sh bake.
@@ -25,7 +24,8 @@
 // each bounce gathers, along the same texel samples, where they hit the front of a surface, the
 // previous pass's (truncated) rows of the hit triangle's vertices, interpolated by barycentrics
 // and weighted by the sample's weight and the hit vertex's albedo:
-//   B_j(p) = sum over hits of (dw cos / pi weight) * rho(hit) * T^(b-1)_j(hit);
+//   B_j(p) = sum over hits of (dw cos / pi weight) * rho(hit) * T^(b-1)_j(hit)
+// (the sample weights integrate over the hemisphere; the rows stay per unit of light power);
 // the row stored is the truncation of direct + bounces. The rows are grey, so the hit's albedo
 // is the mean of its RGB (exact for grey materials such as --albedo 0.8,0.8,0.8). Bounces read
 // every vertex's rows: with a vertex subset, vertices outside it count as black.
