@@ -168,7 +168,7 @@ TEST(PrtViewWavelet, BackendsAgree) {
   EXPECT_LT(relative_difference(gl, cpu), 1e-5);
 }
 
-// Keeping only the faces' scaling coefficients (M = 0) shades with each face's mean radiance: a
+// Keeping only the faces' scaling coefficients (M = 0) shades with each face's mean power: a
 // different, blurrier result than keeping all of them.
 TEST(PrtViewWavelet, FewerLightCoefficientsChangeTheResult) {
   const std::vector<float> all = view_vertices(kSky, "m_all", "--backend cpu");
