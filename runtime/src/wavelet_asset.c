@@ -59,6 +59,7 @@ static prt_result open_wvlt(const prt_asset* asset, wvlt_view* view) {
   view->rows.counts = p + l->counts;
   view->rows.pairs = p + l->pairs;
   view->rows.light = NULL;
+  view->rows.skip = NULL;
   view->rows.blocks = l->blocks;
   view->rows.pair_count = info->pair_count;
   return PRT_OK;
@@ -124,6 +125,18 @@ prt_result prt_wavelet_decode_row(const prt_asset* asset, uint32_t vertex, float
   return walk_row(&view.rows, vertex, decode_pair, &d);
 }
 
+/* Marks each 256-coefficient block whose prepared RGB is all zero (prt_wavelet_asset.h). */
+static void mark_zero_blocks(uint32_t coefficient_count, float* prepared_rgba) {
+  uint32_t block, i;
+  for (block = 0; block < coefficient_count / PRT_BLOB_WVLT_BLOCK; ++block) {
+    float* first = prepared_rgba + 4u * PRT_BLOB_WVLT_BLOCK * (size_t)block;
+    int zero = 1;
+    for (i = 0; i < 4u * PRT_BLOB_WVLT_BLOCK && zero; ++i)
+      zero = (i & 3u) == 3u || first[i] == 0.0f;
+    first[3] = zero ? PRT_WAVELET_ZERO_BLOCK_MARK : 0.0f;
+  }
+}
+
 prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_rgba,
                                      float* out_rgba) {
   wvlt_view view;
@@ -138,11 +151,12 @@ prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_
     for (c = 0; c < 3; ++c) out_rgba[4u * (size_t)j + c] = light_rgba[4u * (size_t)j + c] * bs;
     out_rgba[4u * (size_t)j + 3] = 0.0f;
   }
+  mark_zero_blocks(view.info.coefficient_count, out_rgba);
   return PRT_OK;
 }
 
 /* The report's loop: per block and pair, q times the prepared light summed in float in stored
- * order, then times the vertex scale. */
+ * order, then times the vertex scale (blocks of zero light skipped: they add exactly 0). */
 static prt_result shade_scalar(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,
                                float* out_rgb) {
   uint32_t v, k, i, c;
@@ -157,7 +171,7 @@ static prt_result shade_scalar(const prt_wavelet_rows* rows, uint32_t first, uin
       const uint8_t* pair = rows->pairs + 2u * (size_t)at;
       const float* block = rows->light + 4u * PRT_BLOB_WVLT_BLOCK * (size_t)k;
       if (n > PRT_BLOB_WVLT_BLOCK || n > end - at) return PRT_ERROR_CORRUPT;
-      for (i = 0; i < n; ++i, pair += 2) {
+      for (i = 0; i < n && !rows->skip[k]; ++i, pair += 2) {
         const float q = (float)(int8_t)pair[1];
         const float* light = block + 4u * pair[0];
         sum[0] += q * light[0];
@@ -191,8 +205,14 @@ static prt_result shade_with(prt_wavelet_kernel kernel, const prt_asset* asset,
                              const float* prepared_rgba, uint32_t first, uint32_t count,
                              float* out_rgb) {
   wvlt_view view;
+  uint8_t skip[PRT_WAVELET_MAX_BLOCKS];
+  uint32_t k;
   prt_result r = open_shading(asset, prepared_rgba, first, count, out_rgb, &view);
   if (r != PRT_OK || count == 0) return r;
+  for (k = 0; k < view.rows.blocks; ++k)
+    skip[k] =
+        prepared_rgba[4u * PRT_BLOB_WVLT_BLOCK * (size_t)k + 3u] == PRT_WAVELET_ZERO_BLOCK_MARK;
+  view.rows.skip = skip;
   return kernel(&view.rows, first, count, out_rgb);
 }
 

@@ -35,7 +35,8 @@ PRT_KERNEL_INLINE void fill_block_number(uint16_t* block_of, uint32_t k, uint32_
 }
 
 /* Sums of row v's pairs into *rgb; 0 when a block count is above 256 or disagrees with the row
- * starts. Blocks are taken a window at a time: first the block number of every pair (from the
+ * starts. Blocks of zero light are skipped (their pairs add exactly 0). Blocks are taken a window
+ * at a time: first the block number of every pair (from the
  * counts alone), then one flat loop over the window's pairs, so the shading loop does not stop
  * and mispredict at each block's end while its light loads are in flight. */
 PRT_KERNEL_INLINE int shade_row(const prt_wavelet_rows* rows, uint32_t v, __m128* rgb) {
@@ -47,17 +48,23 @@ PRT_KERNEL_INLINE int shade_row(const prt_wavelet_rows* rows, uint32_t v, __m128
   acc_clear(&acc);
   at = start;
   while (k < rows->blocks) {
-    const uint32_t window_start = at;
-    uint32_t filled = 0;
+    uint32_t window_start = at, filled = 0;
     for (; k < rows->blocks; ++k) {
       const uint32_t n = prt_le_load_u16(counts + 2u * k);
       if (n > PRT_BLOB_WVLT_BLOCK || n > end - at) return 0;
+      if (rows->skip[k]) { /* zero light: skipped, but a window's pairs must be contiguous */
+        if (filled > 0) break;
+        at += n;
+        window_start = at;
+        continue;
+      }
       if (filled + n > PRT_WAVELET_WINDOW) break; /* block k starts the next window */
       fill_block_number(block_of + filled, k, n);
       filled += n;
       at += n;
     }
-    acc_add_pairs(&acc, rows->light, rows->pairs + 2u * (size_t)window_start, block_of, filled);
+    if (filled > 0)
+      acc_add_pairs(&acc, rows->light, rows->pairs + 2u * (size_t)window_start, block_of, filled);
   }
   *rgb = acc_total(&acc);
   return at == end;

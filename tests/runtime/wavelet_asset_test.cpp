@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "wavelet_blob_test_util.hpp"
+#include "wavelet_skip_check.hpp"
 
 namespace {
 
@@ -255,6 +256,10 @@ TEST_F(WaveletAsset, PrepareLightFoldsBandScalesInPlace) {
       ASSERT_EQ(light[4 * size_t(j) + c], original[4 * size_t(j) + c] * t.band_scale[t.band(j)]);
     ASSERT_EQ(light[4 * size_t(j) + 3], 0.0f);
   }
+}
+
+TEST_F(WaveletAsset, ZeroLightBlocksAreSkippedExactly) {
+  expect_zero_light_blocks_skipped(ctx.ctx, PRT_BACKEND_CPU);
 }
 
 TEST_F(WaveletAsset, VertexRangesAndThreadsGiveTheSameBits) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "wavelet_blob_test_util.hpp"
+#include "wavelet_skip_check.hpp"
 
 namespace {
 
@@ -131,6 +132,10 @@ TEST_P(WaveletSimd, EveryRowLengthAndBlockFill) {
   t.rows[41].clear();
   for (uint32_t i = 0; i < 256; ++i) t.rows[41].push_back({512 + i, int8_t(i % 2 ? 127 : -127)});
   expect_simd_matches(t, 18);
+}
+
+TEST_P(WaveletSimd, ZeroLightBlocksAreSkippedExactly) {
+  expect_zero_light_blocks_skipped(ctx, PRT_BACKEND_SIMD);
 }
 
 TEST_P(WaveletSimd, AllZeroRowIsExactlyZero) {

@@ -45,8 +45,11 @@ PRT_API prt_result prt_wavelet_get_info(const prt_asset* asset, prt_wavelet_info
 PRT_API prt_result prt_wavelet_decode_row(const prt_asset* asset, uint32_t vertex, float* out_rgb);
 
 /* Folds the asset's band scales into a selected light (prt_wavelet_select_light's output, the
- * asset's param and size): out_rgba[j] = light_rgba[j] * bs[band(j)], 4th float 0. light_rgba
- * and out_rgba may be the same array. */
+ * asset's param and size): out_rgba[j] = light_rgba[j] * bs[band(j)]. The 4th float is 0, except
+ * that of each 256-coefficient block's first coefficient: 1 when the block's RGB is all zero, so
+ * that shading skips the block's stored pairs (they would add exactly 0) and the time follows the
+ * blocks the M selected coefficients touch. A light prepared otherwise, with 0 there, shades the
+ * same, only without skipping. light_rgba and out_rgba may be the same array. */
 PRT_API prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_rgba,
                                              float* out_rgba);
 
