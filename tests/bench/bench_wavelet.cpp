@@ -12,6 +12,9 @@
 //  - bake throughput: compute_wavelet_transport of the Stanford bunny (every 16th vertex, cube
 //    N = 32, one ray per texel, 1 thread) in rays/s as a share of raw rtcOccluded1 on the same
 //    mesh (bench_embree.hpp; skipped without the shared assets);
+//  - relight at M: the same shading on the best SIMD backend, 1 thread, under the environment
+//    below cut to M light coefficients: blocks of zero light are skipped, so fewer coefficients
+//    shade faster; ms per frame and the ratio to M = all measured in the same run;
 //  - the per-frame light update: resample a 1k lat-long map (spiaggia_di_mondello_1k.hdr, or a
 //    synthetic sky with a sun when the shared assets are absent) under a rotation that changes
 //    every frame, Haar-transform, keep M coefficients, prepare for the asset; ms per step.
@@ -31,6 +34,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_embree.hpp"
@@ -65,6 +69,8 @@ struct Figures {
   prt_bench::Rate shading[kBackendCount][2][2];
   prt_bench::WaveletTraffic traffic;
   std::vector<LightFigure> light;
+  std::vector<std::pair<uint32_t, double>> relight_at_m;  // (M, 0 = all; seconds per frame)
+  std::string relight_at_m_backend;
   std::string env_name;
   prt_bench::Rate bake_rays, raw_rays;  // rays/s
   std::string bake_skipped;
@@ -372,6 +378,64 @@ BENCHMARK(BM_LightUpdate)
     ->UseRealTime()
     ->MinTime(0.3);
 
+// The environment's light cut to M coefficients (0 = all) and prepared for the asset.
+std::vector<float> environment_light(prt_asset* asset, uint32_t m) {
+  const LatLong& env = environment();
+  const uint32_t size = prt_bench::kWaveletSize,
+                 coefficients = prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, size);
+  std::vector<float> light(4 * size_t(coefficients));
+  prt_result r = prt_wavelet_resample_latlong(PRT_WAVELET_PARAM_CUBE, size, env.rgb.data(),
+                                              env.width, env.height, nullptr, light.data());
+  if (r == PRT_OK) r = prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, size, light.data());
+  if (r == PRT_OK)
+    r = prt_wavelet_select_light(PRT_WAVELET_PARAM_CUBE, size, m ? m : coefficients, light.data());
+  if (r == PRT_OK) r = prt_wavelet_prepare_light(asset, light.data(), light.data());
+  if (r != PRT_OK) light.clear();
+  return light;
+}
+
+// Every vertex on the best SIMD backend, one thread, under the environment cut to M terms.
+void BM_RelightAtM(benchmark::State& state) {
+  const uint32_t m = uint32_t(state.range(0));
+  std::string why;
+  prt_asset* asset = nullptr;
+  int backend = kBackendCount;
+  while (!asset && backend > 0) asset = g_assets.get(--backend, &why);
+  const std::vector<float> light = asset ? environment_light(asset, m) : std::vector<float>();
+  if (light.empty()) {
+    state.SkipWithError(asset ? "light update failed" : why.c_str());
+    return;
+  }
+  std::vector<float> out(3 * size_t(prt_bench::kBunnyVertices));
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const prt_result r = prt_wavelet_shade_on(asset, kBackends[backend].backend, light.data(), 0,
+                                              prt_bench::kBunnyVertices, out.data());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (r != PRT_OK) {
+      state.SkipWithError(prt_result_string(r));
+      return;
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["frames/s"] =
+      benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  g_figures.relight_at_m_backend = kBackends[backend].name;
+  auto& figures = g_figures.relight_at_m;  // the last run of each M (benchmark reruns it)
+  if (figures.empty() || figures.back().first != m) figures.emplace_back(m, 0.0);
+  figures.back().second = seconds / double(state.iterations());
+}
+BENCHMARK(BM_RelightAtM)
+    ->Arg(0)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(0.3);
+
 // --- Summary --------------------------------------------------------------------------------
 
 void print_relight(bool by_cpu) {
@@ -394,6 +458,21 @@ void print_relight(bool by_cpu) {
                   100.0 * vertices * w.streamed_per_vertex / triad,
                   100.0 * vertices * (w.streamed_per_vertex + w.gathered_per_vertex) / triad);
     }
+}
+
+void print_relight_at_m() {
+  const Figures& f = g_figures;
+  if (f.relight_at_m.empty()) return;
+  double all = 0.0;
+  for (const auto& [m, seconds] : f.relight_at_m)
+    if (m == 0) all = seconds;
+  std::printf(
+      "\n  relight at M light coefficients (%s, %s, 1 thread; blocks of zero light "
+      "skipped), ms per frame and against M = all in this run:\n",
+      f.env_name.c_str(), f.relight_at_m_backend.c_str());
+  for (const auto& [m, seconds] : f.relight_at_m)
+    std::printf("  %6s %9.2f ms %6.2f x\n", m ? std::to_string(m).c_str() : "all", 1e3 * seconds,
+                all > 0.0 ? all / seconds : 0.0);
 }
 
 void print_summary() {
@@ -429,6 +508,7 @@ void print_summary() {
                   1e3 * l.select, 1e3 * l.prepare,
                   1e3 * (l.resample + l.transform + l.select + l.prepare));
   }
+  print_relight_at_m();
   print_bake();
   std::printf("\n");
 }
