@@ -130,10 +130,11 @@ static void mark_zero_blocks(uint32_t coefficient_count, float* prepared_rgba) {
   uint32_t block, i;
   for (block = 0; block < coefficient_count / PRT_BLOB_WVLT_BLOCK; ++block) {
     float* first = prepared_rgba + 4u * PRT_BLOB_WVLT_BLOCK * (size_t)block;
+    const uint32_t mark = PRT_WAVELET_ZERO_BLOCK_MARK;
     int zero = 1;
     for (i = 0; i < 4u * PRT_BLOB_WVLT_BLOCK && zero; ++i)
       zero = (i & 3u) == 3u || first[i] == 0.0f;
-    first[3] = zero ? PRT_WAVELET_ZERO_BLOCK_MARK : 0.0f;
+    if (zero) memcpy(first + 3, &mark, sizeof mark);
   }
 }
 
@@ -171,14 +172,15 @@ static prt_result shade_scalar(const prt_wavelet_rows* rows, uint32_t first, uin
       const uint8_t* pair = rows->pairs + 2u * (size_t)at;
       const float* block = rows->light + 4u * PRT_BLOB_WVLT_BLOCK * (size_t)k;
       if (n > PRT_BLOB_WVLT_BLOCK || n > end - at) return PRT_ERROR_CORRUPT;
-      for (i = 0; i < n && !rows->skip[k]; ++i, pair += 2) {
+      at += n;
+      if (rows->skip[k]) continue;
+      for (i = 0; i < n; ++i, pair += 2) {
         const float q = (float)(int8_t)pair[1];
         const float* light = block + 4u * pair[0];
         sum[0] += q * light[0];
         sum[1] += q * light[1];
         sum[2] += q * light[2];
       }
-      at += n;
     }
     if (at != end) return PRT_ERROR_CORRUPT;
     for (c = 0; c < 3; ++c) out[c] = prt_wavelet_vertex_scale(rows, v, c) * sum[c];
@@ -210,8 +212,8 @@ static prt_result shade_with(prt_wavelet_kernel kernel, const prt_asset* asset,
   prt_result r = open_shading(asset, prepared_rgba, first, count, out_rgb, &view);
   if (r != PRT_OK || count == 0) return r;
   for (k = 0; k < view.rows.blocks; ++k)
-    skip[k] =
-        prepared_rgba[4u * PRT_BLOB_WVLT_BLOCK * (size_t)k + 3u] == PRT_WAVELET_ZERO_BLOCK_MARK;
+    skip[k] = (uint8_t)prt_wavelet_block_marked_zero(prepared_rgba +
+                                                     4u * PRT_BLOB_WVLT_BLOCK * (size_t)k);
   view.rows.skip = skip;
   return kernel(&view.rows, first, count, out_rgb);
 }

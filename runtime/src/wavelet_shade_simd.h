@@ -43,8 +43,16 @@ static inline float prt_wavelet_load_f32(const uint8_t* p) {
 /* The most blocks a row has: 6 faces of 128^2 coefficients. */
 #define PRT_WAVELET_MAX_BLOCKS (6u * 128u * 128u / PRT_BLOB_WVLT_BLOCK)
 
-/* The 4th float of a block's first prepared coefficient when the block's light is all zero. */
-#define PRT_WAVELET_ZERO_BLOCK_MARK 1.0f
+/* The bits of the 4th float of a block's first prepared coefficient when the block's light is all
+ * zero: a quiet NaN with a fixed payload, which no light a game fills in by other means (padding
+ * 0, or an alpha of 1) carries by accident. */
+#define PRT_WAVELET_ZERO_BLOCK_MARK 0x7FC05A42u
+
+static inline int prt_wavelet_block_marked_zero(const float* block_light) {
+  uint32_t bits;
+  memcpy(&bits, block_light + 3, sizeof bits);
+  return bits == PRT_WAVELET_ZERO_BLOCK_MARK;
+}
 
 /* Row v's pair range [*start, *end); 0 when the row starts are not increasing within the
  * section's pairs (possible only in a blob loaded with quick validation). */

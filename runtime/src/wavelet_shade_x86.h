@@ -36,9 +36,9 @@ PRT_KERNEL_INLINE void fill_block_number(uint16_t* block_of, uint32_t k, uint32_
 
 /* Sums of row v's pairs into *rgb; 0 when a block count is above 256 or disagrees with the row
  * starts. Blocks of zero light are skipped (their pairs add exactly 0). Blocks are taken a window
- * at a time: first the block number of every pair (from the
- * counts alone), then one flat loop over the window's pairs, so the shading loop does not stop
- * and mispredict at each block's end while its light loads are in flight. */
+ * at a time: first the block number of every pair (from the counts alone), then one flat loop
+ * over the window's pairs, so the shading loop does not stop and mispredict at each block's end
+ * while its light loads are in flight. */
 PRT_KERNEL_INLINE int shade_row(const prt_wavelet_rows* rows, uint32_t v, __m128* rgb) {
   const uint8_t* counts = rows->counts + 2u * (size_t)v * rows->blocks;
   uint16_t block_of[PRT_WAVELET_WINDOW + 16u];

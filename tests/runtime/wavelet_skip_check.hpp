@@ -47,8 +47,16 @@ inline void expect_zero_light_blocks_skipped(prt_context* ctx, prt_backend backe
       for (uint32_t c = 0; c < 3; ++c) light[4 * size_t(j) + c] = 0.0f;
   std::vector<float> prepared(light.size());
   ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data()), PRT_OK);
-  for (uint32_t k = 0; k < blocks; ++k)
-    ASSERT_EQ(prepared[4 * size_t(kBlock) * k + 3], k % 3 == 1 ? 1.0f : 0.0f) << "block " << k;
+  // Marked: the dark blocks, with one NaN marker; the others 0, like every other 4th float.
+  const float marker = prepared[4 * size_t(kBlock) * 1 + 3];
+  ASSERT_TRUE(std::isnan(marker));
+  for (uint32_t k = 0; k < blocks; ++k) {
+    const float mark = prepared[4 * size_t(kBlock) * k + 3];
+    if (k % 3 == 1)
+      ASSERT_EQ(std::memcmp(&mark, &marker, sizeof mark), 0) << "block " << k;
+    else
+      ASSERT_EQ(mark, 0.0f) << "block " << k;
+  }
 
   auto shade = [&](const std::vector<float>& with) {
     std::vector<float> rgb(3 * size_t(t.vertices), -1.0f);
@@ -67,9 +75,14 @@ inline void expect_zero_light_blocks_skipped(prt_context* ctx, prt_backend backe
     EXPECT_EQ(std::memcmp(skipped.data(), walked.data(), skipped.size() * sizeof(float)), 0);
   }
 
+  // A light filled in by other means with an alpha of 1 is walked in full.
+  std::vector<float> alpha_one = unmarked;
+  for (size_t j = 0; j < t.coefficients(); ++j) alpha_one[4 * j + 3] = 1.0f;
+  expect_near_reference(t, light, shade(alpha_one), "alpha 1");
+
   // Block 0 (the scaling coefficients and coarse levels of face 0) marked although lit.
   std::vector<float> hand = prepared;
-  hand[3] = 1.0f;
+  hand[3] = marker;
   const std::vector<float> without_block0 = shade(hand);
   WvltTransport rest = t;
   for (std::vector<WvltPair>& row : rest.rows)

@@ -46,10 +46,11 @@ PRT_API prt_result prt_wavelet_decode_row(const prt_asset* asset, uint32_t verte
 
 /* Folds the asset's band scales into a selected light (prt_wavelet_select_light's output, the
  * asset's param and size): out_rgba[j] = light_rgba[j] * bs[band(j)]. The 4th float is 0, except
- * that of each 256-coefficient block's first coefficient: 1 when the block's RGB is all zero, so
- * that shading skips the block's stored pairs (they would add exactly 0) and the time follows the
- * blocks the M selected coefficients touch. A light prepared otherwise, with 0 there, shades the
- * same, only without skipping. light_rgba and out_rgba may be the same array. */
+ * that of each 256-coefficient block's first coefficient when the block's RGB is all zero: there
+ * it is a marker (a NaN with a fixed payload), and shading skips the block's stored pairs (they
+ * would add exactly 0), so the time follows the blocks the M selected coefficients touch. A light
+ * prepared otherwise (any other 4th float) shades the same, only without skipping. light_rgba and
+ * out_rgba may be the same array. */
 PRT_API prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_rgba,
                                              float* out_rgba);
 
