@@ -293,16 +293,9 @@ std::vector<float> selected(const std::vector<float>& light, std::uint32_t param
 // The rows truncated to their `keep` largest |c| (ties: the lower index), as a bake at `keep`
 // would have kept them.
 WaveletTransport truncated(const WaveletTransport& t, std::uint32_t keep) {
-  WaveletTransport out;
-  out.param = t.param;
-  out.size = t.size;
-  out.vertex_count = t.vertex_count;
-  out.coefficient_count = t.coefficient_count;
-  out.albedo = t.albedo;
-  out.baked = t.baked;
-  out.vertices_without_normal = t.vertices_without_normal;
-  out.rays_traced = t.rays_traced;
-  out.seconds = t.seconds;
+  WaveletTransport out = t;  // everything but the rows
+  out.index.clear();
+  out.value.clear();
   out.row_start.assign(1, 0);
   std::vector<float> row;
   for (std::size_t v = 0; v < t.vertex_count; ++v) {
@@ -725,7 +718,8 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
   md << "Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
      << " hardware threads; bakes on " << threads
      << " threads; SIMD backend: " << simd_description() << ".\n";
-  md << "\nLight check (power of the runtime's wavelet light, sum of its texels P_j, against the SH "
+  md << "\nLight check (power of the runtime's wavelet light, sum of its texels P_j, against the "
+        "SH "
         "projection's DC term, beyond 2 %): "
      << (notes.empty() ? "every light passed.\n" : "\n\n");
   for (const std::string& note : notes) md << "- " << note << "\n";

@@ -125,34 +125,32 @@ prt_result prt_wavelet_decode_row(const prt_asset* asset, uint32_t vertex, float
   return walk_row(&view.rows, vertex, decode_pair, &d);
 }
 
-/* Marks each 256-coefficient block whose prepared RGB is all zero (prt_wavelet_asset.h). */
-static void mark_zero_blocks(uint32_t coefficient_count, float* prepared_rgba) {
-  uint32_t block, i;
-  for (block = 0; block < coefficient_count / PRT_BLOB_WVLT_BLOCK; ++block) {
-    float* first = prepared_rgba + 4u * PRT_BLOB_WVLT_BLOCK * (size_t)block;
-    const uint32_t mark = PRT_WAVELET_ZERO_BLOCK_MARK;
-    int zero = 1;
-    for (i = 0; i < 4u * PRT_BLOB_WVLT_BLOCK && zero; ++i)
-      zero = (i & 3u) == 3u || first[i] == 0.0f;
-    if (zero) memcpy(first + 3, &mark, sizeof mark);
-  }
-}
-
+/* Band scales folded in, block by block; a block whose prepared RGB is all zero is marked in
+ * the 4th float of its first coefficient (prt_wavelet_asset.h), in the same pass. */
 prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_rgba,
                                      float* out_rgba) {
+  const uint32_t mark = PRT_WAVELET_ZERO_BLOCK_MARK;
   wvlt_view view;
-  uint32_t j, c;
+  uint32_t block, j, c;
   prt_result r;
   if (!asset || !light_rgba || !out_rgba) return PRT_ERROR_INVALID_ARGUMENT;
   r = open_wvlt(asset, &view);
   if (r != PRT_OK) return r;
-  for (j = 0; j < view.info.coefficient_count; ++j) {
-    const uint32_t band = prt_wavelet_band(view.info.param, view.info.size, j);
-    const float bs = prt_wavelet_load_f32(view.band_scale + 4u * (size_t)band);
-    for (c = 0; c < 3; ++c) out_rgba[4u * (size_t)j + c] = light_rgba[4u * (size_t)j + c] * bs;
-    out_rgba[4u * (size_t)j + 3] = 0.0f;
+  for (block = 0; block < view.info.block_count; ++block) {
+    const uint32_t first = block * PRT_BLOB_WVLT_BLOCK;
+    int lit = 0;
+    for (j = first; j < first + PRT_BLOB_WVLT_BLOCK; ++j) {
+      const uint32_t band = prt_wavelet_band(view.info.param, view.info.size, j);
+      const float bs = prt_wavelet_load_f32(view.band_scale + 4u * (size_t)band);
+      for (c = 0; c < 3; ++c) {
+        const float value = light_rgba[4u * (size_t)j + c] * bs;
+        out_rgba[4u * (size_t)j + c] = value;
+        lit |= value != 0.0f; /* NaN counts as lit: it must reach the sum */
+      }
+      out_rgba[4u * (size_t)j + 3] = 0.0f;
+    }
+    if (!lit) memcpy(out_rgba + 4u * (size_t)first + 3, &mark, sizeof mark);
   }
-  mark_zero_blocks(view.info.coefficient_count, out_rgba);
   return PRT_OK;
 }
 

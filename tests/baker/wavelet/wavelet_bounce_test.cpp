@@ -14,6 +14,7 @@
 #include "prt/baker/radiance_error.hpp"
 #include "prt/baker/reference.hpp"
 #include "prt/baker/wavelet_transport.hpp"
+#include "wavelet_test_util.hpp"
 
 namespace prt::bake {
 namespace {
@@ -28,12 +29,9 @@ std::vector<glm::vec3> wavelet_radiance(const Scene& scene, int bounces) {
   s.albedo = glm::vec3(0.8f);
   Context ctx;
   const WaveletTransport t = compute_wavelet_transport(scene, nullptr, s, ctx);
-  // Radiance 1 everywhere: each texel's power is its solid angle (SPEC §14); then Haar.
-  std::vector<float> light(6 * 256 * 4, 0.0f);
-  for (std::uint32_t j = 0; j < 6 * 256; ++j)
-    light[4 * j] = light[4 * j + 1] = light[4 * j + 2] = float(
-        prt_wavelet_texel_solid_angle(PRT_WAVELET_PARAM_CUBE, 16, j / 256, j % 16, (j / 16) % 16));
-  EXPECT_EQ(prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, 16, light.data()), PRT_OK);
+  // Radiance 1 everywhere, through the runtime's light pipeline (texel powers, SPEC §14).
+  const std::vector<float> light =
+      test::runtime_light(constant_envmap(glm::vec3(1.0f)), PRT_WAVELET_PARAM_CUBE, 16);
   return shade_wavelet_transport(t, light);
 }
 
