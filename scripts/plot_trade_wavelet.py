@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
 """Plots the wavelet-against-sh trade that `prt-bake trade-wavelet` writes (trade.csv) as a 2x2
-figure: error vs transport bytes per vertex (both techniques, both maps: the equal-bytes
+figure: error vs transfer bytes per vertex (both techniques, both maps: the equal-bytes
 comparison), error vs light terms M, error vs cube size N (and the dual paraboloid), and shading
 time per frame vs bytes per vertex. Errors are the relative RMSE with the reference's noise
 removed.
@@ -29,7 +29,7 @@ def read_rows(path):
     if not rows:
         sys.exit(f"plot_trade_wavelet: {path} has no rows")
     for row in rows:
-        for key in ("rel_rmse_noise_removed", "transport_bytes_per_vertex", "shade_cpu_ms",
+        for key in ("rel_rmse_noise_removed", "transfer_bytes_per_vertex", "shade_cpu_ms",
                     "shade_simd_ms", "size", "keep", "sh_order"):
             row[key] = number(row[key])
         row["sweeps"] = row["sweeps"].split("+")
@@ -48,7 +48,7 @@ def line(ax, points, **style):
 def error_vs_bytes(ax, rows, maps):
     for colour, m in zip(COLOURS, maps):
         def pick(predicate):
-            return [(r["transport_bytes_per_vertex"], 100 * r["rel_rmse_noise_removed"])
+            return [(r["transfer_bytes_per_vertex"], 100 * r["rel_rmse_noise_removed"])
                     for r in rows if r["map"] == m and predicate(r)]
         line(ax, pick(lambda r: r["technique"] == "wavelet" and "K" in r["sweeps"]
                       and r["quantizer"] == "band"),
@@ -62,7 +62,7 @@ def error_vs_bytes(ax, rows, maps):
              color=colour, marker="^", linestyle="-.", label=f"{m}: sh 8-bit (orders)")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("transport bytes per vertex")
+    ax.set_xlabel("transfer bytes per vertex")
     ax.set_ylabel("relative RMSE, noise removed (%)")
     ax.set_title("Error vs bytes per vertex")
     ax.grid(True, which="both", alpha=0.3)
@@ -112,16 +112,16 @@ def time_vs_bytes(ax, rows, maps):
     first = maps[0]
     for technique, marker in (("wavelet", "o"), ("sh", "s")):
         sel = [r for r in rows if r["map"] == first and r["technique"] == technique
-               and r["transport_bytes_per_vertex"] is not None
+               and r["transfer_bytes_per_vertex"] is not None
                and (technique == "sh" or ("K" in r["sweeps"] and r["quantizer"] == "band"))
                and (technique == "wavelet" or r["quantizer"].startswith("16"))]
-        line(ax, [(r["transport_bytes_per_vertex"], r["shade_cpu_ms"]) for r in sel],
+        line(ax, [(r["transfer_bytes_per_vertex"], r["shade_cpu_ms"]) for r in sel],
              marker=marker, label=f"{technique}: CPU")
-        line(ax, [(r["transport_bytes_per_vertex"], r["shade_simd_ms"]) for r in sel],
+        line(ax, [(r["transfer_bytes_per_vertex"], r["shade_simd_ms"]) for r in sel],
              marker=marker, linestyle="--", label=f"{technique}: SIMD")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("transport bytes per vertex")
+    ax.set_xlabel("transfer bytes per vertex")
     ax.set_ylabel("ms per frame, whole mesh, one thread")
     ax.set_title(f"Shading time ({first})")
     ax.grid(True, which="both", alpha=0.3)

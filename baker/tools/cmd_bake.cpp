@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // prt-bake bake SCENE --technique sh|wavelet -o OUT.prtk: bakes per-vertex transfer (SH vectors,
-// prt/baker/sh_blob.hpp; or sparse Haar rows, prt/baker/wavelet_blob.hpp), quantises it, writes
+// prt/baker/sh/sh_blob.hpp; or sparse Haar rows, prt/baker/wavelet/wavelet_blob.hpp), quantises it, writes
 // the blob, then loads it back through the runtime and checks it.
 #include <cstdio>
 #include <fstream>
@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "command.hpp"
-#include "prt/baker/sh_blob.hpp"
-#include "prt/baker/sh_transfer.hpp"
-#include "prt/baker/wavelet_blob.hpp"
-#include "prt/baker/wavelet_transport.hpp"
+#include "prt/baker/sh/sh_blob.hpp"
+#include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/baker/wavelet/wavelet_blob.hpp"
+#include "prt/baker/wavelet/wavelet_transfer.hpp"
 
 namespace prt::bake::cli {
 namespace {
@@ -22,7 +22,7 @@ struct BakeOptions {
   std::string scene, technique = "sh", transfer = "shadowed", albedo, output, report;
   ShTransferSettings settings;
   int bits = 16;
-  WaveletTransportSettings wavelet;
+  WaveletTransferSettings wavelet;
   std::string param = "cube", quantizer = "band";
   // Options given on the command line that belong to one technique only.
   std::vector<CLI::Option*> sh_only, wavelet_only;
@@ -104,7 +104,7 @@ void run_sh_bake(const BakeOptions& options, CommandEnv& env) {
 
 void run_wavelet_bake(const BakeOptions& options, CommandEnv& env) {
   const Context ctx = env.context();
-  WaveletTransportSettings settings = options.wavelet;
+  WaveletTransferSettings settings = options.wavelet;
   settings.seed = options.seed;
   settings.param = parse_wavelet_param(options.param.c_str());
   if (options.keep->count() == 0)
@@ -117,12 +117,12 @@ void run_wavelet_bake(const BakeOptions& options, CommandEnv& env) {
   }
   const WaveletQuantizer quantizer = parse_wavelet_quantizer(options.quantizer.c_str());
   const Scene scene = import_scene(options.scene, ctx);
-  const WaveletTransport transport = compute_wavelet_transport(scene, nullptr, settings, ctx);
+  const WaveletTransfer transfer = compute_wavelet_transfer(scene, nullptr, settings, ctx);
   std::uint32_t most = 0;
-  for (std::size_t v = 0; v < transport.vertex_count; ++v)
-    most = std::max<std::uint32_t>(most, static_cast<std::uint32_t>(transport.row_size(v)));
-  QuantizedWavelet quantized = quantize_wavelet_transport(
-      transport, quantizer, settings.keep_energy > 0.0 ? most : settings.keep);
+  for (std::size_t v = 0; v < transfer.vertex_count; ++v)
+    most = std::max<std::uint32_t>(most, static_cast<std::uint32_t>(transfer.row_size(v)));
+  QuantizedWavelet quantized = quantize_wavelet_transfer(
+      transfer, quantizer, settings.keep_energy > 0.0 ? most : settings.keep);
   quantized.bounces = static_cast<std::uint32_t>(settings.bounces);
   const std::string info = "prtkit wavelet bake: " + options.scene + ", " +
                            wavelet_param_name(settings.param) + " " +
@@ -133,9 +133,9 @@ void run_wavelet_bake(const BakeOptions& options, CommandEnv& env) {
   const double vertices = double(std::max<std::size_t>(1, scene.vertex_count()));
   ctx.info(std::to_string(scene.vertex_count()) + " vertices, " +
            wavelet_param_name(settings.param) + " " + std::to_string(settings.size) + ": " +
-           format("%.3g rays in %.1f s; ", double(transport.rays_traced), transport.seconds) +
+           format("%.3g rays in %.1f s; ", double(transfer.rays_traced), transfer.seconds) +
            format("%.0f non-zeros/vertex (%.1f %% of the energy kept); ",
-                  double(quantized.pair_count()) / vertices, 100.0 * transport.mean_energy_kept) +
+                  double(quantized.pair_count()) / vertices, 100.0 * transfer.mean_energy_kept) +
            options.quantizer +
            format(" quantiser RMS error %.3g of the largest coefficient; ",
                   quantized.max_abs_value > 0 ? quantized.rms_abs_error / quantized.max_abs_value
@@ -150,10 +150,10 @@ void run_wavelet_bake(const BakeOptions& options, CommandEnv& env) {
   report.triangles = scene.triangle_count();
   report.settings = settings;
   report.threads = ctx.thread_count();
-  report.transport = &transport;
+  report.transfer = &transfer;
   report.quantized = &quantized;
   report.blob_bytes = blob.size();
-  report.check = check_wavelet_blob(blob, transport, quantized, settings.seed + 1);
+  report.check = check_wavelet_blob(blob, transfer, quantized, settings.seed + 1);
   if (!options.report.empty()) {
     write_wavelet_bake_report(options.report, report);
     ctx.info("wrote " + options.report);
@@ -200,7 +200,7 @@ void add_sh_options(CLI::App* cmd, BakeOptions& options) {
 }
 
 void add_wavelet_options(CLI::App* cmd, BakeOptions& options) {
-  WaveletTransportSettings& w = options.wavelet;
+  WaveletTransferSettings& w = options.wavelet;
   w.size = 64;
   w.samples = 1;
   options.keep = cmd->add_option("--keep", w.keep,

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "command.hpp"
-#include "prt/baker/env_sh.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 
 namespace prt::bake::cli {
 namespace {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // prt-bake trade SCENE --env MAP ... --out-dir DIR: the measured speed/accuracy trade of technique
-// `sh` (docs/sh-trade.md). Three sweeps around a base setting (order, rays, bounces): each
+// `sh` (docs/sh/trade.md). Three sweeps around a base setting (order, rays, bounces): each
 // setting is baked in-process, quantised, written to a blob and loaded through the runtime; each
 // map is projected to SH by the runtime and the blob shaded by the runtime on the CPU and SIMD
 // backends; the result is compared with the reference renderer's per-vertex radiance for the same
@@ -28,13 +28,13 @@
 
 #include "command.hpp"
 #include "prt/baker/embree_scene.hpp"
-#include "prt/baker/env_sh.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/envmap.hpp"
 #include "prt/baker/image_io.hpp"
 #include "prt/baker/radiance_error.hpp"
 #include "prt/baker/reference.hpp"
-#include "prt/baker/sh_blob.hpp"
-#include "prt/baker/sh_transfer.hpp"
+#include "prt/baker/sh/sh_blob.hpp"
+#include "prt/baker/sh/sh_transfer.hpp"
 #include "trade_common.hpp"
 
 namespace prt::bake::cli {

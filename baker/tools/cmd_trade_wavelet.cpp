@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // prt-bake trade-wavelet SCENE --env MAP ... --out-dir DIR: the measured speed/accuracy trade of
-// technique `wavelet` against `sh` (docs/wavelet-trade.md). One bake per parameterisation and
+// technique `wavelet` against `sh` (docs/wavelet/trade.md). One bake per parameterisation and
 // size at the largest K swept; smaller K are the same rows truncated (the bake keeps the K
 // largest |c|, so the K' < K largest of those are what a bake at K' keeps). Sweeps:
 //   N   cube face size at K = 4 % of the coefficients, the default quantiser, every light term;
@@ -35,10 +35,10 @@
 #include "prt/baker/embree_scene.hpp"
 #include "prt/baker/envmap.hpp"
 #include "prt/baker/radiance_error.hpp"
-#include "prt/baker/sh_blob.hpp"
-#include "prt/baker/sh_transfer.hpp"
-#include "prt/baker/wavelet_blob.hpp"
-#include "prt/baker/wavelet_transport.hpp"
+#include "prt/baker/sh/sh_blob.hpp"
+#include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/baker/wavelet/wavelet_blob.hpp"
+#include "prt/baker/wavelet/wavelet_transfer.hpp"
 #include "trade_common.hpp"
 
 namespace prt::bake::cli {
@@ -292,8 +292,8 @@ std::vector<float> selected(const std::vector<float>& light, std::uint32_t param
 
 // The rows truncated to their `keep` largest |c| (ties: the lower index), as a bake at `keep`
 // would have kept them.
-WaveletTransport truncated(const WaveletTransport& t, std::uint32_t keep) {
-  WaveletTransport out = t;  // everything but the rows
+WaveletTransfer truncated(const WaveletTransfer& t, std::uint32_t keep) {
+  WaveletTransfer out = t;  // everything but the rows
   out.index.clear();
   out.value.clear();
   out.row_start.assign(1, 0);
@@ -309,7 +309,7 @@ WaveletTransport truncated(const WaveletTransport& t, std::uint32_t keep) {
   return out;
 }
 
-Row wavelet_row(const WaveletTransport& t, const Measurement& m, const TradeLight& light) {
+Row wavelet_row(const WaveletTransfer& t, const Measurement& m, const TradeLight& light) {
   Row row;
   row.technique = "wavelet";
   row.map = light.sh.name;
@@ -349,14 +349,14 @@ double time_wavelet_shading(const prt_asset* asset, prt_backend backend,
 }
 
 // Rows of one (keep, quantiser) on every light and each of its light terms.
-void measure_quantized(const Scene& scene, const WaveletTransport& t, const std::string& quantizer,
+void measure_quantized(const Scene& scene, const WaveletTransfer& t, const std::string& quantizer,
                        const std::vector<const Measurement*>& ms,
                        const std::vector<TradeLight>& lights,
                        const std::vector<std::vector<float>>& full_lights,
                        const WaveletTradeOptions& o, const Context& ctx, std::vector<Row>* rows) {
   const std::uint32_t keep = ms.front()->keep;
   const QuantizedWavelet q =
-      quantize_wavelet_transport(t, parse_wavelet_quantizer(quantizer.c_str()), keep);
+      quantize_wavelet_transfer(t, parse_wavelet_quantizer(quantizer.c_str()), keep);
   const std::size_t section = encode_wvlt_section(q).size();
   const std::vector<std::uint8_t> blob =
       build_wavelet_blob(scene, q, "prtkit wavelet trade: " + o.scene);
@@ -378,7 +378,7 @@ void measure_quantized(const Scene& scene, const WaveletTransport& t, const std:
       row.light_ms = time_light_update(lights[l], asset, t.param, t.size, m->terms, o.frames);
       const std::vector<glm::vec3> radiance = as_vec3(shaded);
       row.error = subset_rmse(radiance, lights[l].reference.radiance, o.vertex_stride);
-      row.quant_error = subset_rmse(radiance, shade_wavelet_transport(t, light), o.vertex_stride);
+      row.quant_error = subset_rmse(radiance, shade_wavelet_transfer(t, light), o.vertex_stride);
       // Per measured vertex: with a vertex stride the other rows are empty, so the pairs count
       // over the measured vertices, the rest of the section (SPEC §7.2) over all.
       const double measured = double((vertices + o.vertex_stride - 1) / o.vertex_stride);
@@ -397,7 +397,7 @@ void measure_quantized(const Scene& scene, const WaveletTransport& t, const std:
   }
 }
 
-void measure_float(const WaveletTransport& t, const std::vector<const Measurement*>& ms,
+void measure_float(const WaveletTransfer& t, const std::vector<const Measurement*>& ms,
                    const std::vector<TradeLight>& lights,
                    const std::vector<std::vector<float>>& full_lights, const WaveletTradeOptions& o,
                    const Context& ctx, std::vector<Row>* rows) {
@@ -405,7 +405,7 @@ void measure_float(const WaveletTransport& t, const std::vector<const Measuremen
     for (const Measurement* m : ms) {
       Row row = wavelet_row(t, *m, lights[l]);
       const std::vector<float> light = selected(full_lights[l], t.param, t.size, m->terms);
-      row.error = subset_rmse(shade_wavelet_transport(t, light), lights[l].reference.radiance,
+      row.error = subset_rmse(shade_wavelet_transfer(t, light), lights[l].reference.radiance,
                               o.vertex_stride);
       row.pairs_per_vertex =
           double(t.index.size()) / double((t.vertex_count + o.vertex_stride - 1) / o.vertex_stride);
@@ -420,7 +420,7 @@ void measure_float(const WaveletTransport& t, const std::vector<const Measuremen
 void run_wavelet_bake(const Scene& scene, const EmbreeScene& rays, const WaveletBake& bake,
                       const std::vector<TradeLight>& lights, const WaveletTradeOptions& o,
                       const Context& ctx, std::vector<Row>* rows, std::vector<std::string>* notes) {
-  WaveletTransportSettings settings;
+  WaveletTransferSettings settings;
   settings.param = bake.param;
   settings.size = bake.size;
   settings.samples = o.samples;
@@ -431,7 +431,7 @@ void run_wavelet_bake(const Scene& scene, const EmbreeScene& rays, const Wavelet
     settings.override_albedo = true;
     settings.albedo = parse_albedo(o.albedo);
   }
-  const WaveletTransport full = compute_wavelet_transport(scene, &rays, settings, ctx);
+  const WaveletTransfer full = compute_wavelet_transfer(scene, &rays, settings, ctx);
   ctx.info(format("  baked in %.1f s, ", full.seconds) +
            format("%.1f Mrays/s", 1e-6 * double(full.rays_traced) / std::max(full.seconds, 1e-9)));
   std::vector<std::vector<float>> full_lights;
@@ -441,14 +441,14 @@ void run_wavelet_bake(const Scene& scene, const EmbreeScene& rays, const Wavelet
   std::map<std::pair<std::uint32_t, std::string>, std::vector<const Measurement*>> groups;
   for (const Measurement& m : bake.measurements) groups[{m.keep, m.quantizer}].push_back(&m);
   std::uint32_t truncated_keep = 0;
-  WaveletTransport rows_at_keep;
+  WaveletTransfer rows_at_keep;
   for (const auto& [key, ms] : groups) {
     const bool whole = key.first >= bake.keep;
     if (!whole && truncated_keep != key.first) {
       rows_at_keep = truncated(full, key.first);
       truncated_keep = key.first;
     }
-    const WaveletTransport& t = whole ? full : rows_at_keep;
+    const WaveletTransfer& t = whole ? full : rows_at_keep;
     if (key.second == "float") {
       measure_float(t, ms, lights, full_lights, o, ctx, rows);
     } else {
@@ -568,7 +568,7 @@ void write_csv(const std::string& path, const std::vector<Row>& rows, const Wave
   std::ofstream csv(path);
   csv << "scene,technique,map,sweeps,param,size,keep,quantizer,light_terms,sh_order,sh_rays,"
          "samples,vertices,rel_rmse,ref_noise,rel_rmse_noise_removed,ref_spp,"
-         "transport_bytes_per_vertex,pairs_per_vertex,blob_bytes,shade_cpu_ms,shade_simd_ms,"
+         "transfer_bytes_per_vertex,pairs_per_vertex,blob_bytes,shade_cpu_ms,shade_simd_ms,"
          "light_update_ms,bake_seconds,rays_traced,rays_per_second,quant_shading_rel_rmse\n";
   for (const Row& r : rows) {
     const bool wavelet = r.technique == "wavelet";
@@ -643,7 +643,7 @@ void write_comparison(std::ofstream& md, const std::vector<Row>& rows, const std
            r->quantizer;
   };
   md << "\n### " << map << ": sh against wavelet at equal bytes per vertex\n\n";
-  md << "For each budget (a measured row's transport bytes per vertex), the lowest error "
+  md << "For each budget (a measured row's transfer bytes per vertex), the lowest error "
         "(noise removed) each technique reaches within it.\n\n";
   md << "| budget B/vertex | best sh | error % | best wavelet | error % | wins |\n";
   md << "|---:|---|---:|---|---:|---|\n";
@@ -709,7 +709,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
      << " samples per vertex, direct light with visibility. Error = relative RMSE of per-vertex "
         "RGB radiance against it; error, noise removed = sqrt(error² − noise²) with the "
         "reference's own noise estimate. B/vertex = the raw WVLT or SHTR section bytes / "
-        "vertices (the transport a game holds; the blob adds the mesh). CPU / SIMD ms = median "
+        "vertices (the transfer a game holds; the blob adds the mesh). CPU / SIMD ms = median "
         "of "
      << o.frames
      << " shadings of every vertex on one thread; light ms = one light update (wavelet: resample, "

@@ -12,7 +12,7 @@
 #include <fstream>
 
 #include "command.hpp"
-#include "prt/baker/env_sh.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/image_io.hpp"
 #include "prt/baker/reference.hpp"
 

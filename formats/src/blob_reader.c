@@ -14,7 +14,7 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_VNRM, PRT_BLOB_LAYOUT_VERSION_1, 12u, "vertex normals (3 x f32)"},
     {PRT_BLOB_TAG_TRIS, PRT_BLOB_LAYOUT_VERSION_1, 12u, "triangles (3 x u32)"},
     {PRT_BLOB_TAG_SHTR, PRT_BLOB_LAYOUT_VERSION_1, 0u, "sh transfer (element = vertex)"},
-    {PRT_BLOB_TAG_WVLT, PRT_BLOB_LAYOUT_VERSION_1, 0u, "wavelet transport (element = vertex)"},
+    {PRT_BLOB_TAG_WVLT, PRT_BLOB_LAYOUT_VERSION_1, 0u, "wavelet transfer (element = vertex)"},
 };
 
 const prt_blob_kind* prt_blob_find_kind(uint32_t tag, uint8_t layout_version) {
@@ -267,7 +267,7 @@ static prt_blob_status check_dependencies(const void* data, const prt_blob_heade
     if (!has_vpos) return fail(PRT_BLOB_CORRUPT, msg, cap, "section 'WVLT' needs a 'VPOS' section");
     if (other.element_count != vpos.element_count)
       return fail(PRT_BLOB_CORRUPT, msg, cap,
-                  "'WVLT' has %" PRIu64 " transport rows for %" PRIu64 " vertices",
+                  "'WVLT' has %" PRIu64 " transfer rows for %" PRIu64 " vertices",
                   other.element_count, vpos.element_count);
   }
   return PRT_BLOB_OK;
@@ -522,7 +522,7 @@ static prt_blob_status check_wvlt_rows(const uint8_t* p, const prt_blob_wvlt_lay
   return PRT_BLOB_OK;
 }
 
-/* The `wavelet` transport section (SPEC.md §7.2): every header field, the exact size, zero
+/* The `wavelet` transfer section (SPEC.md §7.2): every header field, the exact size, zero
  * padding, finite non-negative scales, row starts, block counts, indices and values. */
 static prt_blob_status check_wvlt(const prt_blob_section* s, const uint8_t* p, size_t n,
                                   uint64_t vertex_count, char* msg, size_t cap) {

@@ -21,8 +21,8 @@
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sampling.hpp"
 
-#include "bench_embree.hpp"
-#include "bench_triad.hpp"
+#include "support/bench_embree.hpp"
+#include "support/bench_triad.hpp"
 
 namespace {
 

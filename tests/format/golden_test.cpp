@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "blob_test_util.hpp"
+#include "support/blob_test_util.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include <prt/format/blob_writer.hpp>
 
-#include "blob_test_util.hpp"
+#include "support/blob_test_util.hpp"
 
 namespace {
 

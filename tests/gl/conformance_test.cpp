@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "gl_test_util.hpp"
+#include "support/gl_test_util.hpp"
 
 namespace {
 
@@ -172,12 +172,12 @@ TEST(conformance, Order16Rgb16Bit) {
 using prt_test::WaveletShaderPtr;
 using prt_test::WvltAsset;
 using prt_test::WvltPair;
-using prt_test::WvltTransport;
+using prt_test::WvltTransfer;
 
 // Rows of every shape, by vertex index mod 6: none, one pair, one full block of 256, and three
 // random rows of 1..500 pairs (distinct indices, values +-1..127).
-WvltTransport conformance_transport(uint32_t param, uint32_t size, uint32_t seed) {
-  WvltTransport t = prt_test::wvlt_random(param, size, kVertices, 0, seed);
+WvltTransfer conformance_transfer(uint32_t param, uint32_t size, uint32_t seed) {
+  WvltTransfer t = prt_test::wvlt_random(param, size, kVertices, 0, seed);
   const uint32_t coefficients = t.coefficients(), blocks = t.blocks();
   std::mt19937 rng(seed);
   std::uniform_int_distribution<uint32_t> pick(0, coefficients - 1), length(1, 500);
@@ -227,7 +227,7 @@ std::vector<float> sunny_light(uint32_t coefficients, uint32_t seed) {
   return light;
 }
 
-double compare_wavelet(const char* what, const WvltTransport& t, const Truth& truth,
+double compare_wavelet(const char* what, const WvltTransfer& t, const Truth& truth,
                        const std::vector<double>& reference, const std::vector<float>& rgb,
                        uint32_t first, uint32_t count) {
   double worst = 0.0;
@@ -247,7 +247,7 @@ double compare_wavelet(const char* what, const WvltTransport& t, const Truth& tr
 
 void check_wavelet_backends(uint32_t param, uint32_t size) {
   PRT_REQUIRE_GL(gl);
-  const WvltTransport t = conformance_transport(param, size, 500 + size + param);
+  const WvltTransfer t = conformance_transfer(param, size, 500 + size + param);
   const prt_test::Bytes blob = prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), kVertices);
   const std::vector<float> light = sunny_light(t.coefficients(), 31 + size);
   Truth truth;

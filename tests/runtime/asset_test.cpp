@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "../format/blob_test_util.hpp"
+#include "support/blob_test_util.hpp"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "prt/baker/env_sh.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/envmap.hpp"
 
 namespace {

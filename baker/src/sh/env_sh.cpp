@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SH projection of environment maps through EnvMap::texel (exact texel solid angles) and the
 // runtime's prt_sh_eval, so the baker and the runtime share one basis.
-#include "prt/baker/env_sh.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 
 #include <prt/prt_sh.h>
 

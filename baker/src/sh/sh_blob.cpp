@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "prt/baker/sh_blob.hpp"
+#include "prt/baker/sh/sh_blob.hpp"
 
 #include "../common/technique_blob.hpp"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "prt/baker/sh_transfer.hpp"
+#include "prt/baker/sh/sh_transfer.hpp"
 
 #include <prt/prt_sh.h>
 #include <tbb/task_arena.h>

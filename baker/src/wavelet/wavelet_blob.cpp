@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The WVLT section encoder and the `wavelet` blob (formats/SPEC.md §7.2).
-#include "prt/baker/wavelet_blob.hpp"
+#include "prt/baker/wavelet/wavelet_blob.hpp"
 
 #include "../common/technique_blob.hpp"
 
@@ -81,7 +81,7 @@ std::vector<std::uint8_t> encode_wvlt_section(const QuantizedWavelet& qw) {
 std::vector<std::uint8_t> build_wavelet_blob(const Scene& scene, const QuantizedWavelet& quantized,
                                              const std::string& info) {
   if (scene.vertex_count() != quantized.vertex_count) {
-    throw Error("wavelet blob: the transport has " + std::to_string(quantized.vertex_count) +
+    throw Error("wavelet blob: the transfer has " + std::to_string(quantized.vertex_count) +
                 " vertices, the scene " + std::to_string(scene.vertex_count()));
   }
   prt::format::BlobWriter writer = start_technique_blob(scene, info);

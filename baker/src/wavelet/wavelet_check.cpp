@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "prt/baker/wavelet_blob.hpp"
+#include "prt/baker/wavelet/wavelet_blob.hpp"
 
 #include "../common/technique_blob.hpp"
 
@@ -48,7 +48,7 @@ std::vector<std::size_t> sample_vertices(const QuantizedWavelet& q) {
 
 // Decoded row v against the quantised pairs (as a reader computes them: 2 ulps) and the float
 // row (half a step plus rounding). Returns the failures.
-std::size_t check_row(const std::vector<float>& decoded, std::size_t v, const WaveletTransport& t,
+std::size_t check_row(const std::vector<float>& decoded, std::size_t v, const WaveletTransfer& t,
                       const QuantizedWavelet& q, WaveletBlobCheck& check) {
   std::size_t failures = 0;
   std::vector<float> expected(decoded.size(), 0.0f);
@@ -117,7 +117,7 @@ std::string check_shading(const prt_asset* asset, const prt_context* context,
 }  // namespace
 
 WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
-                                    const WaveletTransport& transport,
+                                    const WaveletTransfer& transfer,
                                     const QuantizedWavelet& quantized, std::uint32_t seed) {
   WaveletBlobCheck check;
   prt_context* raw_context = nullptr;
@@ -140,7 +140,7 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
     check.message = runtime_failure("prt_wavelet_get_info", r, raw_context);
     return check;
   }
-  if (!header_matches(info, quantized) || transport.vertex_count != quantized.vertex_count) {
+  if (!header_matches(info, quantized) || transfer.vertex_count != quantized.vertex_count) {
     check.message = "the blob's WVLT header does not match the bake";
     return check;
   }
@@ -152,7 +152,7 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
       check.message = runtime_failure("prt_wavelet_decode_row", r, raw_context);
       return check;
     }
-    failures += check_row(decoded, v, transport, quantized, check);
+    failures += check_row(decoded, v, transfer, quantized, check);
     ++check.rows_checked;
   }
   if (failures) {
@@ -170,8 +170,8 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
 }
 
 void write_wavelet_bake_report(const std::string& path, const WaveletBakeReport& report) {
-  const WaveletTransportSettings& s = report.settings;
-  const WaveletTransport& t = *report.transport;
+  const WaveletTransferSettings& s = report.settings;
+  const WaveletTransfer& t = *report.transfer;
   const QuantizedWavelet& q = *report.quantized;
   std::size_t baked = 0;
   for (unsigned char b : t.baked) baked += b;

@@ -25,7 +25,7 @@ double max_quadratic(double a0, double a1, double A, double C) {
 TexelGrid::TexelGrid(std::uint32_t param, std::uint32_t size)
     : param_(param), size_(size), faces_(prt_wavelet_face_count(param)) {
   if (prt_wavelet_coefficient_count(param, size) == 0) {
-    throw Error("wavelet transport: face size must be a power of two in " +
+    throw Error("wavelet transfer: face size must be a power of two in " +
                 std::to_string(PRT_WAVELET_MIN_SIZE) + ".." + std::to_string(PRT_WAVELET_MAX_SIZE) +
                 " and the parameterisation cube or dual-paraboloid");
   }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The texels of a `wavelet` parameterisation as the transport bake needs them (private header):
+// The texels of a `wavelet` parameterisation as the transfer bake needs them (private header):
 // solid angles, the exact "entirely below the horizon" test, jittered sample directions and the
 // Jacobian that weights them. Directions and solid angles come from the runtime (prt_wavelet.h),
 // so bake and runtime cannot disagree on the texel layout.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The two 8-bit quantisers of prt/baker/wavelet_blob.hpp.
+// The two 8-bit quantisers of prt/baker/wavelet/wavelet_blob.hpp.
 #include <prt/prt_wavelet.h>
 
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "prt/baker/wavelet_blob.hpp"
+#include "prt/baker/wavelet/wavelet_blob.hpp"
 
 namespace prt::bake {
 namespace {
@@ -19,7 +19,7 @@ std::uint32_t log2_size(std::uint32_t size) {
 }
 
 // Largest |value| of each band over all vertices, or its `percentile` quantile when < 1.
-std::vector<float> band_magnitudes(const WaveletTransport& t, std::uint32_t bands,
+std::vector<float> band_magnitudes(const WaveletTransfer& t, std::uint32_t bands,
                                    double percentile) {
   std::vector<float> largest(bands, 0.0f);
   if (percentile >= 1.0) {
@@ -42,7 +42,7 @@ std::vector<float> band_magnitudes(const WaveletTransport& t, std::uint32_t band
   return largest;
 }
 
-float largest_in_row(const WaveletTransport& t, std::size_t v) {
+float largest_in_row(const WaveletTransfer& t, std::size_t v) {
   float m = 0.0f;
   for (std::uint64_t p = t.row_start[v]; p < t.row_start[v + 1]; ++p) {
     m = std::max(m, std::abs(t.value[p]));
@@ -50,7 +50,7 @@ float largest_in_row(const WaveletTransport& t, std::size_t v) {
   return m;
 }
 
-void measure_error(const WaveletTransport& t, QuantizedWavelet& out, double sum_sq) {
+void measure_error(const WaveletTransfer& t, QuantizedWavelet& out, double sum_sq) {
   const double count = double(t.index.size());
   out.rms_abs_error = count > 0 ? std::sqrt(sum_sq / count) : 0.0;
 }
@@ -76,12 +76,12 @@ std::uint32_t wavelet_band_count(std::uint32_t param, std::uint32_t size) {
   return prt_wavelet_face_count(param) * (log2_size(size) + 1);
 }
 
-QuantizedWavelet quantize_wavelet_transport(const WaveletTransport& t, WaveletQuantizer quantizer,
+QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuantizer quantizer,
                                             std::uint32_t keep, double band_percentile) {
   if (prt_wavelet_coefficient_count(t.param, t.size) != t.coefficient_count ||
       t.row_start.size() != t.vertex_count + 1 || t.index.size() != t.value.size() ||
       t.albedo.size() != t.vertex_count) {
-    throw Error("wavelet quantisation: inconsistent transport");
+    throw Error("wavelet quantisation: inconsistent transfer");
   }
   if (!(band_percentile > 0.0 && band_percentile <= 1.0)) {
     throw Error("wavelet quantisation: band percentile must lie in (0, 1]");
@@ -134,9 +134,9 @@ QuantizedWavelet quantize_wavelet_transport(const WaveletTransport& t, WaveletQu
   return out;
 }
 
-WaveletTransport dequantize_wavelet_transport(const QuantizedWavelet& quantized,
-                                              const WaveletTransport& transport) {
-  WaveletTransport out = transport;
+WaveletTransfer dequantize_wavelet_transfer(const QuantizedWavelet& quantized,
+                                              const WaveletTransfer& transfer) {
+  WaveletTransfer out = transfer;
   out.index = quantized.index;
   out.value.resize(quantized.q.size());
   out.row_start.assign(quantized.row_start.begin(), quantized.row_start.end());

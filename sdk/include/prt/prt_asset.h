@@ -31,7 +31,7 @@ extern "C" {
 #define PRT_SECTION_VNRM PRT_TAG('V', 'N', 'R', 'M') /* float x,y,z per vertex */
 #define PRT_SECTION_TRIS PRT_TAG('T', 'R', 'I', 'S') /* uint32 i0,i1,i2 per triangle */
 #define PRT_SECTION_SHTR PRT_TAG('S', 'H', 'T', 'R') /* `sh` transfer (prt_sh_asset.h) */
-#define PRT_SECTION_WVLT PRT_TAG('W', 'V', 'L', 'T') /* `wavelet` transport (prt_wavelet_asset.h) \
+#define PRT_SECTION_WVLT PRT_TAG('W', 'V', 'L', 'T') /* `wavelet` transfer (prt_wavelet_asset.h) \
                                                       */
 
 /* prt_section_info.flags */

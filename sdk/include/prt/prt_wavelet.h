@@ -96,7 +96,7 @@ PRT_API uint32_t prt_wavelet_band(uint32_t param, uint32_t size, uint32_t j);
 /* Resamples a lat-long map (SPEC §12: width = 2 height, rows from the top, RGB floats) turned by
  * rotation (row-major 3x3, §12 convention; NULL = identity) onto the texels of a
  * parameterisation: out_rgba = the power per texel, i.e. its mean radiance times its solid angle
- * (§14; a vertex's radiance is then sum_j T_j P_j with T_j its transport's mean over texel j; a
+ * (§14; a vertex's radiance is then sum_j T_j P_j with T_j its transfer's mean over texel j; a
  * source finer than the texels keeps its power exactly). Non-finite and negative channels
  * count as 0. PRT_ERROR_INVALID_ARGUMENT for NULL pointers, bad param/size, a width that is not
  * 2 height, height 0, or a rotation with a non-finite entry. */

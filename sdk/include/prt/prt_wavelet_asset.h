@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
-/* prtkit runtime C API: the `wavelet` technique's sparse per-vertex transport (section WVLT,
+/* prtkit runtime C API: the `wavelet` technique's sparse per-vertex transfer (section WVLT,
  * formats/SPEC.md §7.2 and §14). C99 and C++.
  *
- * A `wavelet` asset stores, per vertex, the Haar coefficients of its shadowed diffuse transport
+ * A `wavelet` asset stores, per vertex, the Haar coefficients of its shadowed diffuse transfer
  * over a cube (or dual paraboloid), truncated and quantised to 8 bits. Per frame the game turns
  * its environment into a light (prt/prt_wavelet.h: resample -> transform -> select), folds the
  * asset's band scales into it once with prt_wavelet_prepare_light, and shades vertex ranges as
@@ -40,7 +40,7 @@ typedef struct prt_wavelet_info {
 /* PRT_ERROR_NOT_FOUND when the asset has no WVLT section, PRT_ERROR_CORRUPT for a bad header. */
 PRT_API prt_result prt_wavelet_get_info(const prt_asset* asset, prt_wavelet_info* out);
 
-/* Dequantised transport of one vertex as a dense row: coefficient_count RGB triples
+/* Dequantised transfer of one vertex as a dense row: coefficient_count RGB triples
  * (coefficient-major, t[j][c] of §7.2), zeros where nothing is stored. For tools and tests. */
 PRT_API prt_result prt_wavelet_decode_row(const prt_asset* asset, uint32_t vertex, float* out_rgb);
 

@@ -7,7 +7,7 @@
 
 #include "prt/baker/embree_scene.hpp"
 #include "prt/baker/sampling.hpp"
-#include "render_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {

@@ -24,9 +24,9 @@
 #include <string>
 
 #include "prt/baker/demo_scene.hpp"
-#include "prt/baker/env_sh.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/reference.hpp"
-#include "render_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {

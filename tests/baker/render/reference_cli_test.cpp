@@ -13,7 +13,7 @@
 #include <string>
 
 #include "prt/baker/demo_scene.hpp"
-#include "render_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "prt/baker/demo_scene.hpp"
 #include "prt/baker/reference.hpp"
-#include "render_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {

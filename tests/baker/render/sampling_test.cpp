@@ -7,7 +7,7 @@
 #include <set>
 
 #include "prt/baker/sampling.hpp"
-#include "render_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {

@@ -92,7 +92,7 @@ extern "C" {
 #define PRT_BLOB_TAG_SHTR PRT_BLOB_TAG('S', 'H', 'T', 'R')
 #define PRT_BLOB_SHTR_HEADER_SIZE 32u
 #define PRT_BLOB_SHTR_MAX_ORDER 16u
-/* `wavelet` transport: 32-byte header, band and vertex scales, row starts, u16 block counts,
+/* `wavelet` transfer: 32-byte header, band and vertex scales, row starts, u16 block counts,
  * (u8 index, i8 value) pairs (SPEC.md §7.2); element = vertex, raw size given by the header. */
 #define PRT_BLOB_TAG_WVLT PRT_BLOB_TAG('W', 'V', 'L', 'T')
 #define PRT_BLOB_WVLT_HEADER_SIZE 32u

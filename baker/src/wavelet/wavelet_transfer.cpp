@@ -1,0 +1,444 @@
+// SPDX-License-Identifier: MIT
+#include "prt/baker/wavelet/wavelet_transfer.hpp"
+
+#include <prt/prt_wavelet.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "../render/parallel_tasks.hpp"
+#include "prt/baker/sampling.hpp"
+#include "wavelet_grid.hpp"
+
+namespace prt::bake {
+namespace {
+
+constexpr double kInvPi = 0.31830988618379067154;
+constexpr std::size_t kVerticesPerTask = 8;
+constexpr std::uint64_t kJitterTag = 0x57564c54;  // "WVLT": distinct from sh and the reference
+
+void validate(const WaveletTransferSettings& s) {
+  if (prt_wavelet_coefficient_count(s.param, s.size) == 0) {
+    throw Error("wavelet transfer: --cube/face size must be a power of two in " +
+                std::to_string(PRT_WAVELET_MIN_SIZE) + ".." + std::to_string(PRT_WAVELET_MAX_SIZE));
+  }
+  const auto k = static_cast<std::uint32_t>(std::lround(std::sqrt(double(s.samples))));
+  if (s.samples < 1 || k * k != s.samples || s.samples > 1024) {
+    throw Error("wavelet transfer: samples per texel must be a square k*k (1, 4, 9, ..., 1024)");
+  }
+  if (!(s.keep_energy >= 0.0 && s.keep_energy <= 1.0)) {
+    throw Error("wavelet transfer: keep-energy must lie in (0, 1]");
+  }
+  if (s.vertex_stride < 1) throw Error("wavelet transfer: vertex stride must be >= 1");
+  if (s.bounces < 0 || s.bounces > 8) throw Error("wavelet transfer: bounces must be in 0..8");
+  const glm::vec3& a = s.albedo;
+  if (s.override_albedo &&
+      !(a.r >= 0.0f && a.r <= 1.0f && a.g >= 0.0f && a.g <= 1.0f && a.b >= 0.0f && a.b <= 1.0f)) {
+    throw Error("wavelet transfer: albedo must lie in [0,1]");
+  }
+}
+
+bool wavelet_usable(const glm::vec3& p, const glm::vec3& n) {
+  const float len2 = glm::dot(n, n);
+  return std::isfinite(len2) && len2 > 1e-12f && std::isfinite(p.x) && std::isfinite(p.y) &&
+         std::isfinite(p.z);
+}
+
+// Calls visit(j, w, weight) for every jittered sample direction w of every texel j not entirely
+// below the horizon of n with n.w > 0, weight = dw_j / pi * J cos / sum of the texel's J (k x k
+// samples; those off the paraboloid's disc skipped, the centre when all are): so the weights of
+// an unoccluded texel sum to its integral of cos / pi (dw_j times the T_j of an open sky).
+template <typename Visit>
+void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::uint32_t vertex_key,
+                     std::uint32_t samples, Visit visit) {
+  const std::uint32_t size = grid.size(),
+                      k = static_cast<std::uint32_t>(std::lround(std::sqrt(samples)));
+  for (std::uint32_t j = 0; j < grid.count(); ++j) {
+    if (grid.below_horizon(j, n)) continue;
+    const std::uint32_t face = j / (size * size), x = j % size, y = (j / size) % size;
+    auto position = [&](std::uint32_t i, float* u, float* v) {
+      const std::uint32_t h = hash_key(vertex_key, j, i);
+      *u = float(x) + (float(i % k) + (float(h & 0xFFFFu) + 0.5f) / 65536.0f) / float(k);
+      *v = float(y) + (float(i / k) + (float(h >> 16) + 0.5f) / 65536.0f) / float(k);
+    };
+    glm::vec3 w;
+    double jacobian, total = 0.0;
+    float u, v;
+    for (std::uint32_t i = 0; i < samples; ++i) {
+      position(i, &u, &v);
+      if (grid.sample(face, u, v, &w, &jacobian)) total += jacobian;
+    }
+    const double scale = grid.solid_angle(j) * kInvPi;
+    if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
+      grid.sample(face, x + 0.5f, y + 0.5f, &w, &jacobian);
+      const float cosine = glm::dot(n, w);
+      if (cosine > 0.0f) visit(j, w, scale * cosine);
+      continue;
+    }
+    for (std::uint32_t i = 0; i < samples; ++i) {
+      position(i, &u, &v);
+      if (!grid.sample(face, u, v, &w, &jacobian)) continue;
+      const float cosine = glm::dot(n, w);
+      if (cosine > 0.0f) visit(j, w, scale * jacobian * cosine / total);
+    }
+  }
+}
+
+// Texel values of one vertex: the visible samples' weights; `rays` null = unoccluded. Returns
+// the rays traced.
+std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
+                          const glm::vec3& origin, const EmbreeScene* rays,
+                          std::uint32_t vertex_key, std::uint32_t samples, float* row) {
+  std::vector<double> sum(grid.count(), 0.0);
+  std::uint64_t traced = 0;
+  for_each_sample(grid, n, vertex_key, samples,
+                  [&](std::uint32_t j, const glm::vec3& w, double weight) {
+                    if (rays) {
+                      ++traced;
+                      if (rays->occluded(origin, w)) return;
+                    }
+                    sum[j] += weight;
+                  });
+  // The samples' weights integrate over the texel; the transfer is the texel's mean (§14).
+  for (std::uint32_t j = 0; j < grid.count(); ++j) {
+    row[j] = sum[j] == 0.0 ? 0.0f : static_cast<float>(sum[j] / grid.solid_angle(j));
+  }
+  return traced;
+}
+
+void transform_faces(const wavelet::TexelGrid& grid, float* row) {
+  const std::size_t face_texels = std::size_t(grid.size()) * grid.size();
+  for (std::uint32_t f = 0; f < grid.faces(); ++f) {
+    if (prt_haar_forward(grid.size(), 1, row + f * face_texels) != PRT_OK) {
+      throw Error("wavelet transfer: prt_haar_forward failed");
+    }
+  }
+}
+
+// The vertices to bake, in ascending order.
+std::vector<std::uint32_t> subset(const WaveletTransferSettings& s, std::size_t vertex_count) {
+  std::vector<std::uint32_t> out;
+  if (!s.vertex_list.empty()) {
+    for (std::uint32_t v : s.vertex_list) {
+      if (v >= vertex_count) {
+        throw Error("wavelet transfer: vertex " + std::to_string(v) +
+                    " of the subset is not in "
+                    "the scene (" +
+                    std::to_string(vertex_count) + " vertices)");
+      }
+      out.push_back(v);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  for (std::size_t v = 0; v < vertex_count; v += s.vertex_stride) out.push_back(std::uint32_t(v));
+  return out;
+}
+
+// One task's output: the sparse rows of its vertices, in order.
+struct TaskRows {
+  std::vector<std::uint32_t> vertex, count, index;
+  std::vector<float> value;
+  std::uint64_t traced = 0;
+  double energy_kept = 0.0, nonzeros_before = 0.0;
+};
+
+// What every pass knows about the scene's vertices (Scene order).
+struct VertexTable {
+  std::vector<glm::vec3> position, normal, albedo;  // normal: unit, or 0 when not usable
+  std::vector<unsigned char> usable;
+  std::vector<std::size_t> first_of_mesh;
+
+  VertexTable(const Scene& scene, const WaveletTransferSettings& s) {
+    for (const Mesh& mesh : scene.meshes) {
+      first_of_mesh.push_back(position.size());
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+        const bool ok = wavelet_usable(mesh.positions[v], n);
+        position.push_back(mesh.positions[v]);
+        normal.push_back(ok ? glm::normalize(n) : glm::vec3(0.0f));
+        usable.push_back(ok ? 1 : 0);
+        albedo.push_back(s.override_albedo ? s.albedo : scene.vertex_albedo(mesh, v));
+      }
+    }
+  }
+  std::size_t size() const { return position.size(); }
+};
+
+// Truncates a dense row into `rows` (and its statistics).
+void keep_row(std::uint32_t v, const std::vector<float>& row, const WaveletTransferSettings& s,
+              TaskRows& rows) {
+  const std::vector<std::uint32_t> kept = select_wavelet_coefficients(row, s.keep, s.keep_energy);
+  double total = 0.0, sum = 0.0, nonzeros = 0.0;
+  for (float c : row) {
+    total += double(c) * c;
+    nonzeros += c != 0.0f ? 1.0 : 0.0;
+  }
+  for (std::uint32_t j : kept) {
+    sum += double(row[j]) * row[j];
+    rows.index.push_back(j);
+    rows.value.push_back(row[j]);
+  }
+  rows.vertex.push_back(v);
+  rows.count.push_back(static_cast<std::uint32_t>(kept.size()));
+  rows.energy_kept += total > 0.0 ? sum / total : 1.0;
+  rows.nonzeros_before += nonzeros;
+}
+
+// The tasks' rows as one transfer (rows of vertices not in any task empty).
+WaveletTransfer gather_rows(const std::vector<TaskRows>& task_rows, std::size_t vertex_count) {
+  WaveletTransfer out;
+  out.vertex_count = vertex_count;
+  out.baked.assign(vertex_count, 0);
+  out.row_start.assign(vertex_count + 1, 0);
+  std::vector<std::uint32_t> count(vertex_count, 0);
+  double energy = 0.0, nonzeros = 0.0;
+  std::size_t baked = 0;
+  for (const TaskRows& rows : task_rows) {
+    for (std::size_t i = 0; i < rows.vertex.size(); ++i) {
+      count[rows.vertex[i]] = rows.count[i];
+      out.baked[rows.vertex[i]] = 1;
+    }
+    baked += rows.vertex.size();
+    out.rays_traced += rows.traced;
+    energy += rows.energy_kept;
+    nonzeros += rows.nonzeros_before;
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) out.row_start[v + 1] = out.row_start[v] + count[v];
+  out.index.resize(out.row_start.back());
+  out.value.resize(out.row_start.back());
+  for (const TaskRows& rows : task_rows) {
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < rows.vertex.size(); ++i) {
+      const std::uint64_t first = out.row_start[rows.vertex[i]];
+      std::copy_n(rows.index.begin() + at, rows.count[i], out.index.begin() + first);
+      std::copy_n(rows.value.begin() + at, rows.count[i], out.value.begin() + first);
+      at += rows.count[i];
+    }
+  }
+  out.mean_energy_kept = baked > 0 ? energy / baked : 1.0;
+  out.mean_nonzeros_before = baked > 0 ? nonzeros / baked : 0.0;
+  return out;
+}
+
+// One pass over the usable vertices of `todo`: row_of(v, row) fills vertex v's dense row in the
+// wavelet domain and returns the rays it traced; rows are truncated by the settings.
+template <typename RowOf>
+WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const VertexTable& vertices,
+                          std::uint32_t count, const WaveletTransferSettings& s,
+                          const Context& ctx, const std::string& stage, RowOf row_of) {
+  const std::size_t tasks = (todo.size() + kVerticesPerTask - 1) / kVerticesPerTask;
+  std::vector<TaskRows> task_rows(tasks);
+  render::parallel_tasks(tasks, ctx, stage, [&](std::size_t task) {
+    std::vector<float> row(count);
+    const std::size_t end = std::min(todo.size(), (task + 1) * kVerticesPerTask);
+    for (std::size_t i = task * kVerticesPerTask; i < end; ++i) {
+      if (!vertices.usable[todo[i]]) continue;
+      task_rows[task].traced += row_of(todo[i], row);
+      keep_row(todo[i], row, s, task_rows[task]);
+    }
+  });
+  return gather_rows(task_rows, vertices.size());
+}
+
+// A bounce (Sloan 2002 §5 in the wavelet domain): along vertex v's texel samples that hit the
+// front of a surface, the previous pass's rows of the hit triangle's vertices, weighted by the
+// sample's weight, the barycentrics and the vertex's grey albedo (mean of its RGB).
+std::uint64_t gather_bounce(std::uint32_t v, const WaveletTransfer& previous,
+                            const VertexTable& vertices, const Scene& scene,
+                            const EmbreeScene& rays, const wavelet::TexelGrid& grid,
+                            const WaveletTransferSettings& s, std::vector<float>& row) {
+  const glm::vec3 n = vertices.normal[v], origin = rays.offset_origin(vertices.position[v], n);
+  std::vector<std::pair<std::uint32_t, double>> hits;
+  std::uint64_t traced = 0;
+  for_each_sample(
+      grid, n, hash_key(s.seed, v, kJitterTag), s.samples,
+      [&](std::uint32_t, const glm::vec3& w, double weight) {
+        ++traced;
+        RayHit hit;
+        if (!rays.intersect(origin, w, &hit)) return;
+        const Mesh& mesh = scene.meshes[hit.mesh];
+        const std::size_t first = vertices.first_of_mesh[hit.mesh];
+        const float bary[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};
+        std::uint32_t corner[3];
+        glm::vec3 normal(0.0f);
+        for (int c = 0; c < 3; ++c) {
+          corner[c] =
+              static_cast<std::uint32_t>(first + mesh.indices[3 * std::size_t(hit.triangle) + c]);
+          normal += bary[c] * vertices.normal[corner[c]];
+        }
+        if (glm::dot(normal, w) >= 0.0f) return;  // the back, or no normal
+        for (int c = 0; c < 3; ++c) {
+          const glm::vec3& rho = vertices.albedo[corner[c]];
+          hits.emplace_back(corner[c], weight * bary[c] * (rho.r + rho.g + rho.b) / 3.0);
+        }
+      });
+  std::sort(hits.begin(), hits.end());
+  std::vector<double> sum(row.size(), 0.0);
+  for (std::size_t i = 0; i < hits.size();) {
+    const std::uint32_t u = hits[i].first;
+    double weight = 0.0;
+    for (; i < hits.size() && hits[i].first == u; ++i) weight += hits[i].second;
+    for (std::uint64_t p = previous.row_start[u]; p < previous.row_start[u + 1]; ++p) {
+      sum[previous.index[p]] += weight * previous.value[p];
+    }
+  }
+  for (std::size_t j = 0; j < row.size(); ++j) row[j] = static_cast<float>(sum[j]);
+  return traced;
+}
+
+// Row v of a + b, dense.
+void add_rows(const WaveletTransfer& a, const WaveletTransfer& b, std::uint32_t v,
+              std::vector<float>& row) {
+  std::fill(row.begin(), row.end(), 0.0f);
+  for (const WaveletTransfer* t : {&a, &b}) {
+    for (std::uint64_t p = t->row_start[v]; p < t->row_start[v + 1]; ++p) {
+      row[t->index[p]] += t->value[p];
+    }
+  }
+}
+
+}  // namespace
+
+const char* wavelet_param_name(std::uint32_t param) {
+  return param == PRT_WAVELET_PARAM_CUBE              ? "cube"
+         : param == PRT_WAVELET_PARAM_DUAL_PARABOLOID ? "dual-paraboloid"
+                                                      : "unknown";
+}
+
+std::uint32_t parse_wavelet_param(const char* name) {
+  if (name && std::strcmp(name, "cube") == 0) return PRT_WAVELET_PARAM_CUBE;
+  if (name && std::strcmp(name, "dual-paraboloid") == 0) return PRT_WAVELET_PARAM_DUAL_PARABOLOID;
+  throw Error(std::string("wavelet: unknown parameterisation '") + (name ? name : "") +
+              "' (cube or dual-paraboloid)");
+}
+
+std::uint32_t default_wavelet_keep(std::uint32_t param, std::uint32_t size) {
+  const double count = prt_wavelet_coefficient_count(param, size);
+  const double fraction = 1000.0 / prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, 64);
+  return std::max<std::uint32_t>(64, static_cast<std::uint32_t>(std::lround(count * fraction)));
+}
+
+std::vector<std::uint32_t> select_wavelet_coefficients(const std::vector<float>& row,
+                                                       std::uint32_t keep, double keep_energy) {
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t j = 0; j < row.size(); ++j) {
+    if (row[j] != 0.0f) order.push_back(j);
+  }
+  const auto larger = [&](std::uint32_t a, std::uint32_t b) {
+    const float fa = std::abs(row[a]), fb = std::abs(row[b]);
+    return fa > fb || (fa == fb && a < b);
+  };
+  if (keep_energy > 0.0) {
+    std::sort(order.begin(), order.end(), larger);
+    double total = 0.0, sum = 0.0;
+    for (std::uint32_t j : order) total += double(row[j]) * row[j];
+    std::size_t kept = 0;
+    while (kept < order.size() && sum < keep_energy * total) {
+      sum += double(row[order[kept]]) * row[order[kept]];
+      ++kept;
+    }
+    order.resize(kept);
+  } else if (keep > 0 && order.size() > keep) {
+    std::nth_element(order.begin(), order.begin() + keep, order.end(), larger);
+    order.resize(keep);
+  }
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+std::vector<float> unoccluded_wavelet_texels(std::uint32_t param, std::uint32_t size,
+                                             std::uint32_t samples, const glm::vec3& normal,
+                                             std::uint32_t seed) {
+  WaveletTransferSettings s;
+  s.param = param;
+  s.size = size;
+  s.samples = samples;
+  validate(s);
+  const wavelet::TexelGrid grid(param, size);
+  std::vector<float> row(grid.count());
+  bake_texels(grid, glm::normalize(normal), glm::vec3(0.0f), nullptr, hash_key(seed, 0, kJitterTag),
+              samples, row.data());
+  return row;
+}
+
+WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
+                                           const WaveletTransferSettings& settings,
+                                           const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<EmbreeScene> own_rays;
+  if (!rays) {
+    tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+    arena.execute([&] { own_rays = std::make_unique<EmbreeScene>(scene, ctx); });
+    rays = own_rays.get();
+  }
+  const wavelet::TexelGrid grid(settings.param, settings.size);
+  const VertexTable vertices(scene, settings);
+  const std::vector<std::uint32_t> todo = subset(settings, vertices.size());
+  WaveletTransfer out =
+      run_pass(todo, vertices, grid.count(), settings, ctx, "wavelet transfer: direct",
+               [&](std::uint32_t v, std::vector<float>& row) {
+                 const glm::vec3 n = vertices.normal[v];
+                 const std::uint64_t traced = bake_texels(
+                     grid, n, rays->offset_origin(vertices.position[v], n), rays,
+                     hash_key(settings.seed, v, kJitterTag), settings.samples, row.data());
+                 transform_faces(grid, row.data());
+                 return traced;
+               });
+  WaveletTransfer previous = out;
+  for (int b = 1; b <= settings.bounces; ++b) {
+    const std::string stage = "wavelet transfer: bounce " + std::to_string(b);
+    WaveletTransfer bounce =
+        run_pass(todo, vertices, grid.count(), settings, ctx, stage,
+                 [&](std::uint32_t v, std::vector<float>& row) {
+                   return gather_bounce(v, previous, vertices, scene, *rays, grid, settings, row);
+                 });
+    const std::uint64_t traced = out.rays_traced + bounce.rays_traced;
+    out = run_pass(todo, vertices, grid.count(), settings, ctx, stage + " (sum)",
+                   [&](std::uint32_t v, std::vector<float>& row) {
+                     add_rows(out, bounce, v, row);
+                     return std::uint64_t(0);
+                   });
+    out.rays_traced = traced;
+    previous = std::move(bounce);
+  }
+  out.param = settings.param;
+  out.size = settings.size;
+  out.coefficient_count = grid.count();
+  out.albedo = vertices.albedo;
+  for (std::uint32_t v : todo) out.vertices_without_normal += vertices.usable[v] ? 0 : 1;
+  if (out.vertices_without_normal > 0) {
+    ctx.warn("wavelet transfer: " + std::to_string(out.vertices_without_normal) +
+             " vertices have no usable normal (zero or non-finite) or position; their row is "
+             "empty");
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<glm::vec3> shade_wavelet_transfer(const WaveletTransfer& transfer,
+                                               const std::vector<float>& light_rgba) {
+  if (light_rgba.size() != std::size_t(transfer.coefficient_count) * 4) {
+    throw Error("wavelet shading: the light has " + std::to_string(light_rgba.size() / 4) +
+                " coefficients, the transfer " + std::to_string(transfer.coefficient_count));
+  }
+  std::vector<glm::vec3> radiance(transfer.vertex_count, glm::vec3(0.0f));
+  for (std::size_t v = 0; v < transfer.vertex_count; ++v) {
+    glm::dvec3 sum(0.0);
+    for (std::uint64_t p = transfer.row_start[v]; p < transfer.row_start[v + 1]; ++p) {
+      const float* l = light_rgba.data() + std::size_t(transfer.index[p]) * 4;
+      sum += double(transfer.value[p]) * glm::dvec3(l[0], l[1], l[2]);
+    }
+    radiance[v] = glm::vec3(sum * glm::dvec3(transfer.albedo[v]));
+  }
+  return radiance;
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: MIT
+// The ray-throughput roofline the benchmarks compare with: a raw Embree scene with no prtkit code
+// in the way.
+#pragma once
+
+#include <embree3/rtcore.h>
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "support/bench_triad.hpp"
+#include "prt/baker/embree_scene.hpp"
+#include "prt/baker/sampling.hpp"
+#include "prt/baker/scene.hpp"
+
+namespace prt_bench {
+
+// A raw Embree device and scene over a Scene's non-degenerate triangles.
+struct RawEmbree {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  explicit RawEmbree(const prt::bake::Scene& s) {
+    device = rtcNewDevice(nullptr);
+    scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    for (const prt::bake::Mesh& mesh : s.meshes) {
+      std::vector<std::uint32_t> kept;
+      for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        if (prt::bake::is_degenerate_triangle(mesh, t)) continue;
+        kept.insert(kept.end(), mesh.indices.begin() + 3 * t, mesh.indices.begin() + 3 * t + 3);
+      }
+      if (kept.empty()) continue;
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, mesh.positions.size()));
+      std::memcpy(v, mesh.positions.data(), mesh.positions.size() * 12);
+      auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, kept.size() / 3));
+      std::memcpy(i, kept.data(), kept.size() * 4);
+      rtcCommitGeometry(g);
+      rtcAttachGeometry(scene, g);
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(scene);
+  }
+  ~RawEmbree() {
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+  }
+  int widest_packet() const {
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) return 4;
+    return 1;
+  }
+  RawEmbree(const RawEmbree&) = delete;
+  RawEmbree& operator=(const RawEmbree&) = delete;
+};
+
+inline void set_ftz_daz() {
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+// Rays like a bake's: `per_vertex` directions from every vertex with a usable normal, leaving
+// it by the bake's offset policy, cosine-distributed about the normal.
+struct VertexRays {
+  std::uint32_t per_vertex = 0;
+  std::vector<glm::vec3> origins, directions;  // one origin per `per_vertex` directions
+};
+
+inline VertexRays cosine_vertex_rays(const prt::bake::Scene& scene, std::uint32_t per_vertex) {
+  VertexRays r;
+  r.per_vertex = per_vertex;
+  const prt::bake::EmbreeScene policy(scene, prt::bake::Context{});
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (const prt::bake::Mesh& mesh : scene.meshes)
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const glm::vec3 n = mesh.normals[v];
+      if (!(glm::dot(n, n) > 0.5f)) continue;
+      r.origins.push_back(policy.offset_origin(mesh.positions[v], n));
+      const prt::bake::Frame frame(n);
+      for (std::uint32_t k = 0; k < per_vertex; ++k)
+        r.directions.push_back(
+            frame.to_world(prt::bake::cosine_hemisphere({uniform(rng), uniform(rng)})));
+    }
+  return r;
+}
+
+// The ray roofline: rtcOccluded1 over `rays` on one thread in the benchmark's loop, with
+// nothing else in the way; rays/s by wall clock and by the thread's CPU time.
+inline Rate raw_occluded_rate(benchmark::State& state, const RawEmbree& raw,
+                              const VertexRays& rays) {
+  set_ftz_daz();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  std::size_t next = 0, occluded = 0;
+  std::int64_t traced = 0;
+  double seconds = 0.0, cpu_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = thread_cpu_seconds();
+    for (int i = 0; i < 4096; ++i, next = (next + 1) % rays.directions.size()) {
+      const glm::vec3 o = rays.origins[next / rays.per_vertex], d = rays.directions[next];
+      RTCRay ray{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, 0.0f, INFINITY, 0xFFFFFFFFu, 0, 0};
+      rtcOccluded1(raw.scene, &context, &ray);
+      occluded += ray.tfar < 0.0f;
+    }
+    cpu_seconds += thread_cpu_seconds() - cpu_start;
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    traced += 4096;
+  }
+  benchmark::DoNotOptimize(occluded);
+  state.counters["rays/s"] = benchmark::Counter(double(traced), benchmark::Counter::kIsRate);
+  state.counters["occluded"] = double(occluded) / double(traced);
+  return {double(traced) / seconds, double(traced) / cpu_seconds};
+}
+
+}  // namespace prt_bench

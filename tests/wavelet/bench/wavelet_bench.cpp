@@ -1,0 +1,526 @@
+// SPDX-License-Identifier: MIT
+// Technique `wavelet` relight benchmarks on the CPU, all in one run so that their figures
+// compare; printed, never asserted:
+//  - the memory-bandwidth roofline: STREAM triad on 1 and 2 threads (bench_triad.hpp);
+//  - relight: prt_wavelet_shade_on of a bunny-sized transfer (35,947 vertices, N = 64 cube, rows
+//    shaped like a `--keep 1000` bake: wavelet_bench_asset.hpp) on cpu, simd with SSE4.1 and simd
+//    with AVX2, on 1 thread and on 2 threads over split vertex ranges: vertices/s, frames/s of
+//    the bunny next to the implementation report's 3 frames/s for 40,000 vertices, and the bytes
+//    read per second as a share of the triad on as many threads — the rows streamed (pairs,
+//    block counts, row start, vertex scale) alone, and with the light gathers (16 B per pair,
+//    mostly cache hits) added;
+//  - bake throughput: compute_wavelet_transfer of the Stanford bunny (every 16th vertex, cube
+//    N = 32, one ray per texel, 1 thread) in rays/s as a share of raw rtcOccluded1 on the same
+//    mesh (bench_embree.hpp; skipped without the shared assets);
+//  - relight at M: the same shading on the best SIMD backend, 1 thread, under the environment
+//    below cut to M light coefficients: blocks of zero light are skipped, so fewer coefficients
+//    shade faster; ms per frame and the ratio to M = all measured in the same run;
+//  - the per-frame light update: resample a 1k lat-long map (spiaggia_di_mondello_1k.hdr, or a
+//    synthetic sky with a sun when the shared assets are absent) under a rotation that changes
+//    every frame, Haar-transform, keep M coefficients, prepare for the asset; ms per step.
+// Rates are given by wall clock and by the CPU time of the threads doing the work (this machine
+// may be shared; see sh_bench.cpp).
+//
+//   prt_bench_wavelet [--benchmark_filter=...] [google benchmark flags]
+#include <benchmark/benchmark.h>
+#include <prt/prt.h>
+#include <prt/prt_wavelet.h>
+#include <prt/prt_wavelet_asset.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "support/bench_embree.hpp"
+#include "support/bench_triad.hpp"
+#include "wavelet/wavelet_bench_asset.hpp"
+#include "prt/baker/context.hpp"
+#include "prt/baker/envmap.hpp"
+#include "prt/baker/wavelet/wavelet_transfer.hpp"
+
+namespace {
+
+// --- Figures kept for the summary (the last measurement of each benchmark) -----------------
+
+struct Backend {
+  const char* name;
+  prt_backend backend;
+  prt_simd_isa isa_limit;
+};
+constexpr Backend kBackends[] = {{"cpu", PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO},
+                                 {"simd-sse4.1", PRT_BACKEND_SIMD, PRT_SIMD_ISA_SSE41},
+                                 {"simd-avx2", PRT_BACKEND_SIMD, PRT_SIMD_ISA_AVX2}};
+constexpr int kBackendCount = 3;
+
+struct LightFigure {
+  uint32_t m = 0;
+  double resample = 0, transform = 0, select = 0, prepare = 0;  // seconds per frame
+};
+
+struct Figures {
+  prt_bench::Rate triad[3];  // bytes/s by thread count 1, 2
+  // [backend][threads - 1][benchmark thread]: vertices/s (wall, own CPU time).
+  prt_bench::Rate shading[kBackendCount][2][2];
+  prt_bench::WaveletTraffic traffic;
+  std::vector<LightFigure> light;
+  std::vector<std::pair<uint32_t, double>> relight_at_m;  // (M, 0 = all; seconds per frame)
+  std::string relight_at_m_backend;
+  std::string env_name;
+  prt_bench::Rate bake_rays, raw_rays;  // rays/s
+  std::string bake_skipped;
+  std::mutex mutex;
+} g_figures;
+
+// --- Bake throughput against raw Embree -------------------------------------------------------
+
+constexpr uint32_t kBakeSize = 32, kBakeStride = 16;
+
+std::filesystem::path bunny_path() {
+  return std::filesystem::path(PRT_SHARED_DIR) / "assets/meshes/stanford-bunny.obj";
+}
+
+const prt::bake::Scene& bunny() {
+  static const prt::bake::Scene scene =
+      prt::bake::import_scene(bunny_path().string(), prt::bake::Context{});
+  return scene;
+}
+
+bool skip_without_bunny(benchmark::State& state) {
+  if (std::filesystem::exists(bunny_path())) return false;
+  g_figures.bake_skipped = "skipped: " + bunny_path().string() + " not found";
+  state.SkipWithError(g_figures.bake_skipped.c_str());
+  return true;
+}
+
+void BM_RawEmbreeOccluded1(benchmark::State& state) {
+  if (skip_without_bunny(state)) return;
+  static const prt_bench::RawEmbree raw(bunny());
+  static const prt_bench::VertexRays rays = prt_bench::cosine_vertex_rays(bunny(), 64);
+  g_figures.raw_rays = prt_bench::raw_occluded_rate(state, raw, rays);
+}
+BENCHMARK(BM_RawEmbreeOccluded1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
+
+void BM_BakeWavelet(benchmark::State& state) {
+  if (skip_without_bunny(state)) return;
+  const prt::bake::EmbreeScene embree(bunny(), prt::bake::Context{});
+  prt::bake::WaveletTransferSettings settings;
+  settings.size = kBakeSize;
+  settings.keep = prt::bake::default_wavelet_keep(PRT_WAVELET_PARAM_CUBE, kBakeSize);
+  settings.vertex_stride = kBakeStride;
+  prt::bake::Context one_thread;
+  one_thread.threads = 1;  // compared with single-threaded raw Embree
+  uint64_t rays = 0;
+  double seconds = 0.0, cpu_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = prt_bench::process_cpu_seconds();
+    const prt::bake::WaveletTransfer transfer =
+        prt::bake::compute_wavelet_transfer(bunny(), &embree, settings, one_thread);
+    cpu_seconds += prt_bench::process_cpu_seconds() - cpu_start;
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    rays += transfer.rays_traced;
+    benchmark::DoNotOptimize(transfer.value.data());
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+  g_figures.bake_rays = {double(rays) / seconds, double(rays) / cpu_seconds};
+}
+BENCHMARK(BM_BakeWavelet)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+void print_bake() {
+  const Figures& f = g_figures;
+  if (!f.bake_skipped.empty()) {
+    std::printf("\n  bake: %s\n", f.bake_skipped.c_str());
+    return;
+  }
+  if (!(f.bake_rays.cpu > 0.0 && f.raw_rays.cpu > 0.0)) return;  // filtered out
+  std::printf(
+      "\n  bake (cube %u, 1 ray per texel above the horizon, every %u-th bunny vertex, 1 thread) "
+      "vs raw rtcOccluded1 (same mesh, rays from its vertices about their normals):\n",
+      kBakeSize, kBakeStride);
+  std::printf("    by CPU time:   %.2f vs %.2f Mrays/s = %.0f %%\n", f.bake_rays.cpu * 1e-6,
+              f.raw_rays.cpu * 1e-6, 100.0 * f.bake_rays.cpu / f.raw_rays.cpu);
+  std::printf("    by wall clock: %.2f vs %.2f Mrays/s = %.0f %%\n", f.bake_rays.wall * 1e-6,
+              f.raw_rays.wall * 1e-6, 100.0 * f.bake_rays.wall / f.raw_rays.wall);
+}
+
+prt_bench::Rate shading_total(int backend, int threads) {
+  prt_bench::Rate sum;
+  for (const prt_bench::Rate& r : g_figures.shading[backend][threads - 1])
+    sum.wall += r.wall, sum.cpu += r.cpu;
+  return sum;
+}
+
+// --- The asset ------------------------------------------------------------------------------
+
+// The transfer, its blob, and per backend a context and an asset borrowing the blob; made once.
+class Assets {
+ public:
+  ~Assets() {
+    for (prt_asset* a : assets_) prt_asset_destroy(a);
+    for (prt_context* c : contexts_) prt_context_destroy(c);
+  }
+  // The asset for a backend, or null with `why` set when the backend cannot run here.
+  prt_asset* get(int backend_index, std::string* why) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    build();
+    const Backend& backend = kBackends[backend_index];
+    prt_context*& ctx = contexts_[backend_index];
+    if (!ctx) {
+      prt_context_desc desc{};
+      desc.simd_isa_limit = backend.isa_limit;
+      desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
+      if (prt_context_create(&desc, &ctx) != PRT_OK) return nullptr;
+    }
+    prt_backend_info info{};
+    prt_backend_get_info(ctx, backend.backend, &info);
+    if (!info.usable || (backend.backend == PRT_BACKEND_SIMD && info.isa != backend.isa_limit)) {
+      *why = std::string(backend.name) + " not usable here: " + info.note;
+      return nullptr;
+    }
+    prt_asset*& asset = assets_[backend_index];
+    if (!asset && prt_asset_load_memory_borrowed(ctx, blob_.data(), blob_.size(), PRT_VALIDATE_FULL,
+                                                 &asset) != PRT_OK) {
+      *why = std::string("load failed: ") + prt_context_last_message(ctx);
+      return nullptr;
+    }
+    return asset;
+  }
+
+ private:
+  void build() {
+    if (!blob_.empty()) return;
+    const prt_test::WvltTransfer t = prt_bench::bake_shaped_transfer();
+    g_figures.traffic = prt_bench::wavelet_traffic(t);
+    blob_ = prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), t.vertices);
+  }
+  std::mutex mutex_;
+  prt_test::Bytes blob_;
+  prt_context* contexts_[kBackendCount] = {};
+  prt_asset* assets_[kBackendCount] = {};
+} g_assets;
+
+// A prepared light for shading: any values do (the loop reads every stored pair regardless).
+std::vector<float> shading_light(const prt_asset* asset) {
+  prt_wavelet_info info{};
+  prt_wavelet_get_info(asset, &info);
+  std::vector<float> light = prt_test::wvlt_random_light(info.coefficient_count, 3);
+  prt_wavelet_prepare_light(asset, light.data(), light.data());
+  return light;
+}
+
+// --- Benchmarks -----------------------------------------------------------------------------
+
+void BM_StreamTriad(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  g_figures.triad[threads] = prt_bench::stream_triad(state, threads);
+}
+BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Shades this benchmark thread's share of the vertices, once per iteration.
+void BM_Relight(benchmark::State& state, int backend_index) {
+  const Backend& backend = kBackends[backend_index];
+  std::string why;
+  prt_asset* asset = g_assets.get(backend_index, &why);
+  if (!asset) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  const uint32_t vertices = prt_bench::kBunnyVertices;
+  const uint32_t threads = state.threads(), index = state.thread_index();
+  const uint32_t first = uint32_t(uint64_t(vertices) * index / threads);
+  const uint32_t count = uint32_t(uint64_t(vertices) * (index + 1) / threads) - first;
+  const std::vector<float> light = shading_light(asset);
+  std::vector<float> out(std::size_t(count) * 3);
+  double seconds = 0.0, cpu_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = prt_bench::thread_cpu_seconds();
+    const prt_result r =
+        prt_wavelet_shade_on(asset, backend.backend, light.data(), first, count, out.data());
+    cpu_seconds += prt_bench::thread_cpu_seconds() - cpu_start;
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (r != PRT_OK) {
+      state.SkipWithError(prt_result_string(r));
+      break;
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  const double shaded = double(count) * double(state.iterations());
+  state.SetItemsProcessed(static_cast<int64_t>(shaded));
+  state.SetBytesProcessed(static_cast<int64_t>(shaded * g_figures.traffic.streamed_per_vertex));
+  state.counters["frames/s"] =
+      benchmark::Counter(shaded / double(vertices), benchmark::Counter::kIsRate);
+  const std::lock_guard<std::mutex> lock(g_figures.mutex);
+  if (seconds > 0.0 && cpu_seconds > 0.0)
+    g_figures.shading[backend_index][threads - 1][index] = {shaded / seconds, shaded / cpu_seconds};
+}
+
+void register_relight() {
+  for (int backend = 0; backend < kBackendCount; ++backend)
+    for (const int threads : {1, 2}) {
+      const std::string name = std::string("Relight/") + kBackends[backend].name;
+      benchmark::RegisterBenchmark(name.c_str(), BM_Relight, backend)
+          ->Threads(threads)
+          ->UseRealTime()
+          ->MinTime(0.3)
+          ->Unit(benchmark::kMillisecond);
+    }
+}
+
+// The environment: the 1k beach map of the issue, or a synthetic sky with a sun.
+struct LatLong {
+  std::vector<float> rgb;
+  uint32_t width = 0, height = 0;
+};
+const LatLong& environment() {
+  static const LatLong env = [] {
+    LatLong e;
+    const std::filesystem::path path =
+        std::filesystem::path(PRT_SHARED_DIR) / "assets/envmaps/spiaggia_di_mondello_1k.hdr";
+    try {
+      if (std::filesystem::exists(path)) {
+        const prt::bake::EnvMap map =
+            prt::bake::load_envmap(path.string(), prt::bake::EnvMapping::LatLong, {});
+        e.rgb = map.pixels();
+        e.width = uint32_t(map.width()), e.height = uint32_t(map.height());
+        g_figures.env_name = path.filename().string();
+      }
+    } catch (const std::exception& error) {
+      g_figures.env_name = std::string("(") + error.what() + ") ";
+    }
+    if (e.rgb.empty() || e.width != 2 * e.height) {
+      e.width = 1024, e.height = 512;
+      e.rgb.assign(3 * size_t(e.width) * e.height, 0.5f);
+      for (uint32_t y = 100; y < 108; ++y)  // a 10^4 sun
+        for (uint32_t x = 300; x < 308; ++x)
+          for (uint32_t c = 0; c < 3; ++c) e.rgb[3 * (size_t(y) * e.width + x) + c] = 5000.0f;
+      g_figures.env_name += "synthetic 1024x512 sky with a sun";
+    }
+    return e;
+  }();
+  return env;
+}
+
+// The per-frame light update for M kept coefficients (0 = all), under a rotation that turns by
+// one degree per frame.
+void BM_LightUpdate(benchmark::State& state) {
+  const uint32_t m = uint32_t(state.range(0));
+  std::string why;
+  prt_asset* asset = g_assets.get(0, &why);
+  if (!asset) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  const LatLong& env = environment();
+  const uint32_t coefficients =
+      prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize);
+  std::vector<float> light(4 * size_t(coefficients)), prepared(light.size());
+  double seconds[4] = {0, 0, 0, 0};
+  int frame = 0;
+  auto lap = [](std::chrono::steady_clock::time_point& t) {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - t).count();
+    t = now;
+    return s;
+  };
+  for (auto _ : state) {
+    const double angle = 0.017453292519943295 * (frame++ % 360);
+    const float c = float(std::cos(angle)), s = float(std::sin(angle));
+    const float rotation[9] = {c, 0, s, 0, 1, 0, -s, 0, c};
+    auto t = std::chrono::steady_clock::now();
+    prt_result r =
+        prt_wavelet_resample_latlong(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
+                                     env.rgb.data(), env.width, env.height, rotation, light.data());
+    seconds[0] += lap(t);
+    if (r == PRT_OK)
+      r = prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
+                                      light.data());
+    seconds[1] += lap(t);
+    if (r == PRT_OK)
+      r = prt_wavelet_select_light(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
+                                   m ? m : coefficients, light.data());
+    seconds[2] += lap(t);
+    if (r == PRT_OK) r = prt_wavelet_prepare_light(asset, light.data(), prepared.data());
+    seconds[3] += lap(t);
+    if (r != PRT_OK) {
+      state.SkipWithError(prt_result_string(r));
+      break;
+    }
+    benchmark::DoNotOptimize(prepared.data());
+  }
+  const double frames = double(state.iterations());
+  state.counters["frames/s"] = benchmark::Counter(frames, benchmark::Counter::kIsRate);
+  const char* names[4] = {"resample_ms", "transform_ms", "select_ms", "prepare_ms"};
+  for (int i = 0; i < 4; ++i) state.counters[names[i]] = 1e3 * seconds[i] / frames;
+  LightFigure figure;
+  figure.m = m;
+  figure.resample = seconds[0] / frames, figure.transform = seconds[1] / frames;
+  figure.select = seconds[2] / frames, figure.prepare = seconds[3] / frames;
+  std::vector<LightFigure>& figures = g_figures.light;
+  if (!figures.empty() && figures.back().m == m)
+    figures.back() = figure;
+  else
+    figures.push_back(figure);
+}
+BENCHMARK(BM_LightUpdate)
+    ->Arg(64)
+    ->Arg(256)
+    ->Arg(1024)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(0.3);
+
+// The environment's light cut to M coefficients (0 = all) and prepared for the asset.
+std::vector<float> environment_light(prt_asset* asset, uint32_t m) {
+  const LatLong& env = environment();
+  const uint32_t size = prt_bench::kWaveletSize,
+                 coefficients = prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, size);
+  std::vector<float> light(4 * size_t(coefficients));
+  prt_result r = prt_wavelet_resample_latlong(PRT_WAVELET_PARAM_CUBE, size, env.rgb.data(),
+                                              env.width, env.height, nullptr, light.data());
+  if (r == PRT_OK) r = prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, size, light.data());
+  if (r == PRT_OK)
+    r = prt_wavelet_select_light(PRT_WAVELET_PARAM_CUBE, size, m ? m : coefficients, light.data());
+  if (r == PRT_OK) r = prt_wavelet_prepare_light(asset, light.data(), light.data());
+  if (r != PRT_OK) light.clear();
+  return light;
+}
+
+// Every vertex on the best SIMD backend, one thread, under the environment cut to M terms.
+void BM_RelightAtM(benchmark::State& state) {
+  const uint32_t m = uint32_t(state.range(0));
+  std::string why;
+  prt_asset* asset = nullptr;
+  int backend = kBackendCount;
+  while (!asset && backend > 0) asset = g_assets.get(--backend, &why);
+  const std::vector<float> light = asset ? environment_light(asset, m) : std::vector<float>();
+  if (light.empty()) {
+    state.SkipWithError(asset ? "light update failed" : why.c_str());
+    return;
+  }
+  std::vector<float> out(3 * size_t(prt_bench::kBunnyVertices));
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const prt_result r = prt_wavelet_shade_on(asset, kBackends[backend].backend, light.data(), 0,
+                                              prt_bench::kBunnyVertices, out.data());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (r != PRT_OK) {
+      state.SkipWithError(prt_result_string(r));
+      return;
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["frames/s"] =
+      benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  g_figures.relight_at_m_backend = kBackends[backend].name;
+  auto& figures = g_figures.relight_at_m;  // the last run of each M (benchmark reruns it)
+  if (figures.empty() || figures.back().first != m) figures.emplace_back(m, 0.0);
+  figures.back().second = seconds / double(state.iterations());
+}
+BENCHMARK(BM_RelightAtM)
+    ->Arg(0)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(0.3);
+
+// --- Summary --------------------------------------------------------------------------------
+
+void print_relight(bool by_cpu) {
+  const Figures& f = g_figures;
+  const prt_bench::WaveletTraffic& w = f.traffic;
+  bool any = false;
+  for (int b = 0; b < kBackendCount; ++b) any = any || shading_total(b, 1).wall > 0.0;
+  if (!any) return;  // filtered out
+  std::printf("\n  relight by %s\n", by_cpu ? "CPU time of each thread" : "wall clock");
+  std::printf("  %-12s %7s %9s %9s %12s %16s\n", "backend", "threads", "Mvert/s", "frames/s",
+              "rows % triad", "+gathers % triad");
+  for (int b = 0; b < kBackendCount; ++b)
+    for (int threads = 1; threads <= 2; ++threads) {
+      const prt_bench::Rate rate = shading_total(b, threads);
+      const double vertices = by_cpu ? rate.cpu : rate.wall;
+      const double triad = by_cpu ? f.triad[threads].cpu : f.triad[threads].wall;
+      if (vertices <= 0.0 || triad <= 0.0) continue;
+      std::printf("  %-12s %7d %9.3f %9.1f %11.0f%% %15.0f%%\n", kBackends[b].name, threads,
+                  vertices * 1e-6, vertices / prt_bench::kBunnyVertices,
+                  100.0 * vertices * w.streamed_per_vertex / triad,
+                  100.0 * vertices * (w.streamed_per_vertex + w.gathered_per_vertex) / triad);
+    }
+}
+
+void print_relight_at_m() {
+  const Figures& f = g_figures;
+  if (f.relight_at_m.empty()) return;
+  double all = 0.0;
+  for (const auto& [m, seconds] : f.relight_at_m)
+    if (m == 0) all = seconds;
+  std::printf(
+      "\n  relight at M light coefficients (%s, %s, 1 thread; blocks of zero light "
+      "skipped), ms per frame and against M = all in this run:\n",
+      f.env_name.c_str(), f.relight_at_m_backend.c_str());
+  for (const auto& [m, seconds] : f.relight_at_m)
+    std::printf("  %6s %9.2f ms %6.2f x\n", m ? std::to_string(m).c_str() : "all", 1e3 * seconds,
+                all > 0.0 ? all / seconds : 0.0);
+}
+
+void print_summary() {
+  const Figures& f = g_figures;
+  const prt_bench::WaveletTraffic& w = f.traffic;
+  std::printf("\nsummary\n");
+  std::printf(
+      "  memory bandwidth (triad), by CPU time: %.2f GB/s on 1 thread, %.2f GB/s on 2; "
+      "by wall clock: %.2f, %.2f\n",
+      f.triad[1].cpu * 1e-9, f.triad[2].cpu * 1e-9, f.triad[1].wall * 1e-9, f.triad[2].wall * 1e-9);
+  if (w.pairs_per_vertex > 0.0) {
+    std::printf(
+        "  asset: %u vertices, cube N = %u, %.0f pairs per vertex (bake-shaped rows); per vertex "
+        "%.0f B of rows streamed + %.0f B of light gathered\n",
+        prt_bench::kBunnyVertices, prt_bench::kWaveletSize, w.pairs_per_vertex,
+        w.streamed_per_vertex, w.gathered_per_vertex);
+    std::printf(
+        "  paper (Ng et al. 2003 implementation report): %.0f frames/s for %.0f vertices "
+        "= %.2f Mvert/s\n",
+        prt_bench::kPaperFps, prt_bench::kPaperVertices,
+        prt_bench::kPaperFps * prt_bench::kPaperVertices * 1e-6);
+    print_relight(/*by_cpu=*/true);
+    print_relight(/*by_cpu=*/false);
+  }
+  if (!f.light.empty()) {
+    std::printf("\n  light update per frame (%s), cube N = %u, ms:\n", f.env_name.c_str(),
+                prt_bench::kWaveletSize);
+    std::printf("  %6s %9s %9s %9s %9s %9s\n", "M", "resample", "transform", "select", "prepare",
+                "total");
+    for (const LightFigure& l : f.light)
+      std::printf("  %6s %9.2f %9.2f %9.2f %9.2f %9.2f\n",
+                  l.m ? std::to_string(l.m).c_str() : "all", 1e3 * l.resample, 1e3 * l.transform,
+                  1e3 * l.select, 1e3 * l.prepare,
+                  1e3 * (l.resample + l.transform + l.select + l.prepare));
+  }
+  print_relight_at_m();
+  print_bake();
+  std::printf("\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_relight();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  print_summary();
+  return 0;
+}

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: MIT
+// prt-bake trade-wavelet end to end on a tiny scene (a box on a grid, the demo sky) with tiny
+// settings: the rows the
+// sweep design calls for, the reference cache, determinism of everything but the timings, the
+// float/quantised relation, and clear errors for bad input.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+CommandResult run_bake(const std::string& arguments, const fs::path& log) {
+  const std::string command =
+      std::string("\"") + PRT_BAKE_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
+  CommandResult r;
+  r.status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  r.output = text.str();
+  return r;
+}
+
+using Table = std::vector<std::map<std::string, std::string>>;
+
+Table read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> header;
+  Table rows;
+  auto split = [](const std::string& text) {
+    std::vector<std::string> fields;
+    std::stringstream s(text);
+    std::string field;
+    while (std::getline(s, field, ',')) fields.push_back(field);
+    if (!text.empty() && text.back() == ',') fields.push_back("");
+    return fields;
+  };
+  if (std::getline(in, line)) header = split(line);
+  while (std::getline(in, line)) {
+    const std::vector<std::string> fields = split(line);
+    EXPECT_EQ(fields.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < fields.size() && i < header.size(); ++i) row[header[i]] = fields[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+class WaveletTradeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // One folder per test: ctest may run the tests of this fixture at the same time.
+    dir_ = fs::path(::testing::TempDir()) /
+           (std::string("prt_wavelet_trade_cli_") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    const CommandResult demo = run_bake("demo-scene \"" + dir_.string() + "\"", dir_ / "demo.log");
+    ASSERT_EQ(demo.status, 0) << demo.output;
+    sky_ = (dir_ / "demo_sky.hdr").string();
+    scene_ = (dir_ / "box_on_ground.obj").string();
+    write_box_on_ground(scene_);
+  }
+  // A 9 x 9 ground grid with a box standing on it (a few hundred vertices): shadows to measure,
+  // yet every bake takes a fraction of a second.
+  static void write_box_on_ground(const std::string& path) {
+    std::ofstream obj(path);
+    const int n = 9;
+    for (int z = 0; z <= n; ++z) {
+      for (int x = 0; x <= n; ++x)
+        obj << "v " << -1.0 + 2.0 * x / n << " 0 " << -1.0 + 2.0 * z / n << "\n";
+    }
+    for (int z = 0; z < n; ++z) {
+      for (int x = 0; x < n; ++x) {
+        const int a = 1 + z * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
+        obj << "f " << a << ' ' << c << ' ' << b << "\nf " << b << ' ' << c << ' ' << d << "\n";
+      }
+    }
+    // The box: 8 corners after the grid's (n+1)^2 vertices, faces wound outwards.
+    const int o = (n + 1) * (n + 1);
+    for (int i = 0; i < 8; ++i)
+      obj << "v " << ((i & 1) ? 0.3 : -0.3) << ' ' << ((i & 2) ? 0.6 : 0.0) << ' '
+          << ((i & 4) ? 0.3 : -0.3) << "\n";
+    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces) {
+      obj << "f " << o + 1 + f[0] << ' ' << o + 1 + f[1] << ' ' << o + 1 + f[2] << "\n";
+      obj << "f " << o + 1 + f[0] << ' ' << o + 1 + f[2] << ' ' << o + 1 + f[3] << "\n";
+    }
+  }
+  std::string trade_arguments(const std::string& out, int threads) const {
+    return "--threads " + std::to_string(threads) + " trade-wavelet \"" + scene_ + "\" --env \"" +
+           sky_ + "\" --out-dir \"" + out + "\" --cache-dir \"" + (dir_ / "cache").string() +
+           "\" --sizes 16 --base-size 16 --keeps 20,64 --base-keep 64 --light-terms 0,all"
+           " --paraboloid-sizes 16 --sh-orders 2,3 --sh-bits 8,16 --sh-rays 16 --ref-spp 16"
+           " --frames 2 --albedo 0.8,0.8,0.8";
+  }
+  fs::path dir_;
+  std::string scene_, sky_;
+};
+
+std::string key(const std::map<std::string, std::string>& row) {
+  return row.at("technique") + "/" + row.at("param") + "/" + row.at("size") + "/" + row.at("keep") +
+         "/" + row.at("quantizer") + "/" + row.at("light_terms") + "/" + row.at("sh_order");
+}
+
+TEST_F(WaveletTradeCli, SweepsCachesAndRepeatsItself) {
+  const CommandResult first = run_bake(trade_arguments((dir_ / "a").string(), 2), dir_ / "a.log");
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("rendering"), std::string::npos) << first.output;
+  const Table a = read_csv(dir_ / "a" / "trade.csv");
+  EXPECT_TRUE(fs::exists(dir_ / "a" / "trade.md"));
+
+  // Cube 16 (96 blocks... 6 of 256): N sweep at K = 64 (default_wavelet_keep's floor), K sweep
+  // {20, 64} x {float, vertex, band}, M sweep {0, all} at K 64 band, param at 16 (cube and
+  // paraboloid); sh orders {2, 3} x {8, 16} bits. One map.
+  std::map<std::string, std::string> sweeps;
+  for (const auto& row : a) {
+    sweeps[key(row)] = row.at("sweeps");
+    const double error = std::stod(row.at("rel_rmse"));
+    EXPECT_TRUE(error > 0.0 && error < 10.0) << key(row) << ": " << error;
+  }
+  const std::map<std::string, std::string> expected = {
+      {"wavelet/cube/16/20/float/all/", "K"},  {"wavelet/cube/16/20/vertex/all/", "K"},
+      {"wavelet/cube/16/20/band/all/", "K"},   {"wavelet/cube/16/64/float/all/", "K"},
+      {"wavelet/cube/16/64/vertex/all/", "K"}, {"wavelet/cube/16/64/band/all/", "N+K+M+param"},
+      {"wavelet/cube/16/64/band/0/", "M"},     {"wavelet/dual-paraboloid/16/64/band/all/", "param"},
+      {"sh////8-bit grey//2", "sh"},           {"sh////16-bit grey//2", "sh"},
+      {"sh////8-bit grey//3", "sh"},           {"sh////16-bit grey//3", "sh"}};
+  EXPECT_EQ(sweeps, expected);
+
+  // Bytes per vertex follow SPEC §7.2 and §7.1: 12 vs + 4 rs + 2 B counts + 2 per pair (the
+  // section's fixed header and band scales spread over the vertices), n^2 b/8 for grey sh.
+  for (const auto& row : a) {
+    if (row.at("quantizer") == "float") {
+      EXPECT_EQ(row.at("transfer_bytes_per_vertex"), "") << key(row);
+      continue;
+    }
+    const double bytes = std::stod(row.at("transfer_bytes_per_vertex"));
+    const double vertices = std::stod(row.at("vertices"));
+    if (row.at("technique") == "sh") {
+      const double n = std::stod(row.at("sh_order"));
+      const double bits = row.at("quantizer").rfind("8-bit", 0) == 0 ? 8 : 16;
+      const double raw = 32 + 8 * n * n + vertices * n * n * bits / 8;
+      EXPECT_NEAR(bytes, raw / vertices, 4 / vertices + 0.01) << key(row);
+    } else {
+      const double faces = row.at("param") == "cube" ? 6 : 2, size = 16;
+      const double blocks = faces * size * size / 256,
+                   pairs = std::stod(row.at("pairs_per_vertex"));
+      const double raw = 32 + 4 * faces * 5 + vertices * (12 + 4 + 2 * blocks + 2 * pairs) + 4;
+      EXPECT_NEAR(bytes, raw / vertices, 4 / vertices + 0.02) << key(row);
+      EXPECT_LE(pairs, std::stod(row.at("keep"))) << key(row);
+    }
+  }
+
+  // Second run, on one thread: references from the cache, the same numbers but for the timings.
+  const CommandResult second = run_bake(trade_arguments((dir_ / "b").string(), 1), dir_ / "b.log");
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_EQ(second.output.find("rendering"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("from the cache"), std::string::npos) << second.output;
+  const Table b = read_csv(dir_ / "b" / "trade.csv");
+  ASSERT_EQ(a.size(), b.size());
+  const std::set<std::string> timings = {"shade_cpu_ms", "shade_simd_ms", "light_update_ms",
+                                         "bake_seconds", "rays_per_second"};
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (const auto& [column, value] : a[i]) {
+      if (!timings.count(column)) {
+        EXPECT_EQ(value, b[i].at(column)) << column;
+      }
+    }
+  }
+}
+
+TEST_F(WaveletTradeCli, BadInputGivesAClearError) {
+  const std::string base =
+      "trade-wavelet \"" + scene_ + "\" --out-dir \"" + (dir_ / "x").string() + "\" ";
+  const CommandResult missing_map = run_bake(base + "--env nothere.hdr", dir_ / "x.log");
+  EXPECT_NE(missing_map.status, 0);
+  EXPECT_NE(missing_map.output.find("nothere.hdr"), std::string::npos) << missing_map.output;
+  const CommandResult bad_size =
+      run_bake(base + "--env \"" + sky_ + "\" --sizes 16,48", dir_ / "y.log");
+  EXPECT_NE(bad_size.status, 0);
+  EXPECT_NE(bad_size.output.find("--sizes: 48"), std::string::npos) << bad_size.output;
+  const CommandResult bad_terms =
+      run_bake(base + "--env \"" + sky_ + "\" --light-terms 10,most", dir_ / "z.log");
+  EXPECT_NE(bad_terms.status, 0);
+  EXPECT_NE(bad_terms.output.find("'most'"), std::string::npos) << bad_terms.output;
+}
+
+}  // namespace
