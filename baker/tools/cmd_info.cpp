@@ -6,19 +6,12 @@
 #include <memory>
 #include <string>
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include "command.hpp"
 
 namespace prt::bake::cli {
 namespace {
-
-struct ContextDeleter {
-  void operator()(prt_context* context) const { prt_context_destroy(context); }
-};
-struct AssetDeleter {
-  void operator()(prt_asset* asset) const { prt_asset_destroy(asset); }
-};
 
 std::string tag_text(std::uint32_t tag) {
   std::string text(4, ' ');
@@ -36,7 +29,7 @@ std::string producer_text(const std::uint8_t (&producer)[16]) {
 }
 
 void print_blob(const std::string& path, const prt_asset* asset) {
-  prt_asset_info info{};
+  prt_asset_info info = prt::sized<prt_asset_info>();
   prt_asset_get_info(asset, &info);
   std::printf("blob: %s\n  format:   %u.%u\n  size:     %" PRIu64
               " bytes\n  flags:    0x%08X\n"
@@ -46,7 +39,7 @@ void print_blob(const std::string& path, const prt_asset* asset) {
   std::printf("  %-4s  %-8s %-5s %6s %10s %12s %12s %12s  %s\n", "tag", "flags", "codec", "layout",
               "offset", "stored", "raw", "elements", "checksum");
   for (std::uint32_t i = 0; i < info.section_count; ++i) {
-    prt_section_info section{};
+    prt_section_info section = prt::sized<prt_section_info>();
     prt_asset_get_section_info(asset, i, &section);
     std::printf("  %-4s  %-8s %-5s %6u %10" PRIu64 " %12" PRIu64 " %12" PRIu64 " %12" PRIu64
                 "  0x%08X%s\n",
@@ -59,17 +52,14 @@ void print_blob(const std::string& path, const prt_asset* asset) {
 }
 
 void run_info(const std::string& path, bool quick, CommandEnv& env) {
-  prt_context* raw_context = nullptr;
-  if (prt_context_create(nullptr, &raw_context) != PRT_OK) throw Error("cannot create a context");
-  std::unique_ptr<prt_context, ContextDeleter> context(raw_context);
-  prt_asset* raw_asset = nullptr;
-  const prt_result result = prt_asset_load_file(
-      context.get(), path.c_str(), quick ? PRT_VALIDATE_QUICK : PRT_VALIDATE_FULL, &raw_asset);
+  const prt::ContextPtr context = prt::create_context().handle;
+  if (!context) throw Error("cannot create a context");
+  const auto [asset, result] = prt::load_asset_file(context.get(), path.c_str(),
+                                                    quick ? PRT_VALIDATE_QUICK : PRT_VALIDATE_FULL);
   if (result != PRT_OK) {
     throw Error(path + ": " + prt_result_string(result) + ": " +
                 prt_context_last_message(context.get()));
   }
-  std::unique_ptr<prt_asset, AssetDeleter> asset(raw_asset);
   print_blob(path, asset.get());
   env.context().info(path + ": valid (" + (quick ? "quick" : "full") + " validation)");
 }

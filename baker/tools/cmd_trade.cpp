@@ -136,8 +136,8 @@ double time_shading(const prt_asset* asset, prt_backend backend, const float* li
                     std::uint32_t vertices, int frames, std::vector<float>* out) {
   out->resize(std::size_t(vertices) * 3);
   return median_frame_ms(
-      frames, std::string("prt_sh_shade_on(") + prt_backend_name(backend) + ")",
-      [&] { return prt_sh_shade_on(asset, backend, light, 0, vertices, out->data()); });
+      frames, std::string("prt_sh_shade(") + prt_backend_name(backend) + ")",
+      [&] { return prt_sh_shade(asset, backend, light, 0, vertices, out->data()); });
 }
 
 // The leading order^2 coefficients of a light projected at a higher order.
@@ -259,7 +259,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
         "of the same figure; "
         "error with noise removed = sqrt(error^2 - noise^2), the error with the reference's "
         "independent noise taken out. Shading time = median of "
-     << o.frames << " frames of prt_sh_shade_on over all vertices, one thread. "
+     << o.frames << " frames of prt_sh_shade over all vertices, one thread. "
      << "Quant. = the relative RMSE that " << o.bits
      << "-bit storage adds to the shading (runtime vs float transfer).\n\n";
   md << "Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()

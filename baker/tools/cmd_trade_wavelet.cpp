@@ -12,11 +12,7 @@
 // each quantised setting written to a blob, loaded at full validation and shaded by the runtime
 // on the CPU and SIMD backends; errors are against the reference renderer's direct light with
 // shadows (cached, the same key scheme as prt-bake trade). Writes DIR/trade.csv and trade.md.
-#include <prt/prt.h>
-#include <prt/prt_sh.h>
-#include <prt/prt_sh_asset.h>
-#include <prt/prt_wavelet.h>
-#include <prt/prt_wavelet_asset.h>
+#include <prt/prt.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -209,8 +205,8 @@ std::vector<WaveletBake> wavelet_bakes(const WaveletTradeOptions& o) {
   }
   // Cheapest first: the coefficient count decides the bake's cost.
   std::stable_sort(bakes.begin(), bakes.end(), [](const WaveletBake& a, const WaveletBake& b) {
-    return prt_wavelet_coefficient_count(a.param, a.size) <
-           prt_wavelet_coefficient_count(b.param, b.size);
+    return prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(a.param), a.size) <
+           prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(b.param), b.size);
   });
   return bakes;
 }
@@ -242,13 +238,17 @@ TradeLight load_trade_light(const std::string& path, const Scene& scene,
   return light;
 }
 
-// The map's texel values on a parameterisation (prt_wavelet_resample_*), RGBA.
-prt_result resample(const TradeLight& light, std::uint32_t param, std::uint32_t size, float* rgba) {
+// The map as the runtime's environment image: lat-long, or the six cube faces.
+prt_env_image env_image(const TradeLight& light) {
   const EnvMap& map = *light.sh.map;
-  if (light.latlong)
-    return prt_wavelet_resample_latlong(param, size, map.pixels().data(), map.width(), map.height(),
-                                        nullptr, rgba);
-  return prt_wavelet_resample_cube(param, size, light.faces.data(), light.face_size, nullptr, rgba);
+  if (light.latlong) return prt::latlong_env(map.width(), map.height(), map.pixels().data());
+  return prt::cube_env(light.face_size, light.faces.data());
+}
+
+// The map's texel values on a parameterisation (prt_wavelet_resample), RGBA.
+prt_result resample(const TradeLight& light, std::uint32_t param, std::uint32_t size, float* rgba) {
+  const prt_env_image env = env_image(light);
+  return prt_wavelet_resample(static_cast<prt_wavelet_param>(param), size, &env, rgba);
 }
 
 // The light in Haar coefficients with every term (resample + transform). Its power, the sum of
@@ -257,7 +257,8 @@ prt_result resample(const TradeLight& light, std::uint32_t param, std::uint32_t 
 // orientation shows there.
 std::vector<float> wavelet_light(const TradeLight& light, std::uint32_t param, std::uint32_t size,
                                  const Context& ctx, std::vector<std::string>* notes) {
-  const std::uint32_t count = prt_wavelet_coefficient_count(param, size);
+  const auto domain = static_cast<prt_wavelet_param>(param);
+  const std::uint32_t count = prt_wavelet_coefficient_count(domain, size);
   std::vector<float> rgba(std::size_t(count) * 4);
   check_runtime(resample(light, param, size, rgba.data()), "prt_wavelet_resample");
   double power = 0.0;
@@ -275,7 +276,7 @@ std::vector<float> wavelet_light(const TradeLight& light, std::uint32_t param, s
     ctx.warn(note);
     notes->push_back(note);
   }
-  check_runtime(prt_wavelet_transform_light(param, size, rgba.data()),
+  check_runtime(prt_wavelet_transform_light(domain, size, rgba.data()),
                 "prt_wavelet_transform_light");
   return rgba;
 }
@@ -283,8 +284,9 @@ std::vector<float> wavelet_light(const TradeLight& light, std::uint32_t param, s
 std::vector<float> selected(const std::vector<float>& light, std::uint32_t param,
                             std::uint32_t size, std::uint32_t terms) {
   std::vector<float> out = light;
-  check_runtime(prt_wavelet_select_light(param, size, terms, out.data()),
-                "prt_wavelet_select_light");
+  check_runtime(
+      prt_wavelet_select_light(static_cast<prt_wavelet_param>(param), size, terms, out.data()),
+      "prt_wavelet_select_light");
   return out;
 }
 
@@ -328,24 +330,30 @@ Row wavelet_row(const WaveletTransfer& t, const Measurement& m, const TradeLight
 // Median ms of one light update: resample, transform, select M, prepare for the asset.
 double time_light_update(const TradeLight& light, const prt_asset* asset, std::uint32_t param,
                          std::uint32_t size, std::uint32_t terms, int frames) {
-  std::vector<float> rgba(std::size_t(prt_wavelet_coefficient_count(param, size)) * 4);
+  const auto domain = static_cast<prt_wavelet_param>(param);
+  const std::uint32_t count = prt_wavelet_coefficient_count(domain, size);
+  std::vector<float> rgba(std::size_t(count) * 4);
+  std::vector<std::uint8_t> zero_blocks(count / 256);
   return median_frame_ms(frames, "light update", [&] {
     prt_result r = resample(light, param, size, rgba.data());
-    if (r == PRT_OK) r = prt_wavelet_transform_light(param, size, rgba.data());
-    if (r == PRT_OK) r = prt_wavelet_select_light(param, size, terms, rgba.data());
-    if (r == PRT_OK) r = prt_wavelet_prepare_light(asset, rgba.data(), rgba.data());
+    if (r == PRT_OK) r = prt_wavelet_transform_light(domain, size, rgba.data());
+    if (r == PRT_OK) r = prt_wavelet_select_light(domain, size, terms, rgba.data());
+    if (r == PRT_OK)
+      r = prt_wavelet_prepare_light(asset, rgba.data(), rgba.data(), zero_blocks.data());
     return r;
   });
 }
 
 double time_wavelet_shading(const prt_asset* asset, prt_backend backend,
-                            const std::vector<float>& prepared, std::uint32_t vertices, int frames,
-                            std::vector<float>* out) {
+                            const std::vector<float>& prepared,
+                            const std::vector<std::uint8_t>& zero_blocks, std::uint32_t vertices,
+                            int frames, std::vector<float>* out) {
   out->resize(std::size_t(vertices) * 3);
-  return median_frame_ms(
-      frames, std::string("prt_wavelet_shade_on(") + prt_backend_name(backend) + ")", [&] {
-        return prt_wavelet_shade_on(asset, backend, prepared.data(), 0, vertices, out->data());
-      });
+  return median_frame_ms(frames,
+                         std::string("prt_wavelet_shade(") + prt_backend_name(backend) + ")", [&] {
+                           return prt_wavelet_shade(asset, backend, prepared.data(),
+                                                    zero_blocks.data(), 0, vertices, out->data());
+                         });
 }
 
 // Rows of one (keep, quantiser) on every light and each of its light terms.
@@ -367,14 +375,16 @@ void measure_quantized(const Scene& scene, const WaveletTransfer& t, const std::
     for (const Measurement* m : ms) {
       const std::vector<float> light = selected(full_lights[l], t.param, t.size, m->terms);
       std::vector<float> prepared(light.size());
-      check_runtime(prt_wavelet_prepare_light(asset, light.data(), prepared.data()),
-                    "prt_wavelet_prepare_light");
+      std::vector<std::uint8_t> zero_blocks(light.size() / 4 / 256);
+      check_runtime(
+          prt_wavelet_prepare_light(asset, light.data(), prepared.data(), zero_blocks.data()),
+          "prt_wavelet_prepare_light");
       Row row = wavelet_row(t, *m, lights[l]);
       std::vector<float> shaded, simd_shaded;
-      row.simd_ms =
-          time_wavelet_shading(asset, PRT_BACKEND_SIMD, prepared, vertices, o.frames, &simd_shaded);
-      row.cpu_ms =
-          time_wavelet_shading(asset, PRT_BACKEND_CPU, prepared, vertices, o.frames, &shaded);
+      row.simd_ms = time_wavelet_shading(asset, PRT_BACKEND_SIMD, prepared, zero_blocks, vertices,
+                                         o.frames, &simd_shaded);
+      row.cpu_ms = time_wavelet_shading(asset, PRT_BACKEND_CPU, prepared, zero_blocks, vertices,
+                                        o.frames, &shaded);
       row.light_ms = time_light_update(lights[l], asset, t.param, t.size, m->terms, o.frames);
       const std::vector<glm::vec3> radiance = as_vec3(shaded);
       row.error = subset_rmse(radiance, lights[l].reference.radiance, o.vertex_stride);
@@ -485,17 +495,10 @@ QuantizedShTransfer grey_if_possible(QuantizedShTransfer q) {
 }
 
 double time_sh_projection(const TradeLight& light, std::uint32_t order, int frames) {
-  const EnvMap& map = *light.sh.map;
   std::vector<float> rgb(std::size_t(order) * order * 3);
-  const float* faces[6];
-  const std::size_t face_floats = std::size_t(light.face_size) * light.face_size * 3;
-  for (int f = 0; f < 6 && !light.latlong; ++f) faces[f] = light.faces.data() + f * face_floats;
-  return median_frame_ms(frames, "SH projection", [&] {
-    if (light.latlong)
-      return prt_sh_project_latlong(order, map.width(), map.height(), map.pixels().data(),
-                                    std::size_t(map.width()) * 3, rgb.data());
-    return prt_sh_project_cube(order, light.face_size, faces, rgb.data());
-  });
+  const prt_env_image env = env_image(light);
+  return median_frame_ms(frames, "SH projection",
+                         [&] { return prt_sh_project(order, &env, rgb.data()); });
 }
 
 void run_sh_bake(const Scene& scene, const EmbreeScene& rays, std::uint32_t order,
@@ -530,8 +533,8 @@ void run_sh_bake(const Scene& scene, const EmbreeScene& rays, std::uint32_t orde
       row.ref_noise = light.reference.noise;
       std::vector<float> shaded(std::size_t(vertices) * 3), simd_shaded(shaded.size());
       auto timed = [&](prt_backend backend, std::vector<float>* out) {
-        return median_frame_ms(o.frames, "prt_sh_shade_on", [&] {
-          return prt_sh_shade_on(runtime.asset.get(), backend, l.data(), 0, vertices, out->data());
+        return median_frame_ms(o.frames, "prt_sh_shade", [&] {
+          return prt_sh_shade(runtime.asset.get(), backend, l.data(), 0, vertices, out->data());
         });
       };
       row.simd_ms = timed(PRT_BACKEND_SIMD, &simd_shaded);

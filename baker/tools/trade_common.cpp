@@ -70,19 +70,19 @@ ShLight load_sh_light(const std::string& path, std::uint32_t order, const Contex
   const EnvMap& map = *light.map;
   light.rgb.resize(std::size_t(order) * order * 3);
   switch (map.mapping()) {
-    case EnvMapping::LatLong:
+    case EnvMapping::LatLong: {
       light.projection = "runtime lat-long";
-      check_runtime(prt_sh_project_latlong(order, map.width(), map.height(), map.pixels().data(),
-                                           std::size_t(map.width()) * 3, light.rgb.data()),
-                    path + ": prt_sh_project_latlong");
+      const prt_env_image env = prt::latlong_env(map.width(), map.height(), map.pixels().data());
+      check_runtime(prt_sh_project(order, &env, light.rgb.data()), path + ": prt_sh_project");
       break;
+    }
     case EnvMapping::VerticalCross: {
       light.projection = "runtime cube";
-      const auto faces = resample_to_cube(map, map.face_size());
-      const float* pointers[6];
-      for (int i = 0; i < 6; ++i) pointers[i] = faces[i].data();
-      check_runtime(prt_sh_project_cube(order, map.face_size(), pointers, light.rgb.data()),
-                    path + ": prt_sh_project_cube");
+      std::vector<float> packed;
+      for (const auto& face : resample_to_cube(map, map.face_size()))
+        packed.insert(packed.end(), face.begin(), face.end());
+      const prt_env_image env = prt::cube_env(map.face_size(), packed.data());
+      check_runtime(prt_sh_project(order, &env, light.rgb.data()), path + ": prt_sh_project");
       break;
     }
     default:  // the runtime takes lat-long and cube maps only; the baker projects the others
@@ -161,10 +161,20 @@ double noise_removed(double error, double noise) {
 
 // --- runtime ------------------------------------------------------------------------------------
 
+// The tool's contexts read PRT_BACKEND / PRT_SIMD_ISA, so a user can time a lower backend.
+static const prt_context_desc* tool_context_desc() {
+  static const prt_context_desc desc = [] {
+    prt_context_desc d = prt::sized<prt_context_desc>();
+    d.flags = PRT_CONTEXT_READ_ENVIRONMENT;
+    return d;
+  }();
+  return &desc;
+}
+
 RuntimeAsset load_runtime_asset(const std::vector<std::uint8_t>& blob) {
   RuntimeAsset loaded;
   prt_context* context = nullptr;
-  check_runtime(prt_context_create(nullptr, &context), "prt_context_create");
+  check_runtime(prt_context_create(tool_context_desc(), &context), "prt_context_create");
   loaded.context.reset(context);
   prt_asset* asset = nullptr;
   const prt_result result =
@@ -216,8 +226,8 @@ std::string cpu_model() {
 
 std::string simd_description() {
   prt_context* context = nullptr;
-  if (prt_context_create(nullptr, &context) != PRT_OK) return "unknown";
-  prt_backend_info info{};
+  if (prt_context_create(tool_context_desc(), &context) != PRT_OK) return "unknown";
+  prt_backend_info info = prt::sized<prt_backend_info>();
   std::string text = "unknown";
   if (prt_backend_get_info(context, PRT_BACKEND_SIMD, &info) == PRT_OK) {
     text = info.usable ? std::string("usable, ") + prt_simd_isa_name(info.isa)

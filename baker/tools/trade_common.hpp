@@ -4,7 +4,7 @@
 // timer, the machine description and number formatting.
 #pragma once
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include <cstdint>
 #include <functional>
@@ -30,8 +30,8 @@ void check_runtime(prt_result result, const std::string& what);
 
 // An environment and its SH light as the runtime projects it, at the largest order swept (lower
 // orders are its leading coefficients: each coefficient's projection does not depend on the
-// order). Lat-long maps go through prt_sh_project_latlong, vertical crosses through
-// prt_sh_project_cube (both checked against the baker's projection); other mappings are
+// order). Lat-long maps and vertical crosses (as cube faces) go through prt_sh_project (checked
+// against the baker's projection); other mappings are
 // projected by the baker.
 struct ShLight {
   std::string name;
@@ -61,9 +61,8 @@ double noise_removed(double error, double noise);
 
 // A blob loaded through the runtime at full validation, with its own context.
 struct RuntimeAsset {
-  std::unique_ptr<prt_context, decltype(&prt_context_destroy)> context{nullptr,
-                                                                       &prt_context_destroy};
-  std::unique_ptr<prt_asset, decltype(&prt_asset_destroy)> asset{nullptr, &prt_asset_destroy};
+  prt::ContextPtr context;
+  prt::AssetPtr asset;
 };
 RuntimeAsset load_runtime_asset(const std::vector<std::uint8_t>& blob);
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "techniques.h"
 
 typedef enum storage_mode {
   STORAGE_COPY,   /* copy the caller's bytes */
@@ -34,6 +35,7 @@ static prt_result decode_section(const prt_allocator* allocator, const uint8_t* 
   out->entry = *s;
   out->owned = NULL;
   out->data = NULL;
+  out->decoded = 1;
   if (s->codec == PRT_BLOB_CODEC_NONE) {
     if (s->raw_size > 0) out->data = bytes + s->offset;
     return PRT_OK;
@@ -77,24 +79,55 @@ static void free_sections(const prt_allocator* allocator, prt_asset_section* sec
   prt_internal_free(allocator, sections, (size_t)count * sizeof *sections);
 }
 
-/* Every check and every decode; on PRT_OK *out_sections holds the decoded sections (caller frees
- * with free_sections). With decode == 0 nothing is kept (validation only). */
+/* What check_and_decode does with the sections once the structure has been checked. */
+typedef enum decode_mode {
+  DECODE_KEEP,         /* load: decode every section and open the technique views, keep both */
+  DECODE_CHECK,        /* full validation: decode and check every section, keep nothing */
+  DECODE_IN_PLACE_ONLY /* quick validation: only what needs no decompression, keep nothing */
+} decode_mode;
+
+/* Reads and (DECODE_KEEP, DECODE_CHECK) decodes every section, checking the decoded contents at
+ * full validation. */
+static prt_result decode_sections(const prt_allocator* allocator, const uint8_t* bytes,
+                                  const prt_blob_header* h, prt_validation validation,
+                                  decode_mode mode, prt_asset_section* sections, char* msg,
+                                  size_t cap) {
+  const uint64_t vertices = vertex_count(bytes, h);
+  uint32_t i;
+  for (i = 0; i < h->section_count; ++i) {
+    prt_blob_section s;
+    prt_result r = PRT_OK;
+    prt_blob_read_section(bytes, h, i, &s);
+    if (mode == DECODE_IN_PLACE_ONLY && s.codec != PRT_BLOB_CODEC_NONE) {
+      sections[i].entry = s; /* left undecoded: its technique header is checked at load */
+      continue;
+    }
+    r = decode_section(allocator, bytes, &s, &sections[i], msg, cap);
+    if (r == PRT_OK && validation == PRT_VALIDATE_FULL)
+      r = (prt_result)prt_blob_check_content(&s, sections[i].data, vertices, msg, cap);
+    if (r != PRT_OK) return r;
+  }
+  return PRT_OK;
+}
+
+/* Every check and every decode; on PRT_OK with DECODE_KEEP, *out_sections holds the decoded
+ * sections (caller frees with free_sections) and views[] the technique views (caller frees with
+ * prt_internal_free_views). Other modes keep nothing. */
 static prt_result check_and_decode(const prt_allocator* allocator, const uint8_t* bytes,
-                                   size_t size, prt_validation validation, int decode,
-                                   prt_blob_header* h, prt_asset_section** out_sections, char* msg,
+                                   size_t size, prt_validation validation, decode_mode mode,
+                                   prt_blob_header* h, prt_asset_section** out_sections,
+                                   void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
                                    size_t cap) {
   prt_asset_section* sections = NULL;
   prt_result r;
-  uint32_t i;
-  uint64_t vertices;
   *out_sections = NULL;
+  memset(views, 0, PRT_INTERNAL_MAX_TECHNIQUES * sizeof views[0]);
   r = (prt_result)prt_blob_validate_structure(bytes, size, h, msg, cap);
   if (r != PRT_OK) return r;
   if (validation == PRT_VALIDATE_FULL) {
     r = (prt_result)prt_blob_verify_checksums(bytes, h, msg, cap);
     if (r != PRT_OK) return r;
   }
-  if (!decode && validation != PRT_VALIDATE_FULL) return PRT_OK;
   if (h->section_count > 0) {
     sections = (prt_asset_section*)prt_internal_alloc(
         allocator, (size_t)h->section_count * sizeof *sections, 16);
@@ -104,24 +137,16 @@ static prt_result check_and_decode(const prt_allocator* allocator, const uint8_t
     }
     memset(sections, 0, (size_t)h->section_count * sizeof *sections);
   }
-  vertices = vertex_count(bytes, h);
-  for (i = 0; i < h->section_count; ++i) {
-    prt_blob_section s;
-    prt_blob_read_section(bytes, h, i, &s);
-    r = decode_section(allocator, bytes, &s, &sections[i], msg, cap);
-    if (r == PRT_OK && validation == PRT_VALIDATE_FULL)
-      r = (prt_result)prt_blob_check_content(&s, sections[i].data, vertices, msg, cap);
-    if (r != PRT_OK) {
-      free_sections(allocator, sections, h->section_count);
-      return r;
-    }
-  }
-  if (decode) {
+  r = decode_sections(allocator, bytes, h, validation, mode, sections, msg, cap);
+  if (r == PRT_OK)
+    r = prt_internal_open_views(allocator, sections, h->section_count, mode == DECODE_KEEP, views,
+                                msg, cap);
+  if (r == PRT_OK && mode == DECODE_KEEP) {
     *out_sections = sections;
   } else {
     free_sections(allocator, sections, h->section_count);
   }
-  return PRT_OK;
+  return r;
 }
 
 static prt_result load(prt_context* context, const void* data, size_t size,
@@ -132,6 +157,7 @@ static prt_result load(prt_context* context, const void* data, size_t size,
   const uint8_t* bytes = (const uint8_t*)data;
   uint8_t* copy = NULL;
   prt_asset_section* sections = NULL;
+  void* views[PRT_INTERNAL_MAX_TECHNIQUES];
   prt_blob_header h;
   prt_asset* asset;
   prt_result r;
@@ -155,14 +181,18 @@ static prt_result load(prt_context* context, const void* data, size_t size,
   } else if (mode == STORAGE_ADOPT) {
     copy = (uint8_t*)data;
   }
-  r = check_and_decode(allocator, bytes, size, validation, 1, &h, &sections, msg, sizeof msg);
+  r = check_and_decode(allocator, bytes, size, validation, DECODE_KEEP, &h, &sections, views, msg,
+                       sizeof msg);
   asset = r == PRT_OK ? (prt_asset*)prt_internal_alloc(allocator, sizeof *asset, 16) : NULL;
   if (!asset) {
     if (r == PRT_OK) {
       r = PRT_ERROR_OUT_OF_MEMORY;
       snprintf(msg, sizeof msg, "out of memory");
     }
-    if (sections) free_sections(allocator, sections, h.section_count);
+    if (sections) {
+      prt_internal_free_views(allocator, views);
+      free_sections(allocator, sections, h.section_count);
+    }
     if (mode == STORAGE_COPY) prt_internal_free(allocator, copy, size);
     return prt_internal_fail(context, r, "%s: %s", what, msg);
   }
@@ -173,6 +203,7 @@ static prt_result load(prt_context* context, const void* data, size_t size,
   asset->owned_bytes = copy;
   asset->size = size;
   asset->sections = sections;
+  memcpy(asset->views, views, sizeof asset->views);
   *out_asset = asset;
   return PRT_OK;
 }
@@ -247,6 +278,7 @@ void prt_asset_destroy(prt_asset* asset) {
   prt_allocator allocator;
   if (!asset) return;
   allocator = asset->allocator;
+  prt_internal_free_views(&allocator, asset->views);
   free_sections(&allocator, asset->sections, asset->header.section_count);
   prt_internal_free(&allocator, asset->owned_bytes, asset->size);
   prt_internal_free(&allocator, asset, sizeof *asset);
@@ -256,6 +288,7 @@ prt_result prt_asset_validate(prt_context* context, const void* data, size_t siz
                               prt_validation validation, char* message, size_t capacity) {
   char msg[PRT_MESSAGE_CAPACITY - 64];
   prt_asset_section* sections = NULL;
+  void* views[PRT_INTERNAL_MAX_TECHNIQUES];
   prt_blob_header h;
   prt_result r;
   if (message && capacity > 0) message[0] = '\0';
@@ -266,8 +299,9 @@ prt_result prt_asset_validate(prt_context* context, const void* data, size_t siz
                              "prt_asset_validate: invalid argument");
   }
   msg[0] = '\0';
-  r = check_and_decode(&context->allocator, (const uint8_t*)data, size, validation, 0, &h,
-                       &sections, msg, sizeof msg);
+  r = check_and_decode(&context->allocator, (const uint8_t*)data, size, validation,
+                       validation == PRT_VALIDATE_FULL ? DECODE_CHECK : DECODE_IN_PLACE_ONLY, &h,
+                       &sections, views, msg, sizeof msg);
   if (r != PRT_OK) {
     if (message && capacity > 0) snprintf(message, capacity, "%s", msg);
     return prt_internal_fail(context, r, "prt_asset_validate: %s", msg);

@@ -3,18 +3,46 @@
 #include <string.h>
 
 #include "internal.h"
+#include "techniques.h"
 
 prt_result prt_asset_get_info(const prt_asset* asset, prt_asset_info* out) {
-  if (!asset || !out) return PRT_ERROR_INVALID_ARGUMENT;
-  memset(out, 0, sizeof *out);
-  out->format_major = asset->header.version_major;
-  out->format_minor = asset->header.version_minor;
-  out->flags = asset->header.flags;
-  out->section_count = asset->header.section_count;
-  out->total_size = asset->header.total_size;
-  memcpy(out->producer, asset->header.producer, sizeof out->producer);
-  out->borrowed = asset->owned_bytes == NULL;
+  prt_asset_info info;
+  if (!asset || !out || !prt_internal_struct_size_ok(out, PRT_ASSET_INFO_SIZE_1_0))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  memset(&info, 0, sizeof info);
+  info.struct_size = sizeof info;
+  info.format_major = asset->header.version_major;
+  info.format_minor = asset->header.version_minor;
+  info.flags = asset->header.flags;
+  info.section_count = asset->header.section_count;
+  info.total_size = asset->header.total_size;
+  memcpy(info.producer, asset->header.producer, sizeof info.producer);
+  info.borrowed = asset->owned_bytes == NULL;
+  prt_internal_write_struct(out, &info, sizeof info);
   return PRT_OK;
+}
+
+/* The element domains of the mesh sections every technique shares; a technique's section has
+ * its entry's domain (techniques.h). */
+typedef struct mesh_section_domain {
+  uint32_t tag;
+  prt_element_domain domain;
+} mesh_section_domain;
+
+static const mesh_section_domain kMeshDomains[] = {
+    {PRT_BLOB_TAG_INFO, PRT_ELEMENT_DOMAIN_NONE},
+    {PRT_BLOB_TAG_VPOS, PRT_ELEMENT_DOMAIN_VERTEX},
+    {PRT_BLOB_TAG_VNRM, PRT_ELEMENT_DOMAIN_VERTEX},
+    {PRT_BLOB_TAG_TRIS, PRT_ELEMENT_DOMAIN_TRIANGLE},
+};
+
+static prt_element_domain section_domain(uint32_t tag) {
+  const prt_technique_entry* t = prt_internal_technique_of_tag(tag);
+  size_t i;
+  if (t) return t->domain;
+  for (i = 0; i < sizeof kMeshDomains / sizeof kMeshDomains[0]; ++i)
+    if (kMeshDomains[i].tag == tag) return kMeshDomains[i].domain;
+  return PRT_ELEMENT_DOMAIN_NONE;
 }
 
 uint32_t prt_asset_section_count(const prt_asset* asset) {
@@ -24,19 +52,28 @@ uint32_t prt_asset_section_count(const prt_asset* asset) {
 prt_result prt_asset_get_section_info(const prt_asset* asset, uint32_t index,
                                       prt_section_info* out) {
   const prt_blob_section* s;
-  if (!asset || !out) return PRT_ERROR_INVALID_ARGUMENT;
+  const prt_technique_entry* technique;
+  prt_section_info info;
+  if (!asset || !out || !prt_internal_struct_size_ok(out, PRT_SECTION_INFO_SIZE_1_0))
+    return PRT_ERROR_INVALID_ARGUMENT;
   if (index >= asset->header.section_count) return PRT_ERROR_NOT_FOUND;
   s = &asset->sections[index].entry;
-  out->tag = s->tag;
-  out->flags = s->flags;
-  out->codec = (prt_codec)s->codec;
-  out->layout_version = s->layout_version;
-  out->known = prt_blob_find_kind(s->tag, s->layout_version) != NULL;
-  out->checksum = s->checksum;
-  out->offset = s->offset;
-  out->stored_size = s->stored_size;
-  out->raw_size = s->raw_size;
-  out->element_count = s->element_count;
+  memset(&info, 0, sizeof info);
+  info.struct_size = sizeof info;
+  info.tag = s->tag;
+  info.flags = s->flags;
+  info.codec = (prt_codec)s->codec;
+  info.layout_version = s->layout_version;
+  info.known = prt_blob_find_kind(s->tag, s->layout_version) != NULL;
+  info.checksum = s->checksum;
+  info.offset = s->offset;
+  info.stored_size = s->stored_size;
+  info.raw_size = s->raw_size;
+  info.element_count = s->element_count;
+  info.domain = info.known ? section_domain(s->tag) : PRT_ELEMENT_DOMAIN_NONE;
+  technique = info.known ? prt_internal_technique_of_tag(s->tag) : NULL;
+  info.technique = technique ? technique->technique : PRT_TECHNIQUE_NONE;
+  prt_internal_write_struct(out, &info, sizeof info);
   return PRT_OK;
 }
 

@@ -23,9 +23,9 @@ static int backend_allowed(const prt_context* context, prt_backend backend) {
 }
 #endif
 
-prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
-                                prt_backend_info* out) {
-  if (!context || !out) return PRT_ERROR_INVALID_ARGUMENT;
+/* Fills *out (every field) for a concrete backend; PRT_ERROR_INVALID_ARGUMENT otherwise. */
+static prt_result describe(const prt_context* context, prt_backend backend, prt_backend_info* out) {
+  out->struct_size = sizeof *out;
   out->backend = backend;
   out->isa = PRT_SIMD_ISA_NONE;
   out->name = prt_backend_name(backend);
@@ -77,10 +77,26 @@ prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
   return PRT_ERROR_INVALID_ARGUMENT;
 }
 
-prt_backend prt_context_backend(const prt_context* context) {
+prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
+                                prt_backend_info* out) {
   prt_backend_info info;
-  if (context && prt_backend_get_info(context, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable)
-    return PRT_BACKEND_SIMD;
+  prt_result r;
+  if (!context || !out || !prt_internal_struct_size_ok(out, PRT_BACKEND_INFO_SIZE_1_0))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  r = describe(context, backend, &info);
+  prt_internal_write_struct(out, &info, sizeof info);
+  return r;
+}
+
+prt_simd_isa prt_internal_simd_isa(const prt_context* context) {
+  prt_backend_info info;
+  if (describe(context, PRT_BACKEND_SIMD, &info) != PRT_OK || !info.usable)
+    return PRT_SIMD_ISA_NONE;
+  return info.isa;
+}
+
+prt_backend prt_context_backend(const prt_context* context) {
+  if (context && prt_internal_simd_isa(context) != PRT_SIMD_ISA_NONE) return PRT_BACKEND_SIMD;
   return PRT_BACKEND_CPU;
 }
 

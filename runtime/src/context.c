@@ -136,31 +136,42 @@ static void apply_environment(prt_context* c, prt_simd_isa* isa_limit) {
   }
 }
 
-prt_result prt_context_create(const prt_context_desc* desc, prt_context** out_context) {
-  static const prt_context_desc kDefaults = {0};
+/* The caller's description as far as its struct_size reaches, the rest at its defaults (0). */
+static prt_result read_desc(const prt_context_desc* desc, prt_context_desc* out) {
+  memset(out, 0, sizeof *out);
+  out->struct_size = sizeof *out;
+  if (!desc) return PRT_OK;
+  if (!prt_internal_struct_size_ok(desc, PRT_CONTEXT_DESC_SIZE_1_0))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  memcpy(out, desc, desc->struct_size < sizeof *out ? desc->struct_size : sizeof *out);
+  return PRT_OK;
+}
+
+prt_result prt_context_create(const prt_context_desc* caller_desc, prt_context** out_context) {
   prt_allocator allocator = {default_alloc, default_free, NULL};
+  prt_context_desc desc;
   prt_simd_isa isa_limit;
   prt_context* c;
   if (!out_context) return PRT_ERROR_INVALID_ARGUMENT;
   *out_context = NULL;
-  if (!desc) desc = &kDefaults;
-  if (desc->allocator) {
-    if (!desc->allocator->alloc || !desc->allocator->free) return PRT_ERROR_INVALID_ARGUMENT;
-    allocator = *desc->allocator;
+  if (read_desc(caller_desc, &desc) != PRT_OK) return PRT_ERROR_INVALID_ARGUMENT;
+  if (desc.allocator) {
+    if (!desc.allocator->alloc || !desc.allocator->free) return PRT_ERROR_INVALID_ARGUMENT;
+    allocator = *desc.allocator;
   }
-  if ((unsigned)desc->backend_limit > PRT_BACKEND_GL ||
-      (unsigned)desc->simd_isa_limit > PRT_SIMD_ISA_AVX2 ||
-      (desc->flags & ~PRT_CONTEXT_IGNORE_ENVIRONMENT) != 0)
+  if ((unsigned)desc.backend_limit > PRT_BACKEND_GL ||
+      (unsigned)desc.simd_isa_limit > PRT_SIMD_ISA_AVX2 ||
+      (desc.flags & ~(uint32_t)PRT_CONTEXT_READ_ENVIRONMENT) != 0)
     return PRT_ERROR_INVALID_ARGUMENT;
   c = (prt_context*)prt_internal_alloc(&allocator, sizeof *c, 16);
   if (!c) return PRT_ERROR_OUT_OF_MEMORY;
   memset(c, 0, sizeof *c);
   c->allocator = allocator;
-  c->message = desc->message;
-  c->message_user = desc->message_user;
-  c->backend_limit = desc->backend_limit;
-  isa_limit = desc->simd_isa_limit;
-  if (!(desc->flags & PRT_CONTEXT_IGNORE_ENVIRONMENT)) apply_environment(c, &isa_limit);
+  c->message = desc.message;
+  c->message_user = desc.message_user;
+  c->backend_limit = desc.backend_limit;
+  isa_limit = desc.simd_isa_limit;
+  if (desc.flags & PRT_CONTEXT_READ_ENVIRONMENT) apply_environment(c, &isa_limit);
   c->simd_isa = (prt_simd_isa)lower_limit(prt_internal_detect_simd_isa(), isa_limit);
   c->last_result = PRT_OK;
   *out_context = c;

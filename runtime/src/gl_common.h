@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* Private to the runtime: what every GL compute backend (gl_sh.c, gl_wavelet.c) does the same
- * way — loading the entry points, checking the context, compiling the program, uploading
+/* Private to the runtime: what every GL compute backend (sh/sh_gl.c, wavelet/wavelet_gl.c) does the
+ * same way — loading the entry points, checking the context, compiling the program, uploading
  * little-endian words and checking the upload. Only compiled with PRT_HAS_GL. Every function
  * that can fail records the failure in `context` with `function` (the public entry point, e.g.
  * "prt_gl_sh_create") at the start of the message. */

@@ -9,6 +9,25 @@
 
 #define PRT_SPHERE_PI 3.14159265358979323846
 
+/* 1 when the row-major 3x3 matrix r is a proper rotation: finite, orthonormal to 1e-3 and with
+ * det > 0 (what prt_sh_rotate and prt_env_image.rotation accept). */
+static inline int prt_is_rotation(const float r[9]) {
+  int i, j, k;
+  double det;
+  for (i = 0; i < 9; ++i)
+    if (!isfinite(r[i])) return 0;
+  for (i = 0; i < 3; ++i)
+    for (j = 0; j < 3; ++j) {
+      double dot = 0.0;
+      for (k = 0; k < 3; ++k) dot += (double)r[i * 3 + k] * r[j * 3 + k];
+      if (fabs(dot - (i == j ? 1.0 : 0.0)) > 1e-3) return 0;
+    }
+  det = r[0] * ((double)r[4] * r[8] - (double)r[5] * r[7]) -
+        r[1] * ((double)r[3] * r[8] - (double)r[5] * r[6]) +
+        r[2] * ((double)r[3] * r[7] - (double)r[4] * r[6]);
+  return det > 0.0;
+}
+
 /* Solid angle subtended by the rectangle [0, a] x [0, b] of the plane at unit distance, as seen
  * from the origin: atan(a b / sqrt(a^2 + b^2 + 1)); a texel is the signed sum over its corners. */
 static inline double prt_cube_corner_solid_angle(double a, double b) {

@@ -1,12 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* How to relight an `sh` blob with the runtime alone: load it, build an environment, project it
- * to SH, turn it, and shade every vertex. Usage: shade_sh FILE.prtk [DEGREES]
+/* How to relight an `sh` blob with the runtime alone: load it, describe an environment, project
+ * it to SH turned about +Y, and shade every vertex. Usage: shade_sh FILE.prtk [DEGREES]
  * (exit status 0 on success, 1 on a runtime failure, 2 on bad arguments).
  *
  * The environment is made in code so the program needs no image library: a 64 x 32 float RGB
- * lat-long map (formats/SPEC.md section 12: the centre column looks at -Z, the top row is +Y)
- * holding a sky gradient (deep blue at the zenith, pale at the horizon, dark ground below) and a
- * small bright sun. A game would hand over its own lat-long map or six cube faces the same way.
+ * lat-long map (prt/prt_env.h: the centre column looks at -Z, the top row is +Y) holding a sky
+ * gradient (deep blue at the zenith, pale at the horizon, dark ground below) and a small bright
+ * sun. A game describes its own lat-long map or six cube faces the same way, in one
+ * prt_env_image that every technique's light takes (see shade_wavelet.c).
  *
  * The vertices are shaded in two halves, as two jobs of a game's job system would do it: each
  * range may run on its own thread (the asset is immutable; see prt_sh_asset.h). */
@@ -71,7 +72,7 @@ static void rotation_about_y(double degrees, float r[9]) {
 static int shade_range(const prt_asset* asset, const float* light, uint32_t first, uint32_t count,
                        float* out_rgb) {
   const prt_result result =
-      prt_sh_shade_on(asset, PRT_BACKEND_AUTO, light, first, count, out_rgb + 3 * (size_t)first);
+      prt_sh_shade(asset, PRT_BACKEND_AUTO, light, first, count, out_rgb + 3 * (size_t)first);
   if (result != PRT_OK) {
     fprintf(stderr, "shading vertices %u..%u failed: %s\n", (unsigned)first,
             (unsigned)(first + count), prt_result_string(result));
@@ -84,7 +85,8 @@ int main(int argc, char** argv) {
   prt_context_desc desc = {0};
   prt_context* context = NULL;
   prt_asset* asset = NULL;
-  prt_sh_transfer_info info;
+  prt_sh_info info = {0};
+  prt_env_image env = {0};
   static float environment[ENV_WIDTH * ENV_HEIGHT * 3];
   float light[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3], rotation[9];
   float* shaded = NULL;
@@ -105,23 +107,30 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  desc.struct_size = sizeof desc; /* every struct that may grow starts with its size */
   desc.message = print_message;
+  desc.flags = PRT_CONTEXT_READ_ENVIRONMENT; /* a tool: PRT_BACKEND=cpu may lower the backend */
   if (prt_context_create(&desc, &context) != PRT_OK) return 1;
   if (prt_asset_load_file(context, argv[1], PRT_VALIDATE_FULL, &asset) != PRT_OK) goto done;
-  result = prt_sh_get_transfer_info(asset, &info);
+  info.struct_size = sizeof info;
+  result = prt_sh_get_info(asset, &info);
   if (result != PRT_OK) {
     fprintf(stderr, "%s: no `sh` transfer: %s\n", argv[1], prt_result_string(result));
     goto done;
   }
 
-  /* The light: project the map at the asset's order, then turn it. */
+  /* The light: the map projected at the asset's order, turned by the rotation (which the
+   * projection applies to the SH coefficients with prt_sh_rotate). */
   build_environment(environment);
-  result =
-      prt_sh_project_latlong(info.order, ENV_WIDTH, ENV_HEIGHT, environment, 3 * ENV_WIDTH, light);
-  if (result == PRT_OK) {
-    rotation_about_y(degrees, rotation);
-    result = prt_sh_rotate(info.order, rotation, light, light, 3);
-  }
+  rotation_about_y(degrees, rotation);
+  env.struct_size = sizeof env;
+  env.layout = PRT_ENV_LATLONG;
+  env.width = ENV_WIDTH;
+  env.height = ENV_HEIGHT;
+  env.channels = 3;
+  env.texels = environment; /* tight rows: row_stride 0 */
+  env.rotation = rotation;
+  result = prt_sh_project(info.order, &env, light);
   if (result != PRT_OK) {
     fprintf(stderr, "projecting the environment failed: %s\n", prt_result_string(result));
     goto done;

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   prt_context_desc desc = {0};
   prt_context* context = NULL;
   prt_asset* asset = NULL;
-  prt_asset_info info;
+  prt_asset_info info = {0};
   prt_result result;
   uint32_t i;
 
@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
     fprintf(stderr, "usage: %s FILE.prtk\n", argv[0]);
     return 2;
   }
-  desc.message = print_message; /* NULL allocator: malloc/free */
+  desc.struct_size = sizeof desc; /* every struct that may grow starts with its size */
+  desc.message = print_message;  /* NULL allocator: malloc/free */
   if (prt_context_create(&desc, &context) != PRT_OK) return 1;
 
   result = prt_asset_load_file(context, argv[1], PRT_VALIDATE_FULL, &asset);
@@ -40,15 +41,17 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  info.struct_size = sizeof info;
   prt_asset_get_info(asset, &info);
   printf("%s: prtkit blob format %u.%u, %llu bytes, %u sections, producer \"%.16s\"\n", argv[1],
          (unsigned)info.format_major, (unsigned)info.format_minor,
          (unsigned long long)info.total_size, (unsigned)info.section_count,
          (const char*)info.producer);
   for (i = 0; i < prt_asset_section_count(asset); ++i) {
-    prt_section_info s;
+    prt_section_info s = {0};
     char tag[5];
     int k;
+    s.struct_size = sizeof s;
     prt_asset_get_section_info(asset, i, &s);
     for (k = 0; k < 4; ++k) tag[k] = (char)((s.tag >> (8 * k)) & 0xFF);
     tag[4] = '\0';

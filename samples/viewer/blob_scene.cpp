@@ -4,7 +4,10 @@
 namespace prt::view {
 
 BlobScene::BlobScene(const std::string& path) : path_(path) {
-  if (prt_context_create(nullptr, &context_) != PRT_OK) {
+  // A tool: PRT_BACKEND / PRT_SIMD_ISA may lower the backends, as --backend cannot.
+  prt_context_desc desc = prt::sized<prt_context_desc>();
+  desc.flags = PRT_CONTEXT_READ_ENVIRONMENT;
+  if (prt_context_create(&desc, &context_) != PRT_OK) {
     throw ViewerError("cannot create a prtkit context");
   }
   if (prt_asset_load_file(context_, path.c_str(), PRT_VALIDATE_FULL, &asset_) != PRT_OK) {
@@ -32,7 +35,7 @@ void BlobScene::fail(const std::string& what) const {
 }
 
 void BlobScene::read_technique() {
-  prt_result result = prt_sh_get_transfer_info(asset_, &transfer_);
+  prt_result result = prt_sh_get_info(asset_, &transfer_);
   if (result == PRT_OK) {
     technique_ = Technique::Sh;
     return;

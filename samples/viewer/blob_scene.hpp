@@ -4,7 +4,7 @@
 // throw ViewerError with the runtime's own message.
 #pragma once
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include <cstdint>
 #include <stdexcept>
@@ -40,12 +40,12 @@ class BlobScene {
   BlobScene(const BlobScene&) = delete;
   BlobScene& operator=(const BlobScene&) = delete;
 
-  const prt_context* context() const { return context_; }
+  prt_context* context() const { return context_; }
   const prt_asset* asset() const { return asset_; }
   const BlobMesh& mesh() const { return mesh_; }
   Technique technique() const { return technique_; }
   std::uint32_t vertex_count() const { return mesh_.vertex_count; }
-  const prt_sh_transfer_info& transfer() const { return transfer_; }  // Technique::Sh
+  const prt_sh_info& transfer() const { return transfer_; }           // Technique::Sh
   const prt_wavelet_info& wavelet() const { return wavelet_; }        // Technique::Wavelet
   const std::string& path() const { return path_; }
 
@@ -55,8 +55,8 @@ class BlobScene {
   prt_asset* asset_ = nullptr;
   BlobMesh mesh_;
   Technique technique_ = Technique::Sh;
-  prt_sh_transfer_info transfer_{};
-  prt_wavelet_info wavelet_{};
+  prt_sh_info transfer_ = prt::sized<prt_sh_info>();
+  prt_wavelet_info wavelet_ = prt::sized<prt_wavelet_info>();
 
   void read_technique();
 

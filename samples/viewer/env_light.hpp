@@ -15,10 +15,9 @@
 namespace prt::view {
 
 // order² RGB coefficients, coefficient-major, of `map`, which must carry no rotation (turn the
-// coefficients instead, rotate_environment; throws ViewerError otherwise): lat-long maps through
-// prt_sh_project_latlong directly; cross and probe maps resampled (EnvMap::radiance, bilinear) to
-// six cube faces as prt_sh_project_cube documents them, then prt_sh_project_cube. Throws
-// ViewerError when the runtime refuses.
+// coefficients instead, rotate_environment; throws ViewerError otherwise) by prt_sh_project:
+// lat-long maps directly; cross and probe maps resampled (EnvMap::radiance, bilinear) to six
+// cube faces as prt_env.h documents them. Throws ViewerError when the runtime refuses.
 std::vector<float> project_environment(const prt::bake::EnvMap& map, std::uint32_t order);
 
 // Edge length of the cube faces a cross or probe map is resampled to: the cross's own face
@@ -31,13 +30,14 @@ std::uint32_t cube_face_size(const prt::bake::EnvMap& map);
 void rotate_environment(std::vector<float>* coefficients, std::uint32_t order, double degrees);
 
 // The `wavelet` light of `map` (no rotation of its own) for `asset`: resampled onto the asset's
-// parameterisation turned by `degrees` about +Y (prt_wavelet_resample_latlong, or
-// prt_wavelet_resample_cube after resampling cross and probe maps to cube faces as above),
-// Haar-transformed, `light_coefficients` detail coefficients kept by area-weighted selection
-// (plus the scaling ones), and prepared (band scales folded in): info.coefficient_count RGBA
-// quadruples. Throws ViewerError when the runtime refuses.
+// parameterisation turned by `degrees` about +Y (prt_wavelet_resample of the same environment
+// image prt_sh_project takes), Haar-transformed, `light_coefficients` detail coefficients kept
+// by area-weighted selection (plus the scaling ones), and prepared (band scales folded in):
+// info.coefficient_count RGBA quadruples, and the blocks of zero light in *zero_blocks
+// (info.block_count bytes). Throws ViewerError when the runtime refuses.
 std::vector<float> wavelet_light(const prt::bake::EnvMap& map, const prt_asset* asset,
                                  const prt_wavelet_info& info, double degrees,
-                                 std::uint32_t light_coefficients);
+                                 std::uint32_t light_coefficients,
+                                 std::vector<std::uint8_t>* zero_blocks);
 
 }  // namespace prt::view

@@ -28,7 +28,7 @@ std::string runtime_message(const BlobScene& scene, const std::string& call, prt
 template <typename Shader>
 struct GlTechnique {
   const char* name;  // "sh" or "wavelet", for messages
-  prt_result (*create)(const prt_asset*, prt_gl_loader_fn, void*, Shader**);
+  prt_result (*create)(prt_context*, const prt_asset*, prt_gl_loader_fn, void*, Shader**);
   void (*destroy)(Shader*);
   prt_result (*shade)(Shader*, const float*, std::uint32_t, std::uint32_t);
   prt_result (*read)(Shader*, std::uint32_t, std::uint32_t, float*);
@@ -46,7 +46,8 @@ ShadingRun run_gl(const GlTechnique<Shader>& technique, const BlobScene& scene,
 
   const std::string prefix = std::string("prt_gl_") + technique.name + "_";
   Shader* raw = nullptr;
-  const prt_result created = technique.create(scene.asset(), headless_gl_get_proc, gl.get(), &raw);
+  const prt_result created =
+      technique.create(scene.context(), scene.asset(), headless_gl_get_proc, gl.get(), &raw);
   if (created != PRT_OK) throw ViewerError(runtime_message(scene, prefix + "create", created));
   std::unique_ptr<Shader, void (*)(Shader*)> shader(raw, technique.destroy);
 

@@ -103,7 +103,7 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
 std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map,
                             const Options& options) {
   const double degrees = options.rotate_degrees;
-  const prt_sh_transfer_info& transfer = scene.transfer();
+  const prt_sh_info& transfer = scene.transfer();
   std::printf("%s: %u vertices, %u triangles, sh order %u, %s transfer, %u channel(s)\n",
               scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
               transfer.order, transfer_kind(transfer.kind), transfer.channels);
@@ -115,8 +115,8 @@ std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map
       options.env.c_str(), map.width(), map.height(), prt::bake::env_mapping_name(map.mapping()),
       transfer.order,
       map.mapping() == prt::bake::EnvMapping::LatLong
-          ? "prt_sh_project_latlong"
-          : ("prt_sh_project_cube, faces of " + std::to_string(cube_face_size(map))).c_str(),
+          ? "prt_sh_project, lat-long"
+          : ("prt_sh_project, cube faces of " + std::to_string(cube_face_size(map))).c_str(),
       degrees);
   return light;
 }
@@ -124,7 +124,7 @@ std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map
 // The `wavelet` light: the map resampled by the runtime onto the blob's parameterisation, turned,
 // transformed, selected and prepared.
 std::vector<float> wavelet_light(const BlobScene& scene, const prt::bake::EnvMap& map,
-                                 const Options& options) {
+                                 const Options& options, std::vector<std::uint8_t>* zero_blocks) {
   const prt_wavelet_info& info = scene.wavelet();
   const std::uint32_t details = info.coefficient_count - info.faces;
   const std::uint32_t kept = std::min(options.light_coefficients, details);
@@ -137,7 +137,7 @@ std::vector<float> wavelet_light(const BlobScene& scene, const prt::bake::EnvMap
       2.0 * info.pair_count / std::max(1u, info.vertex_count),
       info.quantizer == 0 ? "per-vertex" : "per face and level");
   std::vector<float> light =
-      prt::view::wavelet_light(map, scene.asset(), info, options.rotate_degrees, kept);
+      prt::view::wavelet_light(map, scene.asset(), info, options.rotate_degrees, kept, zero_blocks);
   std::printf(
       "%s: %dx%d %s map, resampled onto the blob's %u coefficients by the runtime, rotated %g deg "
       "about +Y, %u + %u light coefficients kept (area-weighted)\n",
@@ -163,10 +163,11 @@ int run(const Options& options) {
   };
   prt::bake::EnvMap map =
       prt::bake::load_envmap(options.env, prt::bake::parse_env_mapping(options.env_mapping), ctx);
+  std::vector<std::uint8_t> zero_blocks;  // `wavelet` only
   const std::vector<float> light = scene.technique() == Technique::Sh
                                        ? sh_light(scene, map, options)
-                                       : wavelet_light(scene, map, options);
-  const ShadingRun run = shade_vertices(scene, light, backend, options.frames);
+                                       : wavelet_light(scene, map, options, &zero_blocks);
+  const ShadingRun run = shade_vertices(scene, light, zero_blocks, backend, options.frames);
   std::printf("shading: backend %s (%s), %zu frame(s), median %.4f ms per frame (%u vertices)\n",
               run.backend.c_str(), run.isa.c_str(), run.frame_ms.size(), run.median_ms,
               scene.vertex_count());

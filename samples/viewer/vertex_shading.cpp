@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "vertex_shading.hpp"
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -28,7 +28,7 @@ std::string backend_failure(const prt_context* context, const char* call, prt_ba
                             prt_result result) {
   std::string text = std::string("backend ") + prt_backend_name(backend) + ": " + call +
                      " failed: " + prt_result_string(result);
-  prt_backend_info info;
+  prt_backend_info info = prt::sized<prt_backend_info>();
   if (prt_backend_get_info(context, backend, &info) == PRT_OK && info.note && *info.note) {
     text += std::string(" (") + info.note + ")";
   }
@@ -56,7 +56,8 @@ double median(std::vector<double> values) {
 }
 
 ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& light,
-                          ViewBackend backend, int frames) {
+                          const std::vector<std::uint8_t>& zero_blocks, ViewBackend backend,
+                          int frames) {
   if (backend == ViewBackend::Gl) return shade_vertices_gl(scene, light, frames);
   const prt_backend requested = to_runtime(backend);
   const prt_backend used =
@@ -69,21 +70,22 @@ ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& ligh
   run.backend = prt_backend_name(used);
   run.isa = "scalar";
   if (used == PRT_BACKEND_SIMD) {
-    prt_backend_info info;
+    prt_backend_info info = prt::sized<prt_backend_info>();
     if (prt_backend_get_info(scene.context(), PRT_BACKEND_SIMD, &info) == PRT_OK) {
       run.isa = prt_simd_isa_name(info.isa);
     }
   }
   for (int frame = 0; frame < std::max(frames, 1); ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    const prt_result result = sh ? prt_sh_shade_on(scene.asset(), requested, light.data(), 0,
-                                                   vertices, run.radiance.data())
-                                 : prt_wavelet_shade_on(scene.asset(), requested, light.data(), 0,
-                                                        vertices, run.radiance.data());
+    const prt_result result =
+        sh ? prt_sh_shade(scene.asset(), requested, light.data(), 0, vertices, run.radiance.data())
+           : prt_wavelet_shade(scene.asset(), requested, light.data(),
+                               zero_blocks.empty() ? nullptr : zero_blocks.data(), 0, vertices,
+                               run.radiance.data());
     const auto stop = std::chrono::steady_clock::now();
     if (result != PRT_OK) {
-      throw ViewerError(backend_failure(
-          scene.context(), sh ? "prt_sh_shade_on" : "prt_wavelet_shade_on", used, result));
+      throw ViewerError(backend_failure(scene.context(), sh ? "prt_sh_shade" : "prt_wavelet_shade",
+                                        used, result));
     }
     run.frame_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
   }

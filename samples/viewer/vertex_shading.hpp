@@ -24,13 +24,14 @@ struct ShadingRun {
 };
 
 // Shades all vertices `frames` (>= 1) times under `light` (`sh`: order² RGB coefficients;
-// `wavelet`: the prepared RGBA light) and keeps the last result. CPU-side backends go through
-// prt_sh_shade_on / prt_wavelet_shade_on (auto = the context's best); gl through prt_gl_sh_* /
-// prt_gl_wavelet_* on a headless EGL context. A frame's time covers shading every vertex
-// (for gl: the dispatch and a glFinish, not the read-back). Throws ViewerError with the
-// runtime's reason when the backend cannot be used.
+// `wavelet`: the prepared RGBA light, with its zero-block mask or an empty one) and keeps the
+// last result. CPU-side backends go through prt_sh_shade / prt_wavelet_shade (auto = the
+// context's best); gl through prt_gl_sh_* / prt_gl_wavelet_* on a headless EGL context. A frame's
+// time covers shading every vertex (for gl: the dispatch and a glFinish, not the read-back). Throws
+// ViewerError with the runtime's reason when the backend cannot be used.
 ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& light,
-                          ViewBackend backend, int frames);
+                          const std::vector<std::uint8_t>& zero_blocks, ViewBackend backend,
+                          int frames);
 
 // The GL path: gl_shading.cpp, or gl_shading_unavailable.cpp (an error naming the build option)
 // when prt-view is built without GL.

@@ -12,10 +12,11 @@ int main(void) {
   prt_context_desc desc = {0};
   prt_backend_info info;
   prt_result result;
-  desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
+  desc.struct_size = sizeof desc;
   if (prt_get_version() != PRT_VERSION) return 1;
   result = prt_context_create(&desc, &context);
   if (result != PRT_OK) return 2;
+  info.struct_size = sizeof info;
   if (prt_backend_get_info(context, PRT_BACKEND_CPU, &info) != PRT_OK || !info.usable) return 3;
   if (prt_asset_validate(context, "PRTK", 4, PRT_VALIDATE_QUICK, NULL, 0) != PRT_ERROR_TRUNCATED)
     return 4;

@@ -42,7 +42,7 @@ class GoldenBlob : public ::testing::Test {
 };
 
 TEST_F(GoldenBlob, HeaderFacts) {
-  prt_asset_info info;
+  prt_asset_info info = prt::sized<prt_asset_info>();
   ASSERT_EQ(prt_asset_get_info(asset, &info), PRT_OK);
   EXPECT_EQ(info.format_major, 1u);
   EXPECT_EQ(info.format_minor, 0u);
@@ -71,7 +71,7 @@ TEST_F(GoldenBlob, SectionTable) {
   // order at 16-byte alignment.
   uint64_t end = 64 + 4 * 48;
   for (uint32_t i = 0; i < 4; ++i) {
-    prt_section_info s;
+    prt_section_info s = prt::sized<prt_section_info>();
     ASSERT_EQ(prt_asset_get_section_info(asset, i, &s), PRT_OK);
     EXPECT_EQ(s.tag, expected[i].tag) << i;
     EXPECT_EQ(s.flags, expected[i].flags) << i;
@@ -88,7 +88,7 @@ TEST_F(GoldenBlob, SectionTable) {
     }
     end = s.offset + s.stored_size;
   }
-  prt_asset_info info;
+  prt_asset_info info = prt::sized<prt_asset_info>();
   ASSERT_EQ(prt_asset_get_info(asset, &info), PRT_OK);
   EXPECT_EQ(info.total_size, (end + 15) / 16 * 16);
 }

@@ -52,7 +52,7 @@ TEST(BlobWriter, RoundTripThroughTheRuntime) {
               PRT_OK)
         << prt_context_last_message(ctx.ctx);
     ASSERT_EQ(prt_asset_section_count(asset), 3u);
-    prt_section_info info;
+    prt_section_info info = prt::sized<prt_section_info>();
     ASSERT_EQ(prt_asset_get_section_info(asset, 0, &info), PRT_OK);
     EXPECT_EQ(info.codec, compression == Compression::kZstd ? PRT_CODEC_ZSTD : PRT_CODEC_NONE);
     EXPECT_EQ(info.flags, PRT_SECTION_FLAG_REQUIRED);

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* libFuzzer target: validate (quick, full) and load (copying, borrowed; quick, full) arbitrary
  * bytes, then read every decoded section end to end and shade with every technique the blob
- * holds (CPU and SIMD), so that any out-of-bounds access shows up under AddressSanitizer. Built with -fsanitize=fuzzer when PRT_BUILD_FUZZERS=ON, otherwise with
- * fuzz_replay.c as a plain program that replays files (a CTest test runs it on the golden blob). */
+ * holds (CPU and SIMD), so that any out-of-bounds access shows up under AddressSanitizer. Built
+ * with -fsanitize=fuzzer when PRT_BUILD_FUZZERS=ON, otherwise with fuzz_replay.c as a plain program
+ * that replays files (a CTest test runs it on the golden blob). */
 #include <prt/prt.h>
 
 #include <stdlib.h>
@@ -18,6 +19,7 @@ static unsigned touch_sections(const prt_asset* asset) {
     prt_section_info info;
     const void* bytes;
     size_t n, k;
+    info.struct_size = sizeof info;
     if (prt_asset_get_section_info(asset, i, &info) != PRT_OK) abort();
     if (prt_asset_section_data(asset, info.tag, &bytes, &n) != PRT_OK) abort();
     if (n != info.raw_size) abort();
@@ -32,14 +34,16 @@ static unsigned touch_sections(const prt_asset* asset) {
 static void shade_techniques(const prt_asset* asset, prt_validation level) {
   static const prt_backend backends[2] = {PRT_BACKEND_CPU, PRT_BACKEND_SIMD};
   float out[3 * 16];
-  prt_sh_transfer_info sh;
+  prt_sh_info sh;
   prt_wavelet_info wavelet;
   int b;
-  if (prt_sh_get_transfer_info(asset, &sh) == PRT_OK) {
+  sh.struct_size = sizeof sh;
+  wavelet.struct_size = sizeof wavelet;
+  if (prt_sh_get_info(asset, &sh) == PRT_OK) {
     float light[3 * 256] = {0.0f};
     const uint32_t count = sh.vertex_count < 16u ? sh.vertex_count : 16u;
     light[0] = light[1] = light[2] = 1.0f;
-    for (b = 0; b < 2; ++b) (void)prt_sh_shade_on(asset, backends[b], light, 0, count, out);
+    for (b = 0; b < 2; ++b) (void)prt_sh_shade(asset, backends[b], light, 0, count, out);
   }
   if (prt_wavelet_get_info(asset, &wavelet) == PRT_OK) {
     const uint32_t count = wavelet.vertex_count < 16u ? wavelet.vertex_count : 16u;
@@ -48,14 +52,14 @@ static void shade_techniques(const prt_asset* asset, prt_validation level) {
     prt_result r;
     if (!light || !row) abort();
     light[0] = light[1] = light[2] = 1.0f;
-    r = prt_wavelet_prepare_light(asset, light, light);
+    r = prt_wavelet_prepare_light(asset, light, light, NULL);
     if (level == PRT_VALIDATE_FULL && r != PRT_OK) abort();
     for (b = 0; b < 2; ++b) {
-      r = prt_wavelet_shade_on(asset, backends[b], light, 0, count, out);
+      r = prt_wavelet_shade(asset, backends[b], light, NULL, 0, count, out);
       if (level == PRT_VALIDATE_FULL && r != PRT_OK && r != PRT_ERROR_UNSUPPORTED_BACKEND) abort();
     }
     if (wavelet.vertex_count > 0) {
-      r = prt_wavelet_decode_row(asset, 0, row);
+      r = prt_wavelet_decode_transfer(asset, 0, 1, row);
       if (level == PRT_VALIDATE_FULL && r != PRT_OK) abort();
     }
     free(row);
@@ -86,7 +90,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   uint8_t* copy;
   char message[256];
   memset(&desc, 0, sizeof desc);
-  desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
+  desc.struct_size = sizeof desc;
   if (prt_context_create(&desc, &context) != PRT_OK) abort();
 
   quick = prt_asset_validate(context, data, size, PRT_VALIDATE_QUICK, message, sizeof message);

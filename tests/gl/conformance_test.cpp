@@ -87,8 +87,8 @@ void check_all_backends(uint32_t order, uint32_t channels, uint32_t bits) {
   LoadedAsset cpu_asset(cpu_ctx.get(), blob);
   ASSERT_EQ(cpu_asset.result, PRT_OK);
   std::vector<float> reference_rgb(3 * size_t(kVertices));
-  ASSERT_EQ(prt_sh_shade_on(cpu_asset.asset, PRT_BACKEND_CPU, light.data(), 0, kVertices,
-                            reference_rgb.data()),
+  ASSERT_EQ(prt_sh_shade(cpu_asset.asset, PRT_BACKEND_CPU, light.data(), 0, kVertices,
+                         reference_rgb.data()),
             PRT_OK);
   note("cpu-vs-exact", compare("cpu", t, truth, truth.value, reference_rgb, 0, kVertices));
   const std::vector<double> reference(reference_rgb.begin(), reference_rgb.end());
@@ -97,7 +97,7 @@ void check_all_backends(uint32_t order, uint32_t channels, uint32_t bits) {
   for (prt_simd_isa isa : {PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2}) {
     const std::string name = std::string("simd/") + prt_simd_isa_name(isa);
     ContextPtr ctx(prt_test::make_context(PRT_BACKEND_AUTO, isa));
-    prt_backend_info info{};
+    prt_backend_info info = prt::sized<prt_backend_info>();
     ASSERT_EQ(prt_backend_get_info(ctx.get(), PRT_BACKEND_SIMD, &info), PRT_OK);
     if (!info.compiled || !info.usable || info.isa != isa) {
       summary += " [skipped " + name + ": " +
@@ -111,13 +111,13 @@ void check_all_backends(uint32_t order, uint32_t channels, uint32_t bits) {
     ASSERT_EQ(asset.result, PRT_OK);
     std::vector<float> rgb(3 * size_t(kVertices));
     const prt_result r =
-        prt_sh_shade_on(asset.asset, PRT_BACKEND_SIMD, light.data(), 0, kVertices, rgb.data());
+        prt_sh_shade(asset.asset, PRT_BACKEND_SIMD, light.data(), 0, kVertices, rgb.data());
     ASSERT_EQ(r, PRT_OK) << name << " is compiled in and usable per prt_backend_get_info ("
                          << info.note << ") but prt_sh_shade_on returned " << prt_result_string(r);
     double worst = compare(name.c_str(), t, truth, reference, rgb, 0, kVertices);
     // A range that starts and ends off any vector width.
     std::vector<float> part(3 * 997);
-    ASSERT_EQ(prt_sh_shade_on(asset.asset, PRT_BACKEND_SIMD, light.data(), 1, 997, part.data()),
+    ASSERT_EQ(prt_sh_shade(asset.asset, PRT_BACKEND_SIMD, light.data(), 1, 997, part.data()),
               PRT_OK);
     worst = std::max(worst, compare(name.c_str(), t, truth, reference, part, 1, 997));
     note(name, worst);
@@ -129,7 +129,7 @@ void check_all_backends(uint32_t order, uint32_t channels, uint32_t bits) {
     LoadedAsset asset(ctx.get(), blob);
     ASSERT_EQ(asset.result, PRT_OK);
     prt_gl_sh_shader* raw = nullptr;
-    ASSERT_EQ(prt_gl_sh_create(asset.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
+    ASSERT_EQ(prt_gl_sh_create(ctx.get(), asset.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
         << prt_context_last_message(ctx.get());
     ShaderPtr shader(raw);
     ASSERT_EQ(prt_gl_sh_shade(raw, light.data(), 0, kVertices), PRT_OK);
@@ -176,7 +176,7 @@ using prt_test::WvltTransfer;
 
 // Rows of every shape, by vertex index mod 6: none, one pair, one full block of 256, and three
 // random rows of 1..500 pairs (distinct indices, values +-1..127).
-WvltTransfer conformance_transfer(uint32_t param, uint32_t size, uint32_t seed) {
+WvltTransfer conformance_transfer(prt_wavelet_param param, uint32_t size, uint32_t seed) {
   WvltTransfer t = prt_test::wvlt_random(param, size, kVertices, 0, seed);
   const uint32_t coefficients = t.coefficients(), blocks = t.blocks();
   std::mt19937 rng(seed);
@@ -245,7 +245,7 @@ double compare_wavelet(const char* what, const WvltTransfer& t, const Truth& tru
   return worst;
 }
 
-void check_wavelet_backends(uint32_t param, uint32_t size) {
+void check_wavelet_backends(prt_wavelet_param param, uint32_t size) {
   PRT_REQUIRE_GL(gl);
   const WvltTransfer t = conformance_transfer(param, size, 500 + size + param);
   const prt_test::Bytes blob = prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), kVertices);
@@ -272,10 +272,11 @@ void check_wavelet_backends(uint32_t param, uint32_t size) {
   WvltAsset cpu_asset(cpu_ctx.get(), blob);
   ASSERT_EQ(cpu_asset.result, PRT_OK) << prt_context_last_message(cpu_ctx.get());
   std::vector<float> prepared(light.size());
-  ASSERT_EQ(prt_wavelet_prepare_light(cpu_asset.asset, light.data(), prepared.data()), PRT_OK);
+  ASSERT_EQ(prt_wavelet_prepare_light(cpu_asset.asset, light.data(), prepared.data(), nullptr),
+            PRT_OK);
   std::vector<float> reference_rgb(3 * size_t(kVertices));
-  ASSERT_EQ(prt_wavelet_shade_on(cpu_asset.asset, PRT_BACKEND_CPU, prepared.data(), 0, kVertices,
-                                 reference_rgb.data()),
+  ASSERT_EQ(prt_wavelet_shade(cpu_asset.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 0,
+                              kVertices, reference_rgb.data()),
             PRT_OK);
   note("cpu-vs-exact", compare_wavelet("cpu", t, truth, truth.value, reference_rgb, 0, kVertices));
   const std::vector<double> reference(reference_rgb.begin(), reference_rgb.end());
@@ -284,7 +285,7 @@ void check_wavelet_backends(uint32_t param, uint32_t size) {
   for (prt_simd_isa isa : {PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2}) {
     const std::string name = std::string("simd/") + prt_simd_isa_name(isa);
     ContextPtr ctx(prt_test::make_context(PRT_BACKEND_AUTO, isa));
-    prt_backend_info info{};
+    prt_backend_info info = prt::sized<prt_backend_info>();
     ASSERT_EQ(prt_backend_get_info(ctx.get(), PRT_BACKEND_SIMD, &info), PRT_OK);
     if (!info.compiled || !info.usable || info.isa != isa) {
       summary += " [skipped " + name + ": " +
@@ -297,16 +298,16 @@ void check_wavelet_backends(uint32_t param, uint32_t size) {
     WvltAsset asset(ctx.get(), blob);
     ASSERT_EQ(asset.result, PRT_OK);
     std::vector<float> rgb(3 * size_t(kVertices));
-    const prt_result r = prt_wavelet_shade_on(asset.asset, PRT_BACKEND_SIMD, prepared.data(), 0,
-                                              kVertices, rgb.data());
+    const prt_result r = prt_wavelet_shade(asset.asset, PRT_BACKEND_SIMD, prepared.data(), nullptr,
+                                           0, kVertices, rgb.data());
     ASSERT_EQ(r, PRT_OK) << name << " is compiled in and usable per prt_backend_get_info ("
                          << info.note << ") but prt_wavelet_shade_on returned "
                          << prt_result_string(r);
     double worst = compare_wavelet(name.c_str(), t, truth, reference, rgb, 0, kVertices);
     // A range that starts and ends off any vector width.
     std::vector<float> part(3 * size_t(part_count));
-    ASSERT_EQ(prt_wavelet_shade_on(asset.asset, PRT_BACKEND_SIMD, prepared.data(), part_first,
-                                   part_count, part.data()),
+    ASSERT_EQ(prt_wavelet_shade(asset.asset, PRT_BACKEND_SIMD, prepared.data(), nullptr, part_first,
+                                part_count, part.data()),
               PRT_OK);
     worst = std::max(
         worst, compare_wavelet(name.c_str(), t, truth, reference, part, part_first, part_count));
@@ -319,7 +320,8 @@ void check_wavelet_backends(uint32_t param, uint32_t size) {
     WvltAsset asset(ctx.get(), blob);
     ASSERT_EQ(asset.result, PRT_OK);
     prt_gl_wavelet_shader* raw = nullptr;
-    ASSERT_EQ(prt_gl_wavelet_create(asset.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
+    ASSERT_EQ(prt_gl_wavelet_create(ctx.get(), asset.asset, headless_gl_get_proc, gl.gl, &raw),
+              PRT_OK)
         << prt_context_last_message(ctx.get());
     WaveletShaderPtr shader(raw);
     std::vector<float> part(3 * size_t(part_count));

@@ -44,7 +44,7 @@ TEST_F(Asset, CopyingLoadOutlivesTheCallersBytes) {
               PRT_OK);
     std::memset(temporary.data(), 0xAB, temporary.size());
   }
-  prt_asset_info info;
+  prt_asset_info info = prt::sized<prt_asset_info>();
   ASSERT_EQ(prt_asset_get_info(asset, &info), PRT_OK);
   EXPECT_EQ(info.borrowed, 0u);
   const void* data;
@@ -64,12 +64,12 @@ TEST_F(Asset, BorrowedLoadReadsInPlace) {
   ASSERT_EQ(
       prt_asset_load_memory_borrowed(ctx.ctx, aligned, golden.size(), PRT_VALIDATE_FULL, &asset),
       PRT_OK);
-  prt_asset_info info;
+  prt_asset_info info = prt::sized<prt_asset_info>();
   ASSERT_EQ(prt_asset_get_info(asset, &info), PRT_OK);
   EXPECT_EQ(info.borrowed, 1u);
   const void* data;
   size_t size;
-  prt_section_info s;
+  prt_section_info s = prt::sized<prt_section_info>();
   uint32_t index;
   ASSERT_EQ(prt_asset_find_section(asset, PRT_SECTION_VPOS, &index), PRT_OK);
   ASSERT_EQ(prt_asset_get_section_info(asset, index, &s), PRT_OK);
@@ -96,7 +96,7 @@ TEST_F(Asset, Queries) {
   EXPECT_EQ(index, 3u);
   EXPECT_EQ(prt_asset_find_section(asset, PRT_TAG('N', 'O', 'N', 'E'), &index),
             PRT_ERROR_NOT_FOUND);
-  prt_section_info s;
+  prt_section_info s = prt::sized<prt_section_info>();
   EXPECT_EQ(prt_asset_get_section_info(asset, 4, &s), PRT_ERROR_NOT_FOUND);
   const void* data;
   size_t size;
@@ -184,7 +184,7 @@ TEST_F(Asset, ConcurrentQueries) {
     threads.emplace_back([asset, &sums, t] {
       for (int round = 0; round < 200; ++round)
         for (uint32_t i = 0; i < prt_asset_section_count(asset); ++i) {
-          prt_section_info info;
+          prt_section_info info = prt::sized<prt_section_info>();
           const void* data;
           size_t size;
           if (prt_asset_get_section_info(asset, i, &info) != PRT_OK) return;
@@ -205,7 +205,7 @@ TEST_F(Asset, EveryAllocationFailureIsReported) {
       Counter counter;
       counter.fail_at = fail_at;
       prt_allocator allocator{&Counter::alloc, &Counter::release, &counter};
-      prt_context_desc desc{};
+      prt_context_desc desc = prt::sized<prt_context_desc>();
       desc.allocator = &allocator;
       prt_context* c = nullptr;
       ASSERT_EQ(prt_context_create(&desc, &c), PRT_OK);

@@ -7,13 +7,13 @@
 #include <sstream>
 #include <string>
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 namespace {
 
 prt_context* make(prt_backend limit = PRT_BACKEND_AUTO, prt_simd_isa isa = PRT_SIMD_ISA_AUTO,
-                  uint32_t flags = PRT_CONTEXT_IGNORE_ENVIRONMENT) {
-  prt_context_desc desc{};
+                  uint32_t flags = 0) {
+  prt_context_desc desc = prt::sized<prt_context_desc>();
   desc.backend_limit = limit;
   desc.simd_isa_limit = isa;
   desc.flags = flags;
@@ -23,7 +23,7 @@ prt_context* make(prt_backend limit = PRT_BACKEND_AUTO, prt_simd_isa isa = PRT_S
 }
 
 prt_backend_info info(prt_context* ctx, prt_backend backend) {
-  prt_backend_info i{};
+  prt_backend_info i = prt::sized<prt_backend_info>();
   EXPECT_EQ(prt_backend_get_info(ctx, backend, &i), PRT_OK);
   return i;
 }
@@ -73,7 +73,7 @@ TEST(Backend, CompiledSetMatchesBuildOptions) {
   // GL is "usable with the application's GL context" whenever compiled and not limited away.
   EXPECT_EQ(gl.usable, uint32_t(PRT_TEST_GL_COMPILED));
   EXPECT_NE(prt_context_backend(ctx), PRT_BACKEND_GL) << "AUTO never picks GL";
-  prt_backend_info i;
+  prt_backend_info i = prt::sized<prt_backend_info>();
   EXPECT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_AUTO, &i), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_CPU, nullptr), PRT_ERROR_INVALID_ARGUMENT);
   prt_context_destroy(ctx);
@@ -115,30 +115,40 @@ struct Warnings {
   }
 };
 
-TEST(Backend, EnvironmentVariablesLowerTheLimits) {
+// The variables count only for a context created with PRT_CONTEXT_READ_ENVIRONMENT.
+TEST(Backend, EnvironmentVariablesLowerTheLimitsWhenAskedTo) {
+  const uint32_t simd_here =
+      uint32_t(PRT_TEST_SIMD_COMPILED && isa_from_proc_cpuinfo() >= PRT_SIMD_ISA_SSE41);
   setenv("PRT_BACKEND", "cpu", 1);
-  prt_context* ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO, 0);
+  prt_context* ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO, PRT_CONTEXT_READ_ENVIRONMENT);
   EXPECT_EQ(prt_context_backend(ctx), PRT_BACKEND_CPU);
+  EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).usable, 0u);
   prt_context_destroy(ctx);
-  ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO, PRT_CONTEXT_IGNORE_ENVIRONMENT);
-  EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).usable,
-            uint32_t(PRT_TEST_SIMD_COMPILED && isa_from_proc_cpuinfo() >= PRT_SIMD_ISA_SSE41));
+  ctx = make();  // the default ignores the environment
+  EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).usable, simd_here);
   prt_context_destroy(ctx);
   unsetenv("PRT_BACKEND");
 
-  if (PRT_TEST_SIMD_COMPILED && isa_from_proc_cpuinfo() >= PRT_SIMD_ISA_SSE41) {
+  if (simd_here) {
     setenv("PRT_SIMD_ISA", "sse4.1", 1);
-    ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO, 0);
+    ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO, PRT_CONTEXT_READ_ENVIRONMENT);
     EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa, PRT_SIMD_ISA_SSE41);
+    prt_context_destroy(ctx);
+    ctx = make();
+    EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa, isa_from_proc_cpuinfo());
     prt_context_destroy(ctx);
     unsetenv("PRT_SIMD_ISA");
   }
 
   Warnings warnings;
-  prt_context_desc desc{};
+  prt_context_desc desc = prt::sized<prt_context_desc>();
   desc.message = &Warnings::sink;
   desc.message_user = &warnings;
   setenv("PRT_BACKEND", "quantum", 1);
+  ASSERT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
+  EXPECT_EQ(warnings.count, 0) << "not read without the flag";
+  prt_context_destroy(ctx);
+  desc.flags = PRT_CONTEXT_READ_ENVIRONMENT;
   ASSERT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
   EXPECT_EQ(warnings.count, 1) << "an unknown value is reported and ignored";
   prt_context_destroy(ctx);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 namespace {
 
@@ -85,7 +85,7 @@ struct CountingAllocator {
 TEST(Context, CustomAllocatorGetsEveryAllocationBack) {
   CountingAllocator counter;
   prt_allocator allocator = counter.api();
-  prt_context_desc desc{};
+  prt_context_desc desc = prt::sized<prt_context_desc>();
   desc.allocator = &allocator;
   prt_context* ctx = nullptr;
   ASSERT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
@@ -99,21 +99,21 @@ TEST(Context, CreationFailures) {
   EXPECT_EQ(prt_context_create(nullptr, nullptr), PRT_ERROR_INVALID_ARGUMENT);
   prt_context* ctx = reinterpret_cast<prt_context*>(1);
   prt_allocator half{&CountingAllocator::alloc, nullptr, nullptr};
-  prt_context_desc desc{};
+  prt_context_desc desc = prt::sized<prt_context_desc>();
   desc.allocator = &half;
   EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(ctx, nullptr);
-  desc = prt_context_desc{};
+  desc = prt::sized<prt_context_desc>();
   desc.backend_limit = static_cast<prt_backend>(9);
   EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_ERROR_INVALID_ARGUMENT);
-  desc = prt_context_desc{};
+  desc = prt::sized<prt_context_desc>();
   desc.flags = 0x80;
   EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_ERROR_INVALID_ARGUMENT);
 
   CountingAllocator counter;
   counter.fail_at = 0;
   prt_allocator failing = counter.api();
-  desc = prt_context_desc{};
+  desc = prt::sized<prt_context_desc>();
   desc.allocator = &failing;
   EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_ERROR_OUT_OF_MEMORY);
   EXPECT_EQ(ctx, nullptr);
@@ -130,7 +130,7 @@ struct Messages {
 
 TEST(Context, ErrorsReachCallbackAndLastMessage) {
   Messages messages;
-  prt_context_desc desc{};
+  prt_context_desc desc = prt::sized<prt_context_desc>();
   desc.message = &Messages::sink;
   desc.message_user = &messages;
   prt_context* ctx = nullptr;

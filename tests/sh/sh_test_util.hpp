@@ -1,4 +1,5 @@
-// Shared helpers of the SH tests: indexing, random directions, Gauss-Legendre nodes.
+// Shared helpers of the SH tests: lat-long projection, indexing, random directions,
+// Gauss-Legendre nodes.
 #pragma once
 
 #include <array>
@@ -7,7 +8,18 @@
 #include <random>
 #include <vector>
 
+#include <prt/prt.hpp>
+
 namespace prt_sh_test {
+
+// prt_sh_project of a lat-long RGB image of w x h texels whose rows start row_stride floats apart
+// (0: tight).
+inline prt_result ProjectLatLong(uint32_t order, uint32_t w, uint32_t h, const float* rgb,
+                                 size_t row_stride, float* out) {
+  prt_env_image env = prt::latlong_env(w, h, rgb);
+  env.row_stride = row_stride;
+  return prt_sh_project(order, &env, out);
+}
 
 constexpr double kPi = 3.14159265358979323846;
 

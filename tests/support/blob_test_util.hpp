@@ -13,7 +13,7 @@
 
 #include <prt/format/blob_layout.h>
 #include <prt/format/blob_reader.h>
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 namespace prt_test {
 
@@ -90,17 +90,10 @@ inline prt_result load(prt_context* ctx, const Bytes& b, prt_validation level) {
   return r;
 }
 
-// A context that ignores the environment, with default allocator.
+// A context with the defaults (which do not read the environment).
 struct Context {
-  prt_context* ctx = nullptr;
-  Context() {
-    prt_context_desc desc{};
-    desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
-    prt_context_create(&desc, &ctx);
-  }
-  ~Context() { prt_context_destroy(ctx); }
-  Context(const Context&) = delete;
-  Context& operator=(const Context&) = delete;
+  prt::ContextPtr owner = prt::create_context().handle;
+  prt_context* ctx = owner.get();
 };
 
 }  // namespace prt_test

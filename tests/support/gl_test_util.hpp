@@ -14,14 +14,11 @@
 #include <string>
 #include <vector>
 
-#include <prt/prt.h>
-#include <prt/prt_gl.h>
-#include <prt/prt_wavelet.h>
-#include <prt/prt_wavelet_asset.h>
+#include <prt/prt.hpp>
 
+#include "headless_gl.h"
 #include "sh/sh_blob_test_util.hpp"
 #include "wavelet/wavelet_blob_test_util.hpp"
-#include "headless_gl.h"
 
 namespace prt_test {
 
@@ -55,31 +52,20 @@ inline bool no_gl_allowed() {
            << " (set PRT_TEST_ALLOW_NO_GL=1 to skip on machines without EGL/Mesa)"; \
   }
 
+using ContextPtr = prt::ContextPtr;
+using ShaderPtr = prt::GlShShaderPtr;
+using WaveletShaderPtr = prt::GlWaveletShaderPtr;
+
+// A context with backend limits (for the caller to own in a ContextPtr).
 inline prt_context* make_context(prt_backend limit = PRT_BACKEND_AUTO,
                                  prt_simd_isa isa = PRT_SIMD_ISA_AUTO) {
-  prt_context_desc desc{};
+  prt_context_desc desc = prt::sized<prt_context_desc>();
   desc.backend_limit = limit;
   desc.simd_isa_limit = isa;
-  desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
   prt_context* ctx = nullptr;
   EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
   return ctx;
 }
-
-struct ContextDeleter {
-  void operator()(prt_context* c) const { prt_context_destroy(c); }
-};
-using ContextPtr = std::unique_ptr<prt_context, ContextDeleter>;
-
-struct ShaderDeleter {
-  void operator()(prt_gl_sh_shader* s) const { prt_gl_sh_destroy(s); }
-};
-using ShaderPtr = std::unique_ptr<prt_gl_sh_shader, ShaderDeleter>;
-
-struct WaveletShaderDeleter {
-  void operator()(prt_gl_wavelet_shader* s) const { prt_gl_wavelet_destroy(s); }
-};
-using WaveletShaderPtr = std::unique_ptr<prt_gl_wavelet_shader, WaveletShaderDeleter>;
 
 // A light with the spread of a real environment's projection: a bright sky term, a "sun"
 // (the SH projection of a delta light, which excites every band) and a small random rest.
@@ -158,8 +144,7 @@ inline double wavelet_tolerance(size_t pairs, double magnitude) {
 
 // The prepared light computed here, independently of prt_wavelet_prepare_light:
 // prepared[j] = float(L[j] * bs[band(j)]) with the band from the test util's own formula.
-inline std::vector<float> wavelet_prepared(const WvltTransfer& t,
-                                           const std::vector<float>& light) {
+inline std::vector<float> wavelet_prepared(const WvltTransfer& t, const std::vector<float>& light) {
   std::vector<float> prepared(light.size());
   for (uint32_t j = 0; j < t.coefficients(); ++j)
     for (uint32_t c = 0; c < 4; ++c)

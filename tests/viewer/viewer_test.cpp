@@ -5,7 +5,7 @@
 // request, and properties (a full turn is no turn, backends agree, a reference of itself has no
 // error, a quarter turn equals a quarter shift of the map's columns).
 #include <gtest/gtest.h>
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -79,15 +79,14 @@ std::vector<float> shade_independently(std::vector<float> light, const std::vect
   prt_asset* asset = nullptr;
   EXPECT_EQ(prt_context_create(nullptr, &context), PRT_OK);
   EXPECT_EQ(prt_asset_load_file(context, kBlob.c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK);
-  prt_sh_transfer_info info{};
-  EXPECT_EQ(prt_sh_get_transfer_info(asset, &info), PRT_OK);
+  prt_sh_info info = prt::sized<prt_sh_info>();
+  EXPECT_EQ(prt_sh_get_info(asset, &info), PRT_OK);
   const std::uint32_t n2 = info.order * info.order;
   std::vector<float> transfer(std::size_t(info.vertex_count) * info.channels * n2);
   if (light.empty()) {
     light.resize(3 * n2);
-    EXPECT_EQ(
-        prt_sh_project_latlong(info.order, width, height, pixels.data(), 3 * width, light.data()),
-        PRT_OK);
+    const prt_env_image env = prt::latlong_env(width, height, pixels.data());
+    EXPECT_EQ(prt_sh_project(info.order, &env, light.data()), PRT_OK);
   }
   EXPECT_EQ(light.size(), 3u * n2);
   EXPECT_EQ(prt_sh_decode_transfer(asset, 0, info.vertex_count, transfer.data()), PRT_OK);
@@ -146,7 +145,7 @@ TEST(PrtView, VertexOutMatchesDotProductsOfDecodedTransfer) {
   EXPECT_LT(relative_difference(shaded, expected), 1e-5);
 }
 
-// Cross and probe maps go through a cube resampling and prt_sh_project_cube; the baker projects
+// Cross and probe maps go through a cube resampling and prt_sh_project; the baker projects
 // the same file texel by texel with each texel's exact solid angle (another method): the shaded
 // radiance agrees to the resampling error (measured: 2e-5 for the probe, below 1e-5 for the
 // cross).

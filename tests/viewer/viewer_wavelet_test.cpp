@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // prt-view on a `wavelet` blob (the demo scene baked on a 16-texel cube by the
 // viewer_bake_demo_blob fixture). Expected values come from elsewhere: per-vertex radiance
-// recomputed here as dot products of the decoded rows (prt_wavelet_decode_row, which applies the
+// recomputed here as dot products of the decoded rows (prt_wavelet_decode_transfer, which applies the
 // band and vertex scales) with the light's Haar coefficients, and properties (a full turn is no
 // turn, a quarter turn is a quarter shift of the map's columns, backends agree, fewer light
 // coefficients change the result).
 #include <gtest/gtest.h>
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -87,16 +87,15 @@ std::vector<float> shade_independently() {
   prt_asset* asset = nullptr;
   EXPECT_EQ(prt_context_create(nullptr, &context), PRT_OK);
   EXPECT_EQ(prt_asset_load_file(context, kBlob.c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK);
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   EXPECT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
   std::vector<float> light(4u * info.coefficient_count);
-  EXPECT_EQ(prt_wavelet_resample_latlong(info.param, info.size, pixels.data(), width, height,
-                                         nullptr, light.data()),
-            PRT_OK);
+  const prt_env_image env = prt::latlong_env(width, height, pixels.data());
+  EXPECT_EQ(prt_wavelet_resample(info.param, info.size, &env, light.data()), PRT_OK);
   EXPECT_EQ(prt_wavelet_transform_light(info.param, info.size, light.data()), PRT_OK);
   std::vector<float> row(3u * info.coefficient_count), radiance(3u * info.vertex_count);
   for (std::uint32_t v = 0; v < info.vertex_count; ++v) {
-    EXPECT_EQ(prt_wavelet_decode_row(asset, v, row.data()), PRT_OK);
+    EXPECT_EQ(prt_wavelet_decode_transfer(asset, v, 1, row.data()), PRT_OK);
     for (int c = 0; c < 3; ++c) {
       double sum = 0.0;
       for (std::uint32_t j = 0; j < info.coefficient_count; ++j)

@@ -37,8 +37,8 @@ struct SplitMix {
 };
 
 inline prt_test::WvltTransfer bake_shaped_transfer(uint32_t vertices = kBunnyVertices,
-                                                     uint32_t size = kWaveletSize,
-                                                     uint64_t seed = 1) {
+                                                   uint32_t size = kWaveletSize,
+                                                   uint64_t seed = 1) {
   // Share of each level's coefficients kept, by level + 1 (levels -1..6 for S up to 128).
   const double kept_share[8] = {1.0, 1.0, 1.0, 1.0, 0.6, 0.15, 0.013, 0.003};
   prt_test::WvltTransfer t = prt_test::wvlt_random(PRT_WAVELET_PARAM_CUBE, size, vertices, 0, 7);

@@ -12,6 +12,7 @@
 // All names carry a `wvlt` prefix so this header can be included next to sh_blob_test_util.hpp.
 #pragma once
 
+#include <prt/prt_wavelet.h>
 #include <prt/format/blob_writer.hpp>
 
 #include <algorithm>
@@ -35,7 +36,7 @@ struct WvltPair {
 
 // One WVLT section's contents, per the layout table of §7.2.
 struct WvltTransfer {
-  uint32_t param = 0;  // 0 cube, 1 dual paraboloid
+  prt_wavelet_param param = PRT_WAVELET_PARAM_CUBE;
   uint32_t size = 16;  // S
   uint32_t vertices = 0;
   uint32_t quantizer = 1, keep = 0, bounces = 0;
@@ -96,10 +97,10 @@ inline WvltOffsets wvlt_offsets(const WvltTransfer& t) {
 }
 
 // A transfer from dense quantised rows dense_q[v][j] (coefficients() each; 0 = not stored).
-inline WvltTransfer wvlt_from_dense(uint32_t param, uint32_t size,
-                                     const std::vector<std::vector<int8_t>>& dense_q,
-                                     std::vector<float> band_scale,
-                                     std::vector<float> vertex_scale) {
+inline WvltTransfer wvlt_from_dense(prt_wavelet_param param, uint32_t size,
+                                    const std::vector<std::vector<int8_t>>& dense_q,
+                                    std::vector<float> band_scale,
+                                    std::vector<float> vertex_scale) {
   WvltTransfer t;
   t.param = param, t.size = size, t.vertices = uint32_t(dense_q.size());
   t.band_scale = std::move(band_scale);
@@ -121,8 +122,8 @@ inline WvltTransfer wvlt_from_dense(uint32_t param, uint32_t size,
 
 // Random but reproducible contents: `nonzeros` distinct coefficients per row (fewer if the row is
 // shorter), values in -127..127 without 0, band scales in (0, 1], vertex scales in [0, 2).
-inline WvltTransfer wvlt_random(uint32_t param, uint32_t size, uint32_t vertices,
-                                 uint32_t nonzeros, uint32_t seed) {
+inline WvltTransfer wvlt_random(prt_wavelet_param param, uint32_t size, uint32_t vertices,
+                                uint32_t nonzeros, uint32_t seed) {
   WvltTransfer t;
   t.param = param, t.size = size, t.vertices = vertices;
   std::mt19937 rng(seed);
@@ -162,8 +163,8 @@ inline void wvlt_put_f32(Bytes& b, size_t off, float f) {
 inline Bytes wvlt_encode(const WvltTransfer& t) {
   const WvltOffsets o = wvlt_offsets(t);
   Bytes b(o.raw_size, 0);
-  const uint32_t header[8] = {t.param, t.size,    t.vertices,     t.quantizer,
-                              t.keep,  t.bounces, t.pair_count(), 0u};
+  const uint32_t header[8] = {uint32_t(t.param), t.size,         t.vertices, t.quantizer, t.keep,
+                              t.bounces,         t.pair_count(), 0u};
   for (int i = 0; i < 8; ++i) prt_le_store_u32(b.data() + 4 * size_t(i), header[i]);
   for (uint32_t k = 0; k < t.bands(); ++k)
     wvlt_put_f32(b, o.band_scale + 4 * size_t(k), t.band_scale[k]);

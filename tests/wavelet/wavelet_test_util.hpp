@@ -6,9 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include <prt/prt.h>
-#include <prt/prt_wavelet.h>
-#include <prt/prt_wavelet_asset.h>
+#include <prt/prt.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -88,12 +86,11 @@ struct RuntimeAsset {
 };
 
 // The runtime's per-frame light of a lat-long map: resample -> transform -> select(m).
-inline std::vector<float> runtime_light(const EnvMap& map, std::uint32_t param, std::uint32_t size,
-                                        std::uint32_t m = 0xFFFFFFFFu) {
+inline std::vector<float> runtime_light(const EnvMap& map, prt_wavelet_param param,
+                                        std::uint32_t size, std::uint32_t m = 0xFFFFFFFFu) {
   std::vector<float> light(std::size_t(prt_wavelet_coefficient_count(param, size)) * 4);
-  EXPECT_EQ(prt_wavelet_resample_latlong(param, size, map.pixels().data(), map.width(),
-                                         map.height(), nullptr, light.data()),
-            PRT_OK);
+  const prt_env_image env = prt::latlong_env(map.width(), map.height(), map.pixels().data());
+  EXPECT_EQ(prt_wavelet_resample(param, size, &env, light.data()), PRT_OK);
   EXPECT_EQ(prt_wavelet_transform_light(param, size, light.data()), PRT_OK);
   EXPECT_EQ(prt_wavelet_select_light(param, size, m, light.data()), PRT_OK);
   return light;
@@ -101,11 +98,13 @@ inline std::vector<float> runtime_light(const EnvMap& map, std::uint32_t param, 
 
 // prepare + shade every vertex through the runtime (scalar reference).
 inline std::vector<glm::vec3> runtime_shade(const RuntimeAsset& a, std::vector<float> light) {
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   EXPECT_EQ(prt_wavelet_get_info(a.asset, &info), PRT_OK);
-  EXPECT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data()), PRT_OK);
+  EXPECT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data(), nullptr), PRT_OK);
   std::vector<glm::vec3> out(info.vertex_count);
-  EXPECT_EQ(prt_wavelet_shade(a.asset, light.data(), 0, info.vertex_count, &out[0].x), PRT_OK);
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, light.data(), nullptr, 0, info.vertex_count,
+                              &out[0].x),
+            PRT_OK);
   return out;
 }
 

@@ -3,7 +3,7 @@
 // blob starts with, and the runtime handles the self-checks load it through.
 #pragma once
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include <memory>
 #include <string>
@@ -23,14 +23,8 @@ prt::format::BlobWriter start_technique_blob(const Scene& scene, const std::stri
 // The section options of a technique section: zstd, required.
 prt::format::SectionOptions required_section();
 
-struct RuntimeContextDeleter {
-  void operator()(prt_context* context) const { prt_context_destroy(context); }
-};
-struct RuntimeAssetDeleter {
-  void operator()(prt_asset* asset) const { prt_asset_destroy(asset); }
-};
-using RuntimeContextPtr = std::unique_ptr<prt_context, RuntimeContextDeleter>;
-using RuntimeAssetPtr = std::unique_ptr<prt_asset, RuntimeAssetDeleter>;
+using RuntimeContextPtr = prt::ContextPtr;
+using RuntimeAssetPtr = prt::AssetPtr;
 
 // "<what> failed (<result>): <the context's last message>", for self-check reports.
 std::string runtime_failure(const char* what, prt_result result, const prt_context* context);

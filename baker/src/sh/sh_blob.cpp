@@ -136,10 +136,10 @@ ShBlobCheck check_sh_blob(const std::vector<std::uint8_t>& blob, const ShTransfe
     return check;
   }
   const RuntimeAssetPtr asset(raw_asset);
-  prt_sh_transfer_info info{};
-  result = prt_sh_get_transfer_info(asset.get(), &info);
+  prt_sh_info info = prt::sized<prt_sh_info>();
+  result = prt_sh_get_info(asset.get(), &info);
   if (result != PRT_OK) {
-    check.message = runtime_failure("prt_sh_get_transfer_info", result, raw_context);
+    check.message = runtime_failure("prt_sh_get_info", result, raw_context);
     return check;
   }
   if (info.order != quantized.order || info.vertex_count != quantized.vertex_count ||

@@ -24,7 +24,7 @@ constexpr double kEps = std::numeric_limits<float>::epsilon();
 
 bool header_matches(const prt_wavelet_info& info, const QuantizedWavelet& q) {
   return info.param == q.param && info.size == q.size &&
-         info.faces == prt_wavelet_face_count(q.param) &&
+         info.faces == prt_wavelet_face_count(static_cast<prt_wavelet_param>(q.param)) &&
          info.coefficient_count == q.coefficient_count && info.block_count == q.block_count() &&
          info.vertex_count == q.vertex_count &&
          info.quantizer == static_cast<std::uint32_t>(q.quantizer) && info.keep == q.keep &&
@@ -85,11 +85,11 @@ std::string check_shading(const prt_asset* asset, const prt_context* context,
     for (int c = 0; c < 3; ++c) light[j * 4 + c] = uniform(random);
   }
   std::vector<float> prepared(light.size());
-  prt_result r = prt_wavelet_prepare_light(asset, light.data(), prepared.data());
+  prt_result r = prt_wavelet_prepare_light(asset, light.data(), prepared.data(), nullptr);
   if (r != PRT_OK) return runtime_failure("prt_wavelet_prepare_light", r, context);
   std::vector<float> shaded(q.vertex_count * 3);
-  r = prt_wavelet_shade(asset, prepared.data(), 0, static_cast<std::uint32_t>(q.vertex_count),
-                        shaded.data());
+  r = prt_wavelet_shade(asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 0,
+                        static_cast<std::uint32_t>(q.vertex_count), shaded.data());
   if (r != PRT_OK) return runtime_failure("prt_wavelet_shade", r, context);
   std::size_t failures = 0;
   for (std::size_t v = 0; v < q.vertex_count; ++v) {
@@ -134,7 +134,7 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
     return check;
   }
   const RuntimeAssetPtr asset(raw_asset);
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   r = prt_wavelet_get_info(raw_asset, &info);
   if (r != PRT_OK) {
     check.message = runtime_failure("prt_wavelet_get_info", r, raw_context);
@@ -147,9 +147,9 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
   std::vector<float> decoded(std::size_t(quantized.coefficient_count) * 3);
   std::size_t failures = 0;
   for (std::size_t v : sample_vertices(quantized)) {
-    r = prt_wavelet_decode_row(raw_asset, static_cast<std::uint32_t>(v), decoded.data());
+    r = prt_wavelet_decode_transfer(raw_asset, static_cast<std::uint32_t>(v), 1, decoded.data());
     if (r != PRT_OK) {
-      check.message = runtime_failure("prt_wavelet_decode_row", r, raw_context);
+      check.message = runtime_failure("prt_wavelet_decode_transfer", r, raw_context);
       return check;
     }
     failures += check_row(decoded, v, transfer, quantized, check);

@@ -23,8 +23,10 @@ double max_quadratic(double a0, double a1, double A, double C) {
 }  // namespace
 
 TexelGrid::TexelGrid(std::uint32_t param, std::uint32_t size)
-    : param_(param), size_(size), faces_(prt_wavelet_face_count(param)) {
-  if (prt_wavelet_coefficient_count(param, size) == 0) {
+    : param_(param),
+      size_(size),
+      faces_(prt_wavelet_face_count(static_cast<prt_wavelet_param>(param))) {
+  if (prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(param), size) == 0) {
     throw Error("wavelet transfer: face size must be a power of two in " +
                 std::to_string(PRT_WAVELET_MIN_SIZE) + ".." + std::to_string(PRT_WAVELET_MAX_SIZE) +
                 " and the parameterisation cube or dual-paraboloid");
@@ -34,7 +36,7 @@ TexelGrid::TexelGrid(std::uint32_t param, std::uint32_t size)
     for (std::uint32_t y = 0; y < size; ++y) {
       for (std::uint32_t x = 0; x < size; ++x) {
         solid_angle_[(f * size + y) * size + x] =
-            prt_wavelet_texel_solid_angle(param, size, f, x, y);
+            prt_wavelet_texel_solid_angle(static_cast<prt_wavelet_param>(param), size, f, x, y);
       }
     }
   }
@@ -45,7 +47,9 @@ TexelGrid::TexelGrid(std::uint32_t param, std::uint32_t size)
     for (std::uint32_t v = 0; v <= size; ++v) {
       for (std::uint32_t u = 0; u <= size; ++u) {
         glm::vec3& d = corner_[(std::size_t(f) * side + v) * side + u];
-        if (!prt_wavelet_direction(param, size, f, float(u), float(v), &d.x)) d = glm::vec3(0.0f);
+        if (!prt_wavelet_direction(static_cast<prt_wavelet_param>(param), size, f, float(u),
+                                   float(v), &d.x))
+          d = glm::vec3(0.0f);
       }
     }
   }
@@ -75,7 +79,8 @@ bool TexelGrid::below_horizon(std::uint32_t j, const glm::vec3& n) const {
 
 bool TexelGrid::sample(std::uint32_t face, float u, float v, glm::vec3* dir,
                        double* jacobian) const {
-  if (!prt_wavelet_direction(param_, size_, face, u, v, &dir->x)) return false;
+  if (!prt_wavelet_direction(static_cast<prt_wavelet_param>(param_), size_, face, u, v, &dir->x))
+    return false;
   const double a = 2.0 * u / size_ - 1.0, b = 2.0 * v / size_ - 1.0, r2 = a * a + b * b;
   // Cube: d omega = ds dt / (1 + s^2 + t^2)^(3/2); paraboloid: 4 da db / (1 + r^2)^2.
   *jacobian =

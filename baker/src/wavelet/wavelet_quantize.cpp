@@ -69,16 +69,17 @@ WaveletQuantizer parse_wavelet_quantizer(const char* name) {
 }
 
 std::uint32_t wavelet_band(std::uint32_t param, std::uint32_t size, std::uint32_t j) {
-  return prt_wavelet_band(param, size, j);
+  return prt_wavelet_band(static_cast<prt_wavelet_param>(param), size, j);
 }
 
 std::uint32_t wavelet_band_count(std::uint32_t param, std::uint32_t size) {
-  return prt_wavelet_face_count(param) * (log2_size(size) + 1);
+  return prt_wavelet_face_count(static_cast<prt_wavelet_param>(param)) * (log2_size(size) + 1);
 }
 
 QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuantizer quantizer,
                                             std::uint32_t keep, double band_percentile) {
-  if (prt_wavelet_coefficient_count(t.param, t.size) != t.coefficient_count ||
+  if (prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(t.param), t.size) !=
+          t.coefficient_count ||
       t.row_start.size() != t.vertex_count + 1 || t.index.size() != t.value.size() ||
       t.albedo.size() != t.vertex_count) {
     throw Error("wavelet quantisation: inconsistent transfer");

@@ -23,7 +23,7 @@ constexpr std::size_t kVerticesPerTask = 8;
 constexpr std::uint64_t kJitterTag = 0x57564c54;  // "WVLT": distinct from sh and the reference
 
 void validate(const WaveletTransferSettings& s) {
-  if (prt_wavelet_coefficient_count(s.param, s.size) == 0) {
+  if (prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(s.param), s.size) == 0) {
     throw Error("wavelet transfer: --cube/face size must be a power of two in " +
                 std::to_string(PRT_WAVELET_MIN_SIZE) + ".." + std::to_string(PRT_WAVELET_MAX_SIZE));
   }
@@ -320,7 +320,7 @@ std::uint32_t parse_wavelet_param(const char* name) {
 }
 
 std::uint32_t default_wavelet_keep(std::uint32_t param, std::uint32_t size) {
-  const double count = prt_wavelet_coefficient_count(param, size);
+  const double count = prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(param), size);
   const double fraction = 1000.0 / prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, 64);
   return std::max<std::uint32_t>(64, static_cast<std::uint32_t>(std::lround(count * fraction)));
 }

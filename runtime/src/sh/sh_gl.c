@@ -1,13 +1,15 @@
 /* SPDX-License-Identifier: MIT */
-/* The GL backend of `sh` shading (prt_gl.h): a compute shader over the quantised transfer. */
+/* The GL backend of `sh` shading (prt_sh_asset.h): a compute shader over the quantised transfer,
+ * read through the SHTR view the load decoded. */
 #include "internal.h"
 
 #if !defined(PRT_HAS_GL)
-prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, void* loader_user,
-                            prt_gl_sh_shader** out_shader) {
+prt_result prt_gl_sh_create(prt_context* context, const prt_asset* asset, prt_gl_loader_fn loader,
+                            void* loader_user, prt_gl_sh_shader** out_shader) {
   (void)asset, (void)loader, (void)loader_user;
   if (out_shader) *out_shader = NULL;
-  return PRT_ERROR_UNSUPPORTED_BACKEND;
+  return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                           "prt_gl_sh_create: compiled out (PRT_ENABLE_GL=OFF)");
 }
 void prt_gl_sh_destroy(prt_gl_sh_shader* shader) {
   (void)shader;
@@ -33,6 +35,7 @@ prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint3
 
 #include "gl_common.h"
 #include "sh_internal.h"
+#include "techniques.h"
 
 /* Vertices per work group, and per dispatch (GL guarantees 65535 groups in x). */
 #define LOCAL_SIZE 64u
@@ -46,9 +49,9 @@ enum { BINDING_QUANTISED = 0, BINDING_LIGHT = 1, BINDING_RADIANCE = 2, BINDING_C
 enum { UNIFORM_FIRST_VERTEX = 0, UNIFORM_VERTEX_COUNT = 1 };
 
 struct prt_gl_sh_shader {
-  const prt_asset* asset;
+  prt_allocator allocator; /* the asset's */
   prt_gl_functions gl;
-  prt_sh_transfer_info info;
+  prt_sh_info info;
   uint32_t coefficients; /* channels * order² per vertex */
   const uint8_t* params; /* (offset, scale) f32 pairs in the asset, `coefficients` of them */
   uint32_t light_floats; /* floats uploaded per shade call */
@@ -146,7 +149,7 @@ static const char kShaderMain[] =
     "  radiance[3u * v + 2u] = rgb.z;\n"
     "}\n";
 
-static prt_result compile_program(prt_gl_sh_shader* s) {
+static prt_result compile_program(prt_context* context, prt_gl_sh_shader* s) {
   char header[256];
   const prt_GLchar* sources[3];
   snprintf(header, sizeof header,
@@ -157,22 +160,20 @@ static prt_result compile_program(prt_gl_sh_shader* s) {
   sources[0] = header;
   sources[1] = kShaderDeclarations;
   sources[2] = kShaderMain;
-  return prt_gl_compile_compute(s->asset->context, &s->gl, "prt_gl_sh_create", sources, 3,
-                                &s->program);
+  return prt_gl_compile_compute(context, &s->gl, "prt_gl_sh_create", sources, 3, &s->program);
 }
 
 /* ---- buffers --------------------------------------------------------------------------- */
 
 /* Creates the three buffers (bound to the generic SSBO target only while filling them). */
-static prt_result create_buffers(prt_gl_sh_shader* s, const uint8_t* values, size_t value_bytes,
-                                 size_t radiance_bytes) {
+static prt_result create_buffers(prt_context* context, prt_gl_sh_shader* s, const uint8_t* values,
+                                 size_t value_bytes, size_t radiance_bytes) {
   const prt_gl_functions* gl = &s->gl;
-  prt_context* context = s->asset->context;
   prt_result r;
   prt_gl_drain_errors(gl);
   gl->GenBuffers(BINDING_COUNT, s->buffers);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_QUANTISED]);
-  r = prt_gl_upload_le_words(context, &s->asset->allocator, gl, "prt_gl_sh_create",
+  r = prt_gl_upload_le_words(context, &s->allocator, gl, "prt_gl_sh_create",
                              PRT_GL_SHADER_STORAGE_BUFFER, 0, 0, values, value_bytes);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BINDING_LIGHT]);
   gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)(4u * s->light_floats), NULL,
@@ -188,67 +189,53 @@ static prt_result create_buffers(prt_gl_sh_shader* s, const uint8_t* values, siz
 
 /* ---- create / destroy ------------------------------------------------------------------ */
 
-static prt_result open_asset(const prt_asset* asset, prt_sh_transfer_info* info,
-                             const uint8_t** params) {
-  const void* data = NULL;
-  size_t size = 0;
-  prt_result r = prt_sh_get_transfer_info(asset, info);
-  if (r == PRT_ERROR_NOT_FOUND)
-    return prt_internal_fail(asset->context, r, "prt_gl_sh_create: the asset has no SHTR section");
-  if (r != PRT_OK)
-    return prt_internal_fail(asset->context, r, "prt_gl_sh_create: bad SHTR section: %s",
-                             prt_result_string(r));
-  r = prt_asset_section_data(asset, PRT_SECTION_SHTR, &data, &size);
-  if (r != PRT_OK) return prt_internal_fail(asset->context, r, "prt_gl_sh_create: no SHTR data");
-  *params = (const uint8_t*)data + PRT_BLOB_SHTR_HEADER_SIZE;
-  return PRT_OK;
-}
-
-prt_result prt_gl_sh_create(const prt_asset* asset, prt_gl_loader_fn loader, void* loader_user,
-                            prt_gl_sh_shader** out_shader) {
+prt_result prt_gl_sh_create(prt_context* context, const prt_asset* asset, prt_gl_loader_fn loader,
+                            void* loader_user, prt_gl_sh_shader** out_shader) {
   prt_gl_sh_shader local;
   prt_gl_sh_shader* s;
+  const prt_sh_view* view;
   uint64_t value_bytes, radiance_bytes;
   prt_result r;
   if (out_shader) *out_shader = NULL;
-  if (!asset) return PRT_ERROR_INVALID_ARGUMENT;
-  if (!loader || !out_shader)
-    return prt_internal_fail(asset->context, PRT_ERROR_INVALID_ARGUMENT,
-                             "prt_gl_sh_create: loader and out_shader must not be NULL");
-  if (!prt_gl_allowed(asset->context))
-    return prt_internal_fail(asset->context, PRT_ERROR_UNSUPPORTED_BACKEND,
+  if (!context) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!asset || !loader || !out_shader)
+    return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
+                             "prt_gl_sh_create: asset, loader and out_shader must not be NULL");
+  if (!prt_gl_allowed(context))
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
                              "prt_gl_sh_create: the context's backend limit (%s) excludes gl",
-                             prt_backend_name(asset->context->backend_limit));
+                             prt_backend_name(context->backend_limit));
+  view = (const prt_sh_view*)prt_internal_view(asset, PRT_TECHNIQUE_SH);
+  if (!view)
+    return prt_internal_fail(context, PRT_ERROR_NOT_FOUND,
+                             "prt_gl_sh_create: the asset has no SHTR section");
   memset(&local, 0, sizeof local);
-  local.asset = asset;
-  r = open_asset(asset, &local.info, &local.params);
-  if (r != PRT_OK) return r;
-  local.coefficients = local.info.channels * local.info.order * local.info.order;
+  local.allocator = asset->allocator;
+  local.info = view->info;
+  local.params = view->params;
+  local.coefficients = view->coefficients;
   local.light_floats = 4u + (3u * local.info.order * local.info.order + 3u) / 4u * 4u;
-  r = prt_gl_open(asset->context, "prt_gl_sh_create", loader, loader_user, &local.gl);
+  r = prt_gl_open(context, "prt_gl_sh_create", loader, loader_user, &local.gl);
   /* Whole uint words: the section is padded to 4 bytes, so the last word is inside it. */
-  value_bytes =
-      ((uint64_t)local.info.vertex_count * local.coefficients * (local.info.bits / 8u) + 3u) &
-      ~(uint64_t)3u;
+  value_bytes = ((uint64_t)view->value_bytes + 3u) & ~(uint64_t)3u;
   radiance_bytes = 12u * (uint64_t)local.info.vertex_count;
   if (value_bytes == 0) value_bytes = 4; /* empty assets still get valid buffers */
   if (radiance_bytes == 0) radiance_bytes = 12;
   if (r == PRT_OK) {
     const uint64_t bytes[2] = {value_bytes, radiance_bytes};
     const char* const names[2] = {"transfer", "radiance"};
-    r = prt_gl_check_block_sizes(asset->context, &local.gl, "prt_gl_sh_create", bytes, names, 2);
+    r = prt_gl_check_block_sizes(context, &local.gl, "prt_gl_sh_create", bytes, names, 2);
   }
   if (r != PRT_OK) return r;
 
-  s = (prt_gl_sh_shader*)prt_internal_alloc(&asset->allocator, sizeof *s, 16);
+  s = (prt_gl_sh_shader*)prt_internal_alloc(&local.allocator, sizeof *s, 16);
   if (!s)
-    return prt_internal_fail(asset->context, PRT_ERROR_OUT_OF_MEMORY,
-                             "prt_gl_sh_create: out of memory");
+    return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "prt_gl_sh_create: out of memory");
   *s = local;
-  r = compile_program(s);
+  r = compile_program(context, s);
   if (r == PRT_OK)
-    r = create_buffers(s, s->info.vertex_count ? s->params + 8u * (size_t)s->coefficients : NULL,
-                       (size_t)value_bytes, (size_t)radiance_bytes);
+    r = create_buffers(context, s, s->info.vertex_count ? view->values : NULL, (size_t)value_bytes,
+                       (size_t)radiance_bytes);
   if (r != PRT_OK) {
     prt_gl_sh_destroy(s);
     return r;
@@ -262,7 +249,7 @@ void prt_gl_sh_destroy(prt_gl_sh_shader* shader) {
   if (!shader) return;
   if (shader->buffers[0]) shader->gl.DeleteBuffers(BINDING_COUNT, shader->buffers);
   if (shader->program) shader->gl.DeleteProgram(shader->program);
-  allocator = shader->asset->allocator;
+  allocator = shader->allocator;
   prt_internal_free(&allocator, shader, sizeof *shader);
 }
 
@@ -278,13 +265,9 @@ static void fold_light(const prt_gl_sh_shader* s, const float* light_rgb, float*
   for (k = 4u + 3u * n2; k < s->light_floats; ++k) out[k] = 0.0f;
 }
 
-static prt_result check_range(const prt_gl_sh_shader* s, const char* function, uint32_t first,
-                              uint32_t count) {
-  if (first > s->info.vertex_count || count > s->info.vertex_count - first)
-    return prt_internal_fail(s->asset->context, PRT_ERROR_INVALID_ARGUMENT,
-                             "%s: vertices [%u, %u + %u) are outside the asset's %u", function,
-                             first, first, count, s->info.vertex_count);
-  return PRT_OK;
+/* Per-frame calls write no context (prt_gl.h): a bad range is reported by the result alone. */
+static int range_inside(const prt_gl_sh_shader* s, uint32_t first, uint32_t count) {
+  return first <= s->info.vertex_count && count <= s->info.vertex_count - first;
 }
 
 prt_result prt_gl_sh_shade(prt_gl_sh_shader* shader, const float* light_rgb, uint32_t first_vertex,
@@ -292,13 +275,9 @@ prt_result prt_gl_sh_shade(prt_gl_sh_shader* shader, const float* light_rgb, uin
   float light[MAX_LIGHT_FLOATS];
   const prt_gl_functions* gl;
   uint32_t done;
-  prt_result r;
-  if (!shader) return PRT_ERROR_INVALID_ARGUMENT;
-  if (!light_rgb)
-    return prt_internal_fail(shader->asset->context, PRT_ERROR_INVALID_ARGUMENT,
-                             "prt_gl_sh_shade: light_rgb must not be NULL");
-  r = check_range(shader, "prt_gl_sh_shade", first_vertex, vertex_count);
-  if (r != PRT_OK || vertex_count == 0) return r;
+  if (!shader || !light_rgb || !range_inside(shader, first_vertex, vertex_count))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  if (vertex_count == 0) return PRT_OK;
   gl = &shader->gl;
   fold_light(shader, light_rgb, light);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, shader->buffers[BINDING_LIGHT]);
@@ -336,13 +315,10 @@ uint32_t prt_gl_sh_output_buffer(const prt_gl_sh_shader* shader) {
 prt_result prt_gl_sh_read(prt_gl_sh_shader* shader, uint32_t first_vertex, uint32_t vertex_count,
                           float* out_rgb) {
   const prt_gl_functions* gl;
-  prt_result r;
-  if (!shader) return PRT_ERROR_INVALID_ARGUMENT;
-  if (!out_rgb && vertex_count > 0)
-    return prt_internal_fail(shader->asset->context, PRT_ERROR_INVALID_ARGUMENT,
-                             "prt_gl_sh_read: out_rgb must not be NULL");
-  r = check_range(shader, "prt_gl_sh_read", first_vertex, vertex_count);
-  if (r != PRT_OK || vertex_count == 0) return r;
+  if (!shader || (!out_rgb && vertex_count > 0) ||
+      !range_inside(shader, first_vertex, vertex_count))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  if (vertex_count == 0) return PRT_OK;
   gl = &shader->gl;
   gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, shader->buffers[BINDING_RADIANCE]);

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* Projection of lat-long and cube environment maps onto SH (convention: prt_sh.h). Each texel
- * contributes radiance(centre) * Y(centre) * exact solid angle, accumulated in double. */
+/* Projection of environment images (prt_env.h: lat-long or cube) onto SH (convention: prt_sh.h).
+ * Each texel contributes radiance(centre) * Y(centre) * exact solid angle, accumulated in double;
+ * a rotation turns the projected coefficients (prt_sh_rotate). */
 #include <math.h>
 #include <string.h>
 
+#include "env_internal.h"
 #include "sh_internal.h"
 #include "sphere_internal.h"
 
@@ -18,36 +20,26 @@ static int order_valid(uint32_t order) {
   return order >= 1 && order <= PRT_SH_MAX_ORDER;
 }
 
-static void store_rgb(uint32_t order, const double* sums, float* out_rgb) {
-  uint32_t i;
-  for (i = 0; i < order * order * 3u; ++i) out_rgb[i] = (float)sums[i];
-}
-
 /* Lat-long. Per row, theta is constant, so the row is first reduced to its azimuthal Fourier
  * sums F_m = sum_x L(x) e^(i m psi_x) (psi the SH-frame azimuth), then combined with the
  * normalised Legendre values of the row: O(W H n + H n^2) instead of O(W H n^2).
  * SPEC §12: d = (sin t sin f, cos t, -sin t cos f), f = 2 pi (u - 1/2); in the SH frame
  * (x, y, z) = (X, -Z, Y) = (sin t sin f, sin t cos f, cos t), so psi = pi/2 - f. */
-prt_result prt_sh_project_latlong(uint32_t order, uint32_t width, uint32_t height, const float* rgb,
-                                  size_t row_stride_floats, float* out_rgb) {
-  double sums[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3];
+static void project_latlong(uint32_t order, const prt_env_view* env, double* sums) {
+  const uint32_t width = env->width, height = env->height, channels = env->channels;
   double legendre[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER];
   double fourier_cos[PRT_SH_MAX_ORDER * 3];
   double fourier_sin[PRT_SH_MAX_ORDER * 3];
   const double dpsi = -2.0 * PRT_SH_PI / (double)width;
   const double cos_dpsi = cos(dpsi), sin_dpsi = sin(dpsi);
   uint32_t y;
-  if (!order_valid(order) || width == 0 || height == 0 || !rgb || !out_rgb ||
-      row_stride_floats < 3u * (size_t)width)
-    return PRT_ERROR_INVALID_ARGUMENT;
-  memset(sums, 0, sizeof sums);
   for (y = 0; y < height; ++y) {
     const double theta0 = PRT_SH_PI * (double)y / (double)height;
     const double theta1 = PRT_SH_PI * (double)(y + 1) / (double)height;
     const double theta = 0.5 * (theta0 + theta1);
     const double sin_theta = sin(theta), cos_theta = cos(theta);
     const double solid_angle = (2.0 * PRT_SH_PI / (double)width) * (cos(theta0) - cos(theta1));
-    const float* row = rgb + (size_t)y * row_stride_floats;
+    const float* row = prt_env_texel(env, 0, 0, y);
     /* e^(i psi) at column 0's centre, f = 2 pi (0.5/W - 0.5); stepped by complex rotation. */
     const double psi0 = 0.5 * PRT_SH_PI - 2.0 * PRT_SH_PI * (0.5 / (double)width - 0.5);
     double col_cos = cos(psi0), col_sin = sin(psi0);
@@ -55,8 +47,8 @@ prt_result prt_sh_project_latlong(uint32_t order, uint32_t width, uint32_t heigh
     memset(fourier_cos, 0, sizeof fourier_cos);
     memset(fourier_sin, 0, sizeof fourier_sin);
     for (x = 0; x < width; ++x) {
-      const double radiance[3] = {sanitised(row[3 * x]), sanitised(row[3 * x + 1]),
-                                  sanitised(row[3 * x + 2])};
+      const float* texel = row + (size_t)channels * x;
+      const double radiance[3] = {sanitised(texel[0]), sanitised(texel[1]), sanitised(texel[2])};
       double cm = 1.0, sm = 0.0, next;
       if (radiance[0] != 0.0 || radiance[1] != 0.0 || radiance[2] != 0.0) {
         for (m = 0; m < order; ++m) {
@@ -88,29 +80,20 @@ prt_result prt_sh_project_latlong(uint32_t order, uint32_t width, uint32_t heigh
       }
     }
   }
-  store_rgb(order, sums, out_rgb);
-  return PRT_OK;
 }
 
-prt_result prt_sh_project_cube(uint32_t order, uint32_t face_size, const float* const faces[6],
-                               float* out_rgb) {
-  double sums[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3];
+static void project_cube(uint32_t order, const prt_env_view* env, double* sums) {
   double basis[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER];
-  const uint32_t count = order * order;
+  const uint32_t count = order * order, face_size = env->width;
   const double step = 2.0 / (double)face_size;
   uint32_t face;
-  if (!order_valid(order) || face_size == 0 || !faces || !out_rgb)
-    return PRT_ERROR_INVALID_ARGUMENT;
-  for (face = 0; face < 6; ++face)
-    if (!faces[face]) return PRT_ERROR_INVALID_ARGUMENT;
-  memset(sums, 0, sizeof sums);
   for (face = 0; face < 6; ++face) {
     uint32_t i, j;
     for (j = 0; j < face_size; ++j) {
       const double t0 = -1.0 + step * j, t1 = t0 + step;
       const double tc = 0.5 * (t0 + t1);
       for (i = 0; i < face_size; ++i) {
-        const float* texel = faces[face] + 3 * ((size_t)j * face_size + i);
+        const float* texel = prt_env_texel(env, face, i, j);
         const double radiance[3] = {sanitised(texel[0]), sanitised(texel[1]), sanitised(texel[2])};
         const double s0 = -1.0 + step * i, s1 = s0 + step;
         double d[3], inv, solid_angle;
@@ -128,6 +111,21 @@ prt_result prt_sh_project_cube(uint32_t order, uint32_t face_size, const float* 
       }
     }
   }
-  store_rgb(order, sums, out_rgb);
+}
+
+prt_result prt_sh_project(uint32_t order, const prt_env_image* image, float* out_rgb) {
+  double sums[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3];
+  prt_env_view env;
+  uint32_t i;
+  if (!order_valid(order) || !out_rgb || prt_internal_env_open(image, &env) != PRT_OK)
+    return PRT_ERROR_INVALID_ARGUMENT;
+  memset(sums, 0, sizeof sums);
+  if (env.layout == PRT_ENV_LATLONG)
+    project_latlong(order, &env, sums);
+  else
+    project_cube(order, &env, sums);
+  for (i = 0; i < order * order * 3u; ++i) out_rgb[i] = (float)sums[i];
+  /* Exact for band-limited coefficients (prt_sh.h); the rotation was checked with the image. */
+  if (env.rotation) return prt_sh_rotate(order, env.rotation, out_rgb, out_rgb, 3u);
   return PRT_OK;
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "sh_internal.h"
+#include "sphere_internal.h"
 
 #define PRT_SH_BAND_DIM (2 * PRT_SH_MAX_ORDER - 1)
 
@@ -84,24 +85,6 @@ static void build_band(int l, const band_matrix* r1, const band_matrix* prev, ba
   }
 }
 
-/* Checks that R is finite, orthonormal to 1e-3 and proper (det > 0). */
-static int is_rotation(const float r[9]) {
-  int i, j, k;
-  double det;
-  for (i = 0; i < 9; ++i)
-    if (!isfinite(r[i])) return 0;
-  for (i = 0; i < 3; ++i)
-    for (j = 0; j < 3; ++j) {
-      double dot = 0.0;
-      for (k = 0; k < 3; ++k) dot += (double)r[i * 3 + k] * r[j * 3 + k];
-      if (fabs(dot - (i == j ? 1.0 : 0.0)) > 1e-3) return 0;
-    }
-  det = r[0] * ((double)r[4] * r[8] - (double)r[5] * r[7]) -
-        r[1] * ((double)r[3] * r[8] - (double)r[5] * r[6]) +
-        r[2] * ((double)r[3] * r[7] - (double)r[4] * r[6]);
-  return det > 0.0;
-}
-
 /* The band-1 matrix: R expressed in the SH frame (S R S^T with S mapping world (X, Y, Z) to
  * (X, -Z, Y)), rows and columns ordered m = -1, 0, 1 <-> y, z, x. */
 static void band1_from_world(const float r[9], band_matrix* r1) {
@@ -146,7 +129,7 @@ prt_result prt_sh_rotate(uint32_t order, const float rotation[9], const float* i
   int l;
   if (!rotation || !in || !out || order == 0 || order > PRT_SH_MAX_ORDER || channels == 0)
     return PRT_ERROR_INVALID_ARGUMENT;
-  if (!is_rotation(rotation)) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!prt_is_rotation(rotation)) return PRT_ERROR_INVALID_ARGUMENT;
   for (c = 0; c < channels; ++c) out[c] = in[c]; /* band 0 is invariant */
   if (order == 1) return PRT_OK;
   band1_from_world(rotation, &r1);

@@ -13,13 +13,13 @@ int prt_wavelet_domain_valid(uint32_t param, uint32_t size) {
          size >= PRT_WAVELET_MIN_SIZE && size <= PRT_WAVELET_MAX_SIZE && (size & (size - 1u)) == 0u;
 }
 
-uint32_t prt_wavelet_face_count(uint32_t param) {
+uint32_t prt_wavelet_face_count(prt_wavelet_param param) {
   if (param == PRT_WAVELET_PARAM_CUBE) return 6u;
   if (param == PRT_WAVELET_PARAM_DUAL_PARABOLOID) return 2u;
   return 0u;
 }
 
-uint32_t prt_wavelet_coefficient_count(uint32_t param, uint32_t size) {
+uint32_t prt_wavelet_coefficient_count(prt_wavelet_param param, uint32_t size) {
   if (!prt_wavelet_domain_valid(param, size)) return 0u;
   return prt_wavelet_face_count(param) * size * size;
 }
@@ -29,7 +29,7 @@ static double disc_centre(uint32_t i, uint32_t size) {
   return (2.0 * (double)i + 1.0) / (double)size - 1.0;
 }
 
-int prt_wavelet_direction(uint32_t param, uint32_t size, uint32_t face, float u, float v,
+int prt_wavelet_direction(prt_wavelet_param param, uint32_t size, uint32_t face, float u, float v,
                           float dir[3]) {
   const double a = 2.0 * (double)u / (double)size - 1.0;
   const double b = 2.0 * (double)v / (double)size - 1.0;
@@ -54,8 +54,8 @@ int prt_wavelet_direction(uint32_t param, uint32_t size, uint32_t face, float u,
   return 1;
 }
 
-double prt_wavelet_texel_solid_angle(uint32_t param, uint32_t size, uint32_t face, uint32_t x,
-                                     uint32_t y) {
+double prt_wavelet_texel_solid_angle(prt_wavelet_param param, uint32_t size, uint32_t face,
+                                     uint32_t x, uint32_t y) {
   const double step = 2.0 / (double)size;
   if (!prt_wavelet_domain_valid(param, size) || face >= prt_wavelet_face_count(param) ||
       x >= size || y >= size)
@@ -106,7 +106,7 @@ uint32_t prt_wavelet_paraboloid_rim_texel(uint32_t size, double a, double b) {
   return nearest_inside(size, a, b, tx, ty);
 }
 
-uint32_t prt_wavelet_locate(uint32_t param, uint32_t size, const float dir[3]) {
+uint32_t prt_wavelet_locate(prt_wavelet_param param, uint32_t size, const float dir[3]) {
   double x, y, z, length;
   if (!prt_wavelet_domain_valid(param, size)) return NO_TEXEL;
   if (dir) {
@@ -122,7 +122,7 @@ uint32_t prt_wavelet_locate(uint32_t param, uint32_t size, const float dir[3]) {
   return prt_wavelet_locate_unit(param, size, -sqrt(0.5), 0.0, -sqrt(0.5));
 }
 
-uint32_t prt_wavelet_band(uint32_t param, uint32_t size, uint32_t j) {
+uint32_t prt_wavelet_band(prt_wavelet_param param, uint32_t size, uint32_t j) {
   const uint32_t count = prt_wavelet_coefficient_count(param, size);
   uint32_t face, within, log2_size = 0u;
   if (count == 0u || j >= count) return NO_TEXEL;

@@ -1,14 +1,29 @@
 /* SPDX-License-Identifier: MIT */
-/* Helpers shared by the runtime's wavelet files (not public): parameterisation checks and the
- * direction -> texel map without argument checks, for per-frame loops. */
+/* Helpers shared by the runtime's wavelet files (not public): the WVLT view the load decodes,
+ * parameterisation checks and the direction -> texel map without argument checks, for per-frame
+ * loops. */
 #ifndef PRT_RUNTIME_WAVELET_INTERNAL_H
 #define PRT_RUNTIME_WAVELET_INTERNAL_H
 
 #include <stdint.h>
 
-#include <prt/prt_wavelet.h>
-
+#include "internal.h"
 #include "sphere_internal.h"
+#include "wavelet_shade_simd.h"
+
+#define PRT_WAVELET_INFO_SIZE_1_0 PRT_SIZE_THROUGH(prt_wavelet_info, pair_count)
+
+/* The WVLT section of a loaded asset, decoded and checked once at load (wavelet_section.c): the
+ * header fields, the layout of §7.2 (prt_blob_wvlt_layout_of), which equals the section's size
+ * exactly, and rs[V] = P, so that every array below lies inside the section whatever the
+ * validation level. Row contents are checked as the rows are walked. */
+typedef struct prt_wavelet_view {
+  prt_wavelet_info info;
+  prt_blob_wvlt_layout layout;
+  const uint8_t* section;    /* the section's bytes, layout.raw_size of them */
+  const uint8_t* band_scale; /* f32[bands] */
+  prt_wavelet_rows rows;     /* light and skip left NULL */
+} prt_wavelet_view;
 
 /* 1 when param is known and size a power of two in PRT_WAVELET_MIN_SIZE..PRT_WAVELET_MAX_SIZE. */
 int prt_wavelet_domain_valid(uint32_t param, uint32_t size);

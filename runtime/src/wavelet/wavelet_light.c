@@ -7,10 +7,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "env_internal.h"
 #include "sphere_internal.h"
 #include "wavelet_internal.h"
-
-#define MAX_CUBE_SOURCE_SIZE 65536u
 
 /* A channel value as the light uses it: NaN, infinities and negatives count as 0. */
 static float sanitised(float value) {
@@ -19,10 +18,8 @@ static float sanitised(float value) {
 
 /* The source map, for the nearest-texel fill of empty targets. */
 typedef struct light_source {
-  const float* rgb;
-  uint32_t width, height; /* lat-long */
-  uint32_t face_size;     /* cube faces; 0 for lat-long */
-  double largest_texel;   /* the largest source texel's solid angle */
+  const prt_env_view* env;
+  double largest_texel; /* the largest source texel's solid angle */
 } light_source;
 
 /* The largest texel solid angle of a lat-long map (the rows next to the equator) and of cube
@@ -50,32 +47,28 @@ static double target_smallest_texel(uint32_t param, uint32_t size) {
   return step * step;
 }
 
-/* The 3x3 rotation (row-major) in double; NULL is the identity. Returns 0 for a non-finite
- * entry. */
-static int load_rotation(const float* rotation, double r[9]) {
+/* The 3x3 rotation (row-major) in double; NULL is the identity (prt_internal_env_open checked
+ * that a given one is a rotation). */
+static void load_rotation(const float* rotation, double r[9]) {
   uint32_t i;
-  for (i = 0; i < 9u; ++i) {
-    r[i] = rotation ? (double)rotation[i] : (i % 4u == 0u ? 1.0 : 0.0);
-    if (!isfinite(r[i])) return 0;
-  }
-  return 1;
+  for (i = 0; i < 9u; ++i) r[i] = rotation ? (double)rotation[i] : (i % 4u == 0u ? 1.0 : 0.0);
 }
 
 static const float* nearest_source_texel(const light_source* source, const double e[3]) {
-  if (source->face_size == 0u) {
+  const prt_env_view* env = source->env;
+  if (env->layout == PRT_ENV_LATLONG) {
     const double u = 0.5 + atan2(e[0], -e[2]) / (2.0 * PRT_SPHERE_PI);
     const double cos_theta = e[1] > 1.0 ? 1.0 : (e[1] < -1.0 ? -1.0 : e[1]);
     const double v = acos(cos_theta) / PRT_SPHERE_PI;
-    uint32_t x = (uint32_t)(u * (double)source->width), y = (uint32_t)(v * (double)source->height);
-    if (x >= source->width) x = source->width - 1u;
-    if (y >= source->height) y = source->height - 1u;
-    return source->rgb + 3u * ((size_t)y * source->width + x);
+    uint32_t x = (uint32_t)(u * (double)env->width), y = (uint32_t)(v * (double)env->height);
+    if (x >= env->width) x = env->width - 1u;
+    if (y >= env->height) y = env->height - 1u;
+    return prt_env_texel(env, 0u, x, y);
   } else {
-    const uint32_t n = source->face_size;
+    const uint32_t n = env->width;
     double sc, tc;
     const uint32_t face = prt_cube_face_coords(e[0], e[1], e[2], &sc, &tc);
-    return source->rgb +
-           3u * (((size_t)face * n + prt_face_texel(tc, n)) * n + prt_face_texel(sc, n));
+    return prt_env_texel(env, face, prt_face_texel(sc, n), prt_face_texel(tc, n));
   }
 }
 
@@ -149,11 +142,13 @@ static inline void splat(uint32_t param, uint32_t size, double x, double y, doub
 typedef struct latlong_row {
   double sin_theta, up[3];
   float solid_angle;
-  const float* rgb;
+  const float* rgb;  /* the block's first texel of the row */
+  uint32_t channels; /* floats per texel */
 } latlong_row;
 
-static void setup_row(const float* rgb, uint32_t width, uint32_t height, uint32_t first, uint32_t y,
-                      const double r[9], latlong_row* row) {
+static void setup_row(const prt_env_view* env, uint32_t first, uint32_t y, const double r[9],
+                      latlong_row* row) {
+  const uint32_t width = env->width, height = env->height;
   const double theta = PRT_SPHERE_PI * ((double)y + 0.5) / (double)height;
   const double cos_top = cos(PRT_SPHERE_PI * (double)y / (double)height);
   const double cos_bottom = cos(PRT_SPHERE_PI * (double)(y + 1u) / (double)height);
@@ -163,7 +158,8 @@ static void setup_row(const float* rgb, uint32_t width, uint32_t height, uint32_
   row->up[1] = cos_theta * r[4];
   row->up[2] = cos_theta * r[7];
   row->solid_angle = (float)(2.0 * PRT_SPHERE_PI / (double)width * (cos_top - cos_bottom));
-  row->rgb = rgb + 3u * ((size_t)y * width + first);
+  row->rgb = prt_env_texel(env, 0u, first, y);
+  row->channels = env->channels;
 }
 
 /* Splats columns [0, count) of a block's row; param is a literal at each call, so the inlined
@@ -174,7 +170,8 @@ static inline void splat_row_for_param(uint32_t param, uint32_t size, const doub
   for (x = 0; x < count; ++x) {
     const double* g = turned_azimuth + 3 * x;
     splat(param, size, row->sin_theta * g[0] + row->up[0], row->sin_theta * g[1] + row->up[1],
-          row->sin_theta * g[2] + row->up[2], row->rgb + 3u * x, row->solid_angle, out_rgba);
+          row->sin_theta * g[2] + row->up[2], row->rgb + (size_t)row->channels * x,
+          row->solid_angle, out_rgba);
   }
 }
 
@@ -190,18 +187,13 @@ static void splat_row(uint32_t param, uint32_t size, const double* turned_azimut
 /* A lat-long direction is d = sin t (sin f, 0, -cos f) + cos t (0, 1, 0) (SPEC §12), so
  * R d = sin t g(f) + cos t R e_y with g(f) = R (sin f, 0, -cos f) per column: the loop runs over
  * blocks of columns, with g tabulated once per block, then over the block's rows. */
-prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const float* rgb,
-                                        uint32_t width, uint32_t height, const float* rotation,
-                                        float* out_rgba) {
+static void splat_latlong(uint32_t param, uint32_t size, const prt_env_view* env, const double r[9],
+                          float* out_rgba) {
+  const uint32_t width = env->width, height = env->height;
   const double column_step = 2.0 * PRT_SPHERE_PI / (double)width;
-  double r[9], turned_azimuth[3 * COLUMN_BLOCK];
+  double turned_azimuth[3 * COLUMN_BLOCK];
   latlong_row row;
-  light_source source;
   uint32_t first, x, y;
-  if (!prt_wavelet_domain_valid(param, size) || !rgb || !out_rgba || height == 0u ||
-      height > 0x7FFFFFFFu || width != 2u * height || !load_rotation(rotation, r))
-    return PRT_ERROR_INVALID_ARGUMENT;
-  memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
   for (first = 0; first < width; first += COLUMN_BLOCK) {
     const uint32_t count = width - first < COLUMN_BLOCK ? width - first : COLUMN_BLOCK;
     for (x = 0; x < count; ++x) {
@@ -213,30 +205,17 @@ prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const flo
       turned_azimuth[3 * x + 2] = r[6] * sin_phi - r[8] * cos_phi;
     }
     for (y = 0; y < height; ++y) {
-      setup_row(rgb, width, height, first, y, r, &row);
+      setup_row(env, first, y, r, &row);
       splat_row(param, size, turned_azimuth, count, &row, out_rgba);
     }
   }
-  source.rgb = rgb;
-  source.width = width;
-  source.height = height;
-  source.face_size = 0u;
-  source.largest_texel = latlong_largest_texel(width, height);
-  finish_resample(param, size, r, &source, out_rgba);
-  return PRT_OK;
 }
 
-prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float* faces_rgb,
-                                     uint32_t face_size, const float* rotation, float* out_rgba) {
+static void splat_cube(uint32_t param, uint32_t size, const prt_env_view* env, const double r[9],
+                       float* out_rgba) {
+  const uint32_t face_size = env->width;
   const double step = 2.0 / (double)face_size;
-  const size_t face_floats = 3u * (size_t)face_size * face_size;
-  double r[9];
-  light_source source;
   uint32_t i, j, f;
-  if (!prt_wavelet_domain_valid(param, size) || !faces_rgb || !out_rgba || face_size == 0u ||
-      face_size > MAX_CUBE_SOURCE_SIZE || !load_rotation(rotation, r))
-    return PRT_ERROR_INVALID_ARGUMENT;
-  memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
   /* The six faces share texel solid angles and face coordinates: compute them once per texel. */
   for (j = 0; j < face_size; ++j) {
     const double t0 = step * (double)j - 1.0, t1 = t0 + step, tc = 0.5 * (t0 + t1);
@@ -248,7 +227,6 @@ prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float*
       const double next_bottom = prt_cube_corner_solid_angle(s1, t1);
       const double solid_angle = fabs(next_bottom - corner_bottom - next_top + corner_top);
       const double inv_length = 1.0 / sqrt(1.0 + sc * sc + tc * tc);
-      const size_t texel = 3u * ((size_t)j * face_size + i);
       for (f = 0; f < 6u; ++f) {
         double d[3];
         prt_cube_direction(f, sc, tc, d);
@@ -257,21 +235,37 @@ prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float*
         d[2] *= inv_length;
         splat(param, size, r[0] * d[0] + r[1] * d[1] + r[2] * d[2],
               r[3] * d[0] + r[4] * d[1] + r[5] * d[2], r[6] * d[0] + r[7] * d[1] + r[8] * d[2],
-              faces_rgb + f * face_floats + texel, (float)solid_angle, out_rgba);
+              prt_env_texel(env, f, i, j), (float)solid_angle, out_rgba);
       }
       corner_top = next_top;
       corner_bottom = next_bottom;
     }
   }
-  source.rgb = faces_rgb;
-  source.width = source.height = 0u;
-  source.face_size = face_size;
-  source.largest_texel = cube_largest_texel(face_size);
+}
+
+prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size, const prt_env_image* image,
+                                float* out_rgba) {
+  prt_env_view env;
+  double r[9];
+  light_source source;
+  if (!prt_wavelet_domain_valid(param, size) || !out_rgba ||
+      prt_internal_env_open(image, &env) != PRT_OK)
+    return PRT_ERROR_INVALID_ARGUMENT;
+  load_rotation(env.rotation, r);
+  memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
+  source.env = &env;
+  if (env.layout == PRT_ENV_LATLONG) {
+    splat_latlong(param, size, &env, r, out_rgba);
+    source.largest_texel = latlong_largest_texel(env.width, env.height);
+  } else {
+    splat_cube(param, size, &env, r, out_rgba);
+    source.largest_texel = cube_largest_texel(env.width);
+  }
   finish_resample(param, size, r, &source, out_rgba);
   return PRT_OK;
 }
 
-prt_result prt_wavelet_transform_light(uint32_t param, uint32_t size, float* rgba) {
+prt_result prt_wavelet_transform_light(prt_wavelet_param param, uint32_t size, float* rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
   uint32_t f;
   if (!prt_wavelet_domain_valid(param, size) || !rgba) return PRT_ERROR_INVALID_ARGUMENT;
@@ -363,7 +357,8 @@ static void choose_digit(uint32_t pass, selection* state) {
   state->prefix_mask |= digit_mask(pass) << digit_shift(pass);
 }
 
-prt_result prt_wavelet_select_light(uint32_t param, uint32_t size, uint32_t m, float* rgba) {
+prt_result prt_wavelet_select_light(prt_wavelet_param param, uint32_t size, uint32_t m,
+                                    float* rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
   selection state;
   uint32_t pass;

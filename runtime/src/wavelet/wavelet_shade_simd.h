@@ -9,8 +9,8 @@
  *   radiance[c] = vs[v][c] * sum over the row's pairs (block k, index i, value q) of
  *                 q * prepared[256 k + i][c],
  * so a pair costs one 16-byte load of the light and one multiply-add of four lanes. A block whose
- * prepared light is all zero (prt_wavelet_prepare_light marks it in the 4th float of its first
- * coefficient) adds exactly 0, so every kernel skips its pairs: with M light coefficients
+ * prepared light is all zero (prt_wavelet_prepare_light's zero-block mask) adds exactly 0, so
+ * every kernel skips the pairs of the blocks the caller's mask marks: with M light coefficients
  * selected, the time follows the blocks they touch. */
 #ifndef PRT_WAVELET_SHADE_SIMD_H
 #define PRT_WAVELET_SHADE_SIMD_H
@@ -28,7 +28,7 @@ typedef struct prt_wavelet_rows {
   const uint8_t* counts;       /* u16[V][blocks] */
   const uint8_t* pairs;        /* u8[pair_count][2] */
   const float* light;          /* prepared light: 4 floats per coefficient, 256 * blocks of them */
-  const uint8_t* skip;         /* per block: 1 when its prepared light is all zero */
+  const uint8_t* skip;         /* per block: non-zero to skip its pairs (never NULL) */
   uint32_t blocks;
   uint32_t pair_count;
 } prt_wavelet_rows;
@@ -42,17 +42,6 @@ static inline float prt_wavelet_load_f32(const uint8_t* p) {
 
 /* The most blocks a row has: 6 faces of 128^2 coefficients. */
 #define PRT_WAVELET_MAX_BLOCKS (6u * 128u * 128u / PRT_BLOB_WVLT_BLOCK)
-
-/* The bits of the 4th float of a block's first prepared coefficient when the block's light is all
- * zero: a quiet NaN with a fixed payload, which no light a game fills in by other means (padding
- * 0, or an alpha of 1) carries by accident. */
-#define PRT_WAVELET_ZERO_BLOCK_MARK 0x7FC05A42u
-
-static inline int prt_wavelet_block_marked_zero(const float* block_light) {
-  uint32_t bits;
-  memcpy(&bits, block_light + 3, sizeof bits);
-  return bits == PRT_WAVELET_ZERO_BLOCK_MARK;
-}
 
 /* Row v's pair range [*start, *end); 0 when the row starts are not increasing within the
  * section's pairs (possible only in a blob loaded with quick validation). */

@@ -10,9 +10,11 @@
 #include <prt/prt_asset.h>
 #include <prt/prt_backend.h>
 #include <prt/prt_context.h>
+#include <prt/prt_env.h>
 #include <prt/prt_gl.h>
 #include <prt/prt_sh.h>
 #include <prt/prt_sh_asset.h>
+#include <prt/prt_technique.h>
 #include <prt/prt_types.h>
 #include <prt/prt_version.h>
 #include <prt/prt_wavelet.h>

@@ -5,8 +5,11 @@
  * Loading from memory is the primitive; files are a convenience. Every load validates the blob
  * before it forms any pointer into it: quick validation always (sizes, magic, versions, section
  * table, bounds, alignment), full validation on request (checksums, finite floats, index ranges,
- * decodability of compressed sections). A bad blob gives an error code and a message in the
- * context, never a crash, an out-of-bounds read or an unbounded allocation.
+ * decodability of compressed sections). At both levels every load then decodes the header of
+ * each technique's section once and checks it against the section's size (O(1) per technique);
+ * the asset keeps what it decoded for the technique's functions. A bad blob gives an error code
+ * and a message in the context, never a crash, an out-of-bounds read or an unbounded
+ * allocation.
  *
  * Thread safety: load, validate and destroy functions take the context and follow its rule (one
  * thread at a time per context). An asset is immutable once loaded: the const prt_asset*
@@ -15,6 +18,7 @@
 #ifndef PRT_ASSET_H
 #define PRT_ASSET_H
 
+#include <prt/prt_technique.h>
 #include <prt/prt_types.h>
 
 #ifdef __cplusplus
@@ -25,17 +29,17 @@ extern "C" {
 #define PRT_FORMAT_VERSION_MAJOR 1
 #define PRT_FORMAT_VERSION_MINOR 0
 
-/* Section kinds of format 1.0 (formats/SPEC.md §Section kinds). */
+/* Section kinds of format 1.0 shared by every technique (formats/SPEC.md §Section kinds). Each
+ * technique's own section is declared in its prt_<t>_asset.h (PRT_SECTION_SHTR, ...). */
 #define PRT_SECTION_INFO PRT_TAG('I', 'N', 'F', 'O') /* UTF-8 text; element = byte */
 #define PRT_SECTION_VPOS PRT_TAG('V', 'P', 'O', 'S') /* float x,y,z per vertex */
 #define PRT_SECTION_VNRM PRT_TAG('V', 'N', 'R', 'M') /* float x,y,z per vertex */
 #define PRT_SECTION_TRIS PRT_TAG('T', 'R', 'I', 'S') /* uint32 i0,i1,i2 per triangle */
-#define PRT_SECTION_SHTR PRT_TAG('S', 'H', 'T', 'R') /* `sh` transfer (prt_sh_asset.h) */
-#define PRT_SECTION_WVLT PRT_TAG('W', 'V', 'L', 'T') /* `wavelet` transfer (prt_wavelet_asset.h) \
-                                                      */
 
-/* prt_section_info.flags */
-#define PRT_SECTION_FLAG_REQUIRED 0x1u
+/* Bits of prt_section_info.flags. */
+typedef enum prt_section_flag {
+  PRT_SECTION_FLAG_REQUIRED = 0x1 /* a reader that does not know the tag must reject the blob */
+} prt_section_flag;
 
 typedef enum prt_validation {
   PRT_VALIDATE_QUICK = 0, /* structure only: O(section count), no decompression */
@@ -45,6 +49,7 @@ typedef enum prt_validation {
 typedef enum prt_codec { PRT_CODEC_NONE = 0, PRT_CODEC_ZSTD = 1 } prt_codec;
 
 typedef struct prt_asset_info {
+  size_t struct_size; /* set by the caller: sizeof(prt_asset_info) */
   uint32_t format_major;
   uint32_t format_minor;
   uint32_t flags; /* header flags */
@@ -55,8 +60,9 @@ typedef struct prt_asset_info {
 } prt_asset_info;
 
 typedef struct prt_section_info {
-  uint32_t tag;   /* PRT_TAG(...) */
-  uint32_t flags; /* PRT_SECTION_FLAG_* */
+  size_t struct_size; /* set by the caller: sizeof(prt_section_info) */
+  uint32_t tag;       /* PRT_TAG(...) */
+  uint32_t flags;     /* prt_section_flag bits */
   prt_codec codec;
   uint32_t layout_version; /* version of the tag's payload layout */
   uint32_t known;       /* 1 if this runtime knows (tag, layout_version) and checks its contents */
@@ -65,12 +71,16 @@ typedef struct prt_section_info {
   uint64_t stored_size; /* bytes in the blob */
   uint64_t raw_size;    /* bytes after decoding */
   uint64_t element_count;
+  prt_element_domain domain; /* what an element is; NONE (bytes) for an unknown kind */
+  prt_technique technique;   /* the technique whose section this is, NONE for mesh sections */
 } prt_section_info;
 
 /* Loads a blob from memory, copying it: `data` may be freed as soon as this returns.
  * On success *out_asset receives the asset; on failure it is NULL and the context holds the
  * message. Returns PRT_OK, PRT_ERROR_INVALID_ARGUMENT (NULL context/out_asset, bad validation
- * value), PRT_ERROR_OUT_OF_MEMORY, or the blob's validation error (prt_types.h, 20-39). */
+ * value), PRT_ERROR_OUT_OF_MEMORY, or the blob's validation error (prt_types.h, 20-39), which
+ * includes PRT_ERROR_CORRUPT, with a message naming the field, for a technique section whose
+ * header does not fit the section (at either validation level). */
 PRT_API prt_result prt_asset_load_memory(prt_context* context, const void* data, size_t size,
                                          prt_validation validation, prt_asset** out_asset);
 
@@ -90,25 +100,28 @@ PRT_API prt_result prt_asset_load_file(prt_context* context, const char* path,
 /* Destroys an asset and frees what it owns (with its context's allocator). NULL is allowed. */
 PRT_API void prt_asset_destroy(prt_asset* asset);
 
-/* Validates a blob without creating an asset. Quick validation checks the structure only and
- * never decompresses; full validation also checks checksums and padding, and decodes every
- * section (zstd into temporary memory from the context's allocator) to check its contents. So at
- * PRT_VALIDATE_FULL the result is what prt_asset_load_memory() returns for these bytes; at
- * PRT_VALIDATE_QUICK a load can still fail where this passes, on zstd data that does not decode
- * (PRT_ERROR_CORRUPT) or on memory. `message` (may be NULL) receives a NUL-terminated one-line
+/* Validates a blob without creating an asset. Quick validation checks the structure and the
+ * technique headers of uncompressed sections, and never decompresses; full validation also
+ * checks checksums and padding, and decodes every section (zstd into temporary memory from the
+ * context's allocator) to check its contents. So at PRT_VALIDATE_FULL the result is what
+ * prt_asset_load_memory() returns for these bytes; at PRT_VALIDATE_QUICK a load can still fail
+ * where this passes, on a zstd section that does not decode or whose technique header does not
+ * fit (PRT_ERROR_CORRUPT), or on memory. `message` (may be NULL) receives a NUL-terminated one-line
  * report, cut to message_capacity: what is wrong, or a summary of a valid blob. Failures are
  * also recorded in the context. */
 PRT_API prt_result prt_asset_validate(prt_context* context, const void* data, size_t size,
                                       prt_validation validation, char* message,
                                       size_t message_capacity);
 
-/* Header facts of a loaded asset. PRT_ERROR_INVALID_ARGUMENT for NULL pointers. */
+/* Header facts of a loaded asset. PRT_ERROR_INVALID_ARGUMENT for NULL pointers or a struct_size
+ * below 1.0's. */
 PRT_API prt_result prt_asset_get_info(const prt_asset* asset, prt_asset_info* out_info);
 
 /* Number of sections (0 for NULL). */
 PRT_API uint32_t prt_asset_section_count(const prt_asset* asset);
 
-/* Table entry `index` (< prt_asset_section_count()). PRT_ERROR_NOT_FOUND for a bad index. */
+/* Table entry `index` (< prt_asset_section_count()). PRT_ERROR_NOT_FOUND for a bad index,
+ * PRT_ERROR_INVALID_ARGUMENT for NULL pointers or a struct_size below 1.0's. */
 PRT_API prt_result prt_asset_get_section_info(const prt_asset* asset, uint32_t index,
                                               prt_section_info* out_info);
 

@@ -7,10 +7,12 @@
  *        has SSE4.1 (AVX2 + FMA preferred), detected at run time.
  * gl   : compiled when built with PRT_ENABLE_GL=ON; then reported usable unless the context's
  *        backend limit excludes it, meaning "usable with the application's GL 4.3+ context":
- *        the runtime owns no GL context, so whether one exists is only known when the game calls
- *        prt_gl_sh_create (prt_gl.h) with its loader. Never picked by AUTO.
- * A context's limits (prt_context_desc.backend_limit / simd_isa_limit, or the environment
- * variables PRT_BACKEND and PRT_SIMD_ISA) can force a lower backend or instruction set.
+ *        the runtime owns no GL context, so whether one exists is only known when the game creates
+ *        a technique's GL shader (prt_gl_<t>_create, in prt_<t>_asset.h) with its loader. Never
+ *        picked by AUTO.
+ * A context's limits (prt_context_desc.backend_limit / simd_isa_limit, and with
+ * PRT_CONTEXT_READ_ENVIRONMENT the environment variables PRT_BACKEND and PRT_SIMD_ISA) can force a
+ * lower backend or instruction set.
  *
  * Thread safety: these functions only read the context and may be called concurrently. */
 #ifndef PRT_BACKEND_H
@@ -23,6 +25,7 @@ extern "C" {
 #endif
 
 typedef struct prt_backend_info {
+  size_t struct_size; /* set by the caller: sizeof(prt_backend_info) */
   prt_backend backend;
   uint32_t compiled; /* 1 if built into this library */
   uint32_t usable;   /* 1 if compiled, supported here, and within the context's limits */
@@ -32,7 +35,8 @@ typedef struct prt_backend_info {
 } prt_backend_info;
 
 /* Describes `backend` (CPU, SIMD or GL) as seen by this context.
- * Returns PRT_ERROR_INVALID_ARGUMENT for a NULL pointer or PRT_BACKEND_AUTO / unknown values. */
+ * Returns PRT_ERROR_INVALID_ARGUMENT for a NULL pointer, a struct_size below 1.0's, or
+ * PRT_BACKEND_AUTO / unknown values. */
 PRT_API prt_result prt_backend_get_info(const prt_context* context, prt_backend backend,
                                         prt_backend_info* out_info);
 

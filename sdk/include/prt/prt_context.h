@@ -21,11 +21,18 @@ PRT_API uint32_t prt_get_version(void);
 /* The library's PRT_VERSION_STRING, e.g. "0.1.0". */
 PRT_API const char* prt_get_version_string(void);
 
-/* prt_context_desc.flags: do not read the PRT_BACKEND / PRT_SIMD_ISA environment variables. */
-#define PRT_CONTEXT_IGNORE_ENVIRONMENT 0x1u
+/* Bits of prt_context_desc.flags. */
+typedef enum prt_context_flag {
+  /* Let the environment variables PRT_BACKEND=cpu|simd|gl and PRT_SIMD_ISA=none|sse4.1|avx2
+   * lower the backend limits below. Off by default, so that a shipping game's backend does not
+   * depend on its players' environment; tools and samples set it, so that a user can force a
+   * lower backend without a rebuild. An unknown value is reported as a warning and ignored. */
+  PRT_CONTEXT_READ_ENVIRONMENT = 0x1
+} prt_context_flag;
 
-/* How to create a context. A zero-initialised struct gives the defaults. */
+/* How to create a context. A zero-initialised struct with struct_size set gives the defaults. */
 typedef struct prt_context_desc {
+  size_t struct_size; /* set by the caller: sizeof(prt_context_desc) */
   /* Allocator for everything the context and its assets allocate; copied. NULL: malloc/free.
    * Its alloc and free must both be set. */
   const prt_allocator* allocator;
@@ -33,18 +40,18 @@ typedef struct prt_context_desc {
   prt_message_fn message;
   void* message_user;
   /* Highest backend this context may use (tests use this to force a lower one). AUTO: no limit.
-   * The environment variable PRT_BACKEND=cpu|simd|gl lowers it further. */
+   * With PRT_CONTEXT_READ_ENVIRONMENT, PRT_BACKEND lowers it further. */
   prt_backend backend_limit;
   /* Highest SIMD instruction set the SIMD backend may use. AUTO: no limit.
-   * The environment variable PRT_SIMD_ISA=none|sse4.1|avx2 lowers it further. */
+   * With PRT_CONTEXT_READ_ENVIRONMENT, PRT_SIMD_ISA lowers it further. */
   prt_simd_isa simd_isa_limit;
-  uint32_t flags; /* PRT_CONTEXT_* */
+  uint32_t flags; /* prt_context_flag bits */
 } prt_context_desc;
 
 /* Creates a context. desc may be NULL (defaults). On success *out_context receives it; on
  * failure *out_context is NULL.
- * Returns PRT_ERROR_INVALID_ARGUMENT (out_context NULL, an allocator with a NULL function, an
- * unknown limit value) or PRT_ERROR_OUT_OF_MEMORY. */
+ * Returns PRT_ERROR_INVALID_ARGUMENT (out_context NULL, a struct_size below 1.0's, an allocator
+ * with a NULL function, an unknown limit value or flag) or PRT_ERROR_OUT_OF_MEMORY. */
 PRT_API prt_result prt_context_create(const prt_context_desc* desc, prt_context** out_context);
 
 /* Destroys a context. NULL is allowed. Every asset created with it must be destroyed first. */

@@ -42,6 +42,7 @@
 
 #include <stddef.h>
 
+#include <prt/prt_env.h>
 #include <prt/prt_types.h>
 
 #ifdef __cplusplus
@@ -58,28 +59,16 @@ extern "C" {
  * NULL. dir need not be exactly unit length; it is normalised (a zero vector is invalid). */
 PRT_API prt_result prt_sh_eval(uint32_t order, const float dir[3], float* out);
 
-/* Projects a lat-long (equirectangular) RGB float image onto SH: out_rgb[3*i + c] =
- * sum over texels of L_c(texel) Y_i(centre direction) * (exact texel solid angle), i.e. midpoint
- * quadrature per texel, accumulated in double. Mapping as formats/SPEC.md section 12 (centre of
- * the image is world -Z, three quarters across is +X, top row is +Y). Any width/height >= 1
- * (width = 2 height is the usual shape). rgb holds height rows from the top, each of width RGB
- * triples; rows start row_stride_floats floats apart (>= 3*width). A channel value that is NaN,
- * infinite or negative counts as 0. Returns PRT_ERROR_INVALID_ARGUMENT for a NULL pointer, a zero
- * size, a short stride or a bad order. out_rgb receives order*order*3 floats. */
-PRT_API prt_result prt_sh_project_latlong(uint32_t order, uint32_t width, uint32_t height,
-                                          const float* rgb, size_t row_stride_floats,
-                                          float* out_rgb);
-
-/* Projects six square cube faces of face_size x face_size RGB floats (tight rows, from the top)
- * onto SH, weighted by the exact solid angle of each texel, accumulated in double. faces[] are in
- * the order +X, -X, +Y, -Y, +Z, -Z of the world frame, oriented as OpenGL cube maps (first row =
- * GL t = 0): with s_c = 2 (i + 0.5)/F - 1 (column i) and t_c = 2 (j + 0.5)/F - 1 (row j), the
- * texel's direction is the normalised
- *     +X: ( 1, -t_c, -s_c)   -X: (-1, -t_c,  s_c)   +Y: ( s_c,  1,  t_c)
- *     -Y: ( s_c, -1, -t_c)   +Z: ( s_c, -t_c,  1)   -Z: (-s_c, -t_c, -1).
- * Non-finite or negative channel values count as 0. Errors as prt_sh_project_latlong. */
-PRT_API prt_result prt_sh_project_cube(uint32_t order, uint32_t face_size,
-                                       const float* const faces[6], float* out_rgb);
+/* Projects an environment image (prt_env.h: lat-long or cube, RGB or RGBA, any strides) onto
+ * SH: out_rgb[3*i + c] = sum over texels of L_c(texel) Y_i(centre direction) * (exact texel
+ * solid angle), i.e. midpoint quadrature per texel, accumulated in double. A channel value that
+ * is NaN, infinite or negative counts as 0. With env->rotation set, the projected coefficients
+ * are then rotated by prt_sh_rotate, which is exact for band-limited coefficients: the result is
+ * the projection of the turned light up to float rounding (not a re-projection of turned
+ * texels, which would differ by quadrature error). out_rgb receives order*order*3 floats.
+ * Returns PRT_ERROR_INVALID_ARGUMENT for a bad order, a NULL out_rgb, or an env that
+ * prt_env_image_validate rejects. */
+PRT_API prt_result prt_sh_project(uint32_t order, const prt_env_image* env, float* out_rgb);
 
 /* Rotates SH coefficients: rotation is a row-major 3x3 proper rotation R of the world frame, and
  * the result describes the rotated light, the light that came from direction d now coming from

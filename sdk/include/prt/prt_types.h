@@ -2,6 +2,14 @@
 /* prtkit runtime C API: basic types shared by every header: result codes, message severities,
  * the caller-supplied allocator and message callback, opaque handles. C99 and C++.
  *
+ * Structs that may grow (descriptions the caller fills in and infos the runtime fills in) start
+ * with `size_t struct_size`, which the caller sets to sizeof(the struct) as its headers declare
+ * it, for input and output structs alike. A struct_size below the struct's size in prtkit 1.0 is
+ * PRT_ERROR_INVALID_ARGUMENT. The runtime reads and writes only the first struct_size bytes: an
+ * input field a caller's older struct lacks takes its default (as if 0), and an output struct is
+ * written only as far as it reaches (struct_size itself is left as the caller set it). So a
+ * program built against older headers keeps working with a newer library, and the reverse.
+ *
  * Thread safety: everything declared here is a type or a constant; prt_result_string() is pure
  * and may be called from any thread. */
 #ifndef PRT_TYPES_H

@@ -22,6 +22,7 @@
 #ifndef PRT_WAVELET_H
 #define PRT_WAVELET_H
 
+#include <prt/prt_env.h>
 #include <prt/prt_types.h>
 
 #ifdef __cplusplus
@@ -49,40 +50,44 @@ PRT_API int prt_haar_level(uint32_t size, uint32_t x, uint32_t y);
 
 /* ---- Parameterisations of the sphere (formats/SPEC.md §14) --------------------------------- */
 
-/* The `param` values: the cube of six S x S faces (§13's face order and orientation), or the
- * dual paraboloid of two S x S faces (upper hemisphere y >= 0 first). */
-#define PRT_WAVELET_PARAM_CUBE 0u
-#define PRT_WAVELET_PARAM_DUAL_PARABOLOID 1u
+/* The parameterisations: the cube of six S x S faces (§13's face order and orientation), or the
+ * dual paraboloid of two S x S faces (upper hemisphere y >= 0 first). The values are the WVLT
+ * header's `param`. */
+typedef enum prt_wavelet_param {
+  PRT_WAVELET_PARAM_CUBE = 0,
+  PRT_WAVELET_PARAM_DUAL_PARABOLOID = 1
+} prt_wavelet_param;
+
 #define PRT_WAVELET_MIN_SIZE 16u
 #define PRT_WAVELET_MAX_SIZE 128u
 
 /* Faces of a parameterisation (6 or 2); 0 for an unknown param. */
-PRT_API uint32_t prt_wavelet_face_count(uint32_t param);
+PRT_API uint32_t prt_wavelet_face_count(prt_wavelet_param param);
 
 /* Coefficients (= texels) of a parameterisation: faces * size^2; 0 for an unknown param or a
  * size that is not a power of two in PRT_WAVELET_MIN_SIZE..PRT_WAVELET_MAX_SIZE. */
-PRT_API uint32_t prt_wavelet_coefficient_count(uint32_t param, uint32_t size);
+PRT_API uint32_t prt_wavelet_coefficient_count(prt_wavelet_param param, uint32_t size);
 
 /* The unit direction at continuous coordinates (u, v) in [0, size]^2 of a face (texel (x, y)
  * covers [x, x+1) x [y, y+1)). Returns 1 and writes dir, or 0 when (u, v) has no direction
  * (outside the paraboloid's disc) or an argument is bad. */
-PRT_API int prt_wavelet_direction(uint32_t param, uint32_t size, uint32_t face, float u, float v,
-                                  float dir[3]);
+PRT_API int prt_wavelet_direction(prt_wavelet_param param, uint32_t size, uint32_t face, float u,
+                                  float v, float dir[3]);
 
 /* The solid angle of texel (x, y) of a face (§14; 0 for a paraboloid texel outside the disc or a
  * bad argument). Sums to 4 pi over a cube. */
-PRT_API double prt_wavelet_texel_solid_angle(uint32_t param, uint32_t size, uint32_t face,
+PRT_API double prt_wavelet_texel_solid_angle(prt_wavelet_param param, uint32_t size, uint32_t face,
                                              uint32_t x, uint32_t y);
 
 /* The global index f*size^2 + y*size + x of the texel holding direction dir (need not be unit
  * length). Always an inside texel (§14 for the paraboloid's rim). The zero vector and
  * non-finite components have no direction: the cube gives texel 0, the paraboloid the texel of
  * direction (-sqrt 1/2, 0, -sqrt 1/2) (§14). 0xFFFFFFFF for a bad param or size. */
-PRT_API uint32_t prt_wavelet_locate(uint32_t param, uint32_t size, const float dir[3]);
+PRT_API uint32_t prt_wavelet_locate(prt_wavelet_param param, uint32_t size, const float dir[3]);
 
 /* The band of coefficient j (§7.2): face * (log2 size + 1) + (level + 1), level from
  * prt_haar_level; bands per face = log2 size + 1. 0xFFFFFFFF for a bad argument. */
-PRT_API uint32_t prt_wavelet_band(uint32_t param, uint32_t size, uint32_t j);
+PRT_API uint32_t prt_wavelet_band(prt_wavelet_param param, uint32_t size, uint32_t j);
 
 /* ---- Light, once per frame ----------------------------------------------------------------- */
 
@@ -93,32 +98,24 @@ PRT_API uint32_t prt_wavelet_band(uint32_t param, uint32_t size, uint32_t j);
  * arguments; a game may run them on any thread, e.g. the light for frame n+1 while frame n
  * shades. */
 
-/* Resamples a lat-long map (SPEC §12: width = 2 height, rows from the top, RGB floats) turned by
- * rotation (row-major 3x3, §12 convention; NULL = identity) onto the texels of a
- * parameterisation: out_rgba = the power per texel, i.e. its mean radiance times its solid angle
- * (§14; a vertex's radiance is then sum_j T_j P_j with T_j its transfer's mean over texel j; a
- * source finer than the texels keeps its power exactly). Non-finite and negative channels
- * count as 0. PRT_ERROR_INVALID_ARGUMENT for NULL pointers, bad param/size, a width that is not
- * 2 height, height 0, or a rotation with a non-finite entry. */
-PRT_API prt_result prt_wavelet_resample_latlong(uint32_t param, uint32_t size, const float* rgb,
-                                                uint32_t width, uint32_t height,
-                                                const float* rotation, float* out_rgba);
-
-/* The same for six cube faces (face_size^2 RGB floats each, back to back, §13's face order and
- * orientation, as prt_sh_project_cube takes them). PRT_ERROR_INVALID_ARGUMENT as above, and for
- * face_size 0 or above 65536. */
-PRT_API prt_result prt_wavelet_resample_cube(uint32_t param, uint32_t size, const float* faces_rgb,
-                                             uint32_t face_size, const float* rotation,
-                                             float* out_rgba);
+/* Resamples an environment image (prt_env.h: lat-long or cube, RGB or RGBA, any strides, turned
+ * by env->rotation) onto the texels of a parameterisation: out_rgba = the power per texel, i.e.
+ * its mean radiance times its solid angle (§14; a vertex's radiance is then sum_j T_j P_j with
+ * T_j its transfer's mean over texel j; a source finer than the texels keeps its power exactly).
+ * Non-finite and negative channels count as 0. PRT_ERROR_INVALID_ARGUMENT for a NULL out_rgba, a
+ * bad param or size, or an env that prt_env_image_validate rejects. */
+PRT_API prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size,
+                                        const prt_env_image* env, float* out_rgba);
 
 /* Haar-transforms every face of a light in place (texel powers -> coefficients, §14). A game
  * that builds its own texel light writes radiance x prt_wavelet_texel_solid_angle per texel. */
-PRT_API prt_result prt_wavelet_transform_light(uint32_t param, uint32_t size, float* rgba);
+PRT_API prt_result prt_wavelet_transform_light(prt_wavelet_param param, uint32_t size, float* rgba);
 
 /* Keeps every face's scaling coefficient and the m detail coefficients of largest area-weighted
  * magnitude (§14, Ng et al. 2003), setting the others to 0; m >= the detail count keeps all.
  * Deterministic (ties keep the lower index); no heap. */
-PRT_API prt_result prt_wavelet_select_light(uint32_t param, uint32_t size, uint32_t m, float* rgba);
+PRT_API prt_result prt_wavelet_select_light(prt_wavelet_param param, uint32_t size, uint32_t m,
+                                            float* rgba);
 
 #ifdef __cplusplus
 }

@@ -10,7 +10,7 @@
 // column x - W/4 of the turned map: turned(x, y) = original((x + W/4) mod W, y).
 #include <gtest/gtest.h>
 
-#include <prt/prt_sh.h>
+#include <prt/prt.hpp>
 
 #include <stb_image_write.h>
 
@@ -132,12 +132,10 @@ TEST(EnvRotation, RuntimeShRotationMatchesShiftedProjection) {
   constexpr std::uint32_t kOrder = 6;
   const std::vector<float> original = asymmetric_pixels(), shifted = shifted_by_quarter(original);
   std::vector<float> turned(kOrder * kOrder * 3), expected(turned.size());
-  ASSERT_EQ(
-      prt_sh_project_latlong(kOrder, kWidth, kHeight, original.data(), 3 * kWidth, turned.data()),
-      PRT_OK);
-  ASSERT_EQ(
-      prt_sh_project_latlong(kOrder, kWidth, kHeight, shifted.data(), 3 * kWidth, expected.data()),
-      PRT_OK);
+  const prt_env_image original_env = prt::latlong_env(kWidth, kHeight, original.data());
+  const prt_env_image shifted_env = prt::latlong_env(kWidth, kHeight, shifted.data());
+  ASSERT_EQ(prt_sh_project(kOrder, &original_env, turned.data()), PRT_OK);
+  ASSERT_EQ(prt_sh_project(kOrder, &shifted_env, expected.data()), PRT_OK);
   float r[9];
   rotation_about_y_row_major(90.0, r);
   ASSERT_EQ(prt_sh_rotate(kOrder, r, turned.data(), turned.data(), 3), PRT_OK);

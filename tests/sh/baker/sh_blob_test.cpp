@@ -4,7 +4,7 @@
 // by hand, the self-check, determinism over thread counts, and `prt-bake bake` end to end.
 #include <gtest/gtest.h>
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -324,8 +324,8 @@ TEST(ShBakeCommand, DemoSceneBlobLoadsAndReportParses) {
   ASSERT_EQ(prt_asset_load_file(h.context, blob.string().c_str(), PRT_VALIDATE_FULL, &h.asset),
             PRT_OK)
       << prt_context_last_message(h.context);
-  prt_sh_transfer_info info{};
-  ASSERT_EQ(prt_sh_get_transfer_info(h.asset, &info), PRT_OK);
+  prt_sh_info info = prt::sized<prt_sh_info>();
+  ASSERT_EQ(prt_sh_get_info(h.asset, &info), PRT_OK);
   EXPECT_EQ(info.order, 3u);
   EXPECT_EQ(info.bits, 8u);
   EXPECT_EQ(info.channels, 3u);

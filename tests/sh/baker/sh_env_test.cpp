@@ -64,7 +64,7 @@ TEST(EnvSh, LatLongAgreesWithRuntimeProjection) {
   const EnvMap map(w, h, rgb, EnvMapping::LatLong, "pattern");
   const auto sh = prt::bake::project_env_sh(map, 8);
   std::vector<float> runtime(64 * 3);
-  ASSERT_EQ(prt_sh_project_latlong(8, w, h, rgb.data(), w * 3, runtime.data()), PRT_OK);
+  ASSERT_EQ(prt_sh_test::ProjectLatLong(8, w, h, rgb.data(), w * 3, runtime.data()), PRT_OK);
   for (size_t i = 0; i < runtime.size(); ++i) EXPECT_NEAR(sh.rgb[i], runtime[i], 1e-4) << i;
 }
 

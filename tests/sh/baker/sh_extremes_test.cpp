@@ -17,9 +17,7 @@
 // - a constant transfer vector (min = max): scale 0, decoded exactly.
 #include <gtest/gtest.h>
 
-#include <prt/prt.h>
-#include <prt/prt_sh.h>
-#include <prt/prt_sh_asset.h>
+#include <prt/prt.hpp>
 
 #include <cmath>
 #include <cstring>
@@ -42,21 +40,18 @@ constexpr double kPi = 3.14159265358979323846;
 class RuntimeBlob {
  public:
   explicit RuntimeBlob(const std::vector<std::uint8_t>& blob) {
-    prt_context* context = nullptr;
-    EXPECT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-    context_.reset(context);
-    prt_asset* asset = nullptr;
-    EXPECT_EQ(prt_asset_load_memory(context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &asset),
-              PRT_OK)
-        << prt_context_last_message(context);
-    asset_.reset(asset);
-    EXPECT_EQ(prt_sh_get_transfer_info(asset, &info_), PRT_OK);
+    auto loaded =
+        prt::load_asset_memory(context_.get(), blob.data(), blob.size(), PRT_VALIDATE_FULL);
+    EXPECT_EQ(loaded.result, PRT_OK) << prt_context_last_message(context_.get());
+    asset_ = std::move(loaded.handle);
+    EXPECT_EQ(prt_sh_get_info(asset_.get(), &info_), PRT_OK);
   }
-  const prt_sh_transfer_info& info() const { return info_; }
+  const prt_sh_info& info() const { return info_; }
 
   std::vector<glm::vec3> shade(const std::vector<float>& light_rgb) const {
     std::vector<glm::vec3> out(info_.vertex_count, glm::vec3(-1.0f));
-    EXPECT_EQ(prt_sh_shade(asset_.get(), light_rgb.data(), 0, info_.vertex_count, &out[0].x),
+    EXPECT_EQ(prt_sh_shade(asset_.get(), PRT_BACKEND_CPU, light_rgb.data(), 0, info_.vertex_count,
+                           &out[0].x),
               PRT_OK);
     return out;
   }
@@ -68,10 +63,9 @@ class RuntimeBlob {
   }
 
  private:
-  std::unique_ptr<prt_context, decltype(&prt_context_destroy)> context_{nullptr,
-                                                                        &prt_context_destroy};
-  std::unique_ptr<prt_asset, decltype(&prt_asset_destroy)> asset_{nullptr, &prt_asset_destroy};
-  prt_sh_transfer_info info_{};
+  prt::ContextPtr context_ = prt::create_context().handle;
+  prt::AssetPtr asset_;
+  prt_sh_info info_ = prt::sized<prt_sh_info>();
 };
 
 struct Baked {
@@ -99,9 +93,8 @@ Baked bake(const Scene& scene, ShTransferKind kind, std::uint32_t order, std::ui
 // The runtime's SH projection of a lat-long map.
 std::vector<float> project(const EnvMap& map, std::uint32_t order) {
   std::vector<float> light(std::size_t(order) * order * 3);
-  EXPECT_EQ(prt_sh_project_latlong(order, map.width(), map.height(), map.pixels().data(),
-                                   std::size_t(map.width()) * 3, light.data()),
-            PRT_OK);
+  const prt_env_image env = prt::latlong_env(map.width(), map.height(), map.pixels().data());
+  EXPECT_EQ(prt_sh_project(order, &env, light.data()), PRT_OK);
   return light;
 }
 
@@ -261,8 +254,8 @@ TEST(ShExtremes, NaNInfiniteAndNegativeTexelsActAsZero) {
   EXPECT_EQ(light, project(reference, order));
   // The runtime's own projection also counts such values as 0, without the importer.
   std::vector<float> raw_light(light.size());
-  ASSERT_EQ(prt_sh_project_latlong(order, 128, 64, raw_bad.data(), 128 * 3, raw_light.data()),
-            PRT_OK);
+  const prt_env_image raw_env = prt::latlong_env(128, 64, raw_bad.data());
+  ASSERT_EQ(prt_sh_project(order, &raw_env, raw_light.data()), PRT_OK);
   EXPECT_EQ(raw_light, light);
 
   const Scene scene = test::scene_of(test::make_fine_open_box(1.0f, 6, 3));

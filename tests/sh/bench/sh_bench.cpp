@@ -17,7 +17,7 @@
 //
 //   prt_bench_sh [--benchmark_filter=...] [google benchmark flags]
 #include <benchmark/benchmark.h>
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 #include <prt/format/blob_writer.hpp>
 
 #include <chrono>
@@ -201,12 +201,11 @@ class Assets {
     const std::lock_guard<std::mutex> lock(mutex_);
     prt_context*& ctx = contexts_[backend.name];
     if (!ctx) {
-      prt_context_desc desc{};
+      prt_context_desc desc = prt::sized<prt_context_desc>();
       desc.simd_isa_limit = backend.isa_limit;
-      desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
       if (prt_context_create(&desc, &ctx) != PRT_OK) return nullptr;
     }
-    prt_backend_info info{};
+    prt_backend_info info = prt::sized<prt_backend_info>();
     prt_backend_get_info(ctx, backend.backend, &info);
     if (!info.usable || (backend.backend == PRT_BACKEND_SIMD && info.isa != backend.isa_limit)) {
       *why = std::string(backend.name) + " not usable here: " + info.note;
@@ -259,7 +258,7 @@ void shade(benchmark::State& state, int backend_index, std::size_t row_index) {
     const auto start = std::chrono::steady_clock::now();
     const double cpu_start = prt_bench::thread_cpu_seconds();
     const prt_result r =
-        prt_sh_shade_on(asset, backend.backend, light.data(), first, count, out.data());
+        prt_sh_shade(asset, backend.backend, light.data(), first, count, out.data());
     cpu_seconds += prt_bench::thread_cpu_seconds() - cpu_start;
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r != PRT_OK) {

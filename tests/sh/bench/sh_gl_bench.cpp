@@ -89,7 +89,7 @@ struct GlBench {
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     for (uint32_t i = 0; i < 3 * order * order; ++i) light.push_back(unit(rng));
     if (loaded->result == PRT_OK)
-      prt_gl_sh_create(loaded->asset, headless_gl_get_proc, shared_gl(), &shader);
+      prt_gl_sh_create(context, loaded->asset, headless_gl_get_proc, shared_gl(), &shader);
   }
   ~GlBench() {
     prt_gl_sh_destroy(shader);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The GL backend of `sh` (prt_gl.h) on a headless EGL context: results against the exact double
-// sum of the stored q/offset/scale, vertex ranges, the output buffer's layout and GL state, and
-// every error path.
+// The GL backend of `sh` (prt_sh_asset.h) on a headless EGL context: results against the exact
+// double sum of the stored q/offset/scale, vertex ranges, the output buffer's layout and GL state,
+// and every error path.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,10 +33,9 @@ struct GlAsset {
   GlAsset(const Transfer& t, prt_backend limit = PRT_BACKEND_AUTO, bool zstd = false,
           const prt_allocator* allocator = nullptr)
       : transfer(t) {
-    prt_context_desc desc{};
+    prt_context_desc desc = prt::sized<prt_context_desc>();
     desc.backend_limit = limit;
     desc.allocator = allocator;
-    desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
     prt_context* ctx = nullptr;
     EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
     context.reset(ctx);
@@ -50,7 +49,8 @@ struct GlAsset {
 
 ShaderPtr create_shader(const GlAsset& a, headless_gl* gl) {
   prt_gl_sh_shader* shader = nullptr;
-  EXPECT_EQ(prt_gl_sh_create(a.asset(), headless_gl_get_proc, gl, &shader), PRT_OK) << a.message();
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl, &shader), PRT_OK)
+      << a.message();
   return ShaderPtr(shader);
 }
 
@@ -218,7 +218,7 @@ TEST(GlSh, AssetWithoutVerticesShadesNothing) {
   LoadedAsset loaded(ctx.get(), w.finish());
   ASSERT_EQ(loaded.result, PRT_OK) << prt_context_last_message(ctx.get());
   prt_gl_sh_shader* raw = nullptr;
-  ASSERT_EQ(prt_gl_sh_create(loaded.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
+  ASSERT_EQ(prt_gl_sh_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
       << prt_context_last_message(ctx.get());
   ShaderPtr shader(raw);
   const std::vector<float> light = prt_test::realistic_light(3, 1);
@@ -240,7 +240,7 @@ TEST(GlSh, NoShtrSectionIsNotFound) {
   LoadedAsset loaded(ctx.get(), w.finish());
   ASSERT_EQ(loaded.result, PRT_OK);
   prt_gl_sh_shader* shader = reinterpret_cast<prt_gl_sh_shader*>(&loaded);
-  EXPECT_EQ(prt_gl_sh_create(loaded.asset, headless_gl_get_proc, gl.gl, &shader),
+  EXPECT_EQ(prt_gl_sh_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(shader, nullptr);
   EXPECT_NE(std::string(prt_context_last_message(ctx.get())).find("SHTR"), std::string::npos);
@@ -255,7 +255,8 @@ TEST(GlSh, MissingEntryPointIsUnsupportedAndNamed) {
     loader.gl = gl.gl;
     loader.hidden = name;
     prt_gl_sh_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_sh_create(a.asset(), prt_test::LoaderOverride::get, &loader, &shader),
+    EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), prt_test::LoaderOverride::get, &loader,
+                               &shader),
               PRT_ERROR_UNSUPPORTED_BACKEND)
         << name;
     EXPECT_EQ(shader, nullptr);
@@ -268,7 +269,8 @@ TEST(GlSh, ContextOlderThan43IsUnsupported) {
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
   prt_gl_sh_shader* shader = nullptr;
   char lie[] = "version";
-  EXPECT_EQ(prt_gl_sh_create(a.asset(), lying_loader, lie, &shader), PRT_ERROR_UNSUPPORTED_BACKEND);
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
+            PRT_ERROR_UNSUPPORTED_BACKEND);
   EXPECT_EQ(shader, nullptr);
   EXPECT_NE(a.message().find("3.3"), std::string::npos) << a.message();
 }
@@ -279,7 +281,8 @@ TEST(GlSh, AssetLargerThanTheSsboLimitIsUnsupported) {
   const GlAsset a(prt_test::random_transfer(1, 100, 1, 8, 1));
   prt_gl_sh_shader* shader = nullptr;
   char lie[] = "ssbo";
-  EXPECT_EQ(prt_gl_sh_create(a.asset(), lying_loader, lie, &shader), PRT_ERROR_UNSUPPORTED_BACKEND);
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
+            PRT_ERROR_UNSUPPORTED_BACKEND);
   EXPECT_EQ(shader, nullptr);
   EXPECT_NE(a.message().find("1024"), std::string::npos) << a.message();
 }
@@ -289,16 +292,16 @@ TEST(GlSh, BackendLimitBelowGlIsUnsupported) {
   for (prt_backend limit : {PRT_BACKEND_CPU, PRT_BACKEND_SIMD}) {
     const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1), limit);
     prt_gl_sh_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_sh_create(a.asset(), headless_gl_get_proc, gl.gl, &shader),
+    EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
               PRT_ERROR_UNSUPPORTED_BACKEND);
     EXPECT_EQ(shader, nullptr);
-    prt_backend_info info{};
+    prt_backend_info info = prt::sized<prt_backend_info>();
     ASSERT_EQ(prt_backend_get_info(a.context.get(), PRT_BACKEND_GL, &info), PRT_OK);
     EXPECT_EQ(info.usable, 0u);
   }
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1), PRT_BACKEND_GL);
   EXPECT_TRUE(create_shader(a, gl.gl));
-  prt_backend_info info{};
+  prt_backend_info info = prt::sized<prt_backend_info>();
   ASSERT_EQ(prt_backend_get_info(a.context.get(), PRT_BACKEND_GL, &info), PRT_OK);
   EXPECT_EQ(info.compiled, 1u);
   EXPECT_EQ(info.usable, 1u);
@@ -321,20 +324,47 @@ TEST(GlSh, BadRangesAreInvalidArguments) {
               PRT_ERROR_INVALID_ARGUMENT)
         << range[0] << " + " << range[1];
   }
-  EXPECT_EQ(prt_context_last_result(a.context.get()), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_gl_sh_shade(shader.get(), nullptr, 0, n), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_gl_sh_read(shader.get(), 0, n, nullptr), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_gl_sh_read(shader.get(), n, 0, nullptr), PRT_OK) << "empty read";
+  // Per-frame calls report through their result only: no context was written.
+  EXPECT_EQ(prt_context_last_result(a.context.get()), PRT_OK) << a.message();
+}
+
+// The shader reports to the context it is created with, which need not be the asset's: the
+// asset's context sees nothing, and the creating context's backend limit decides.
+TEST(GlSh, CreateReportsToTheCallersContext) {
+  PRT_REQUIRE_GL(gl);
+  const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
+  ContextPtr limited(prt_test::make_context(PRT_BACKEND_SIMD));
+  prt_gl_sh_shader* shader = nullptr;
+  EXPECT_EQ(prt_gl_sh_create(limited.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
+            PRT_ERROR_UNSUPPORTED_BACKEND);
+  EXPECT_EQ(shader, nullptr);
+  EXPECT_EQ(prt_context_last_result(limited.get()), PRT_ERROR_UNSUPPORTED_BACKEND);
+  EXPECT_NE(std::string(prt_context_last_message(limited.get())).find("prt_gl_sh_create"),
+            std::string::npos);
+  EXPECT_EQ(prt_context_last_result(a.context.get()), PRT_OK) << a.message();
+  ContextPtr render(prt_test::make_context());
+  ASSERT_EQ(prt_gl_sh_create(render.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader), PRT_OK)
+      << prt_context_last_message(render.get());
+  ShaderPtr owned(shader);
+  const std::vector<float> light = prt_test::realistic_light(2, 3);
+  ASSERT_EQ(prt_gl_sh_shade(shader, light.data(), 0, 8), PRT_OK);
+  expect_matches(a.transfer, light, read_all(shader, 8).data(), 0, 8);
 }
 
 TEST(GlSh, NullArguments) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
   prt_gl_sh_shader* shader = nullptr;
-  EXPECT_EQ(prt_gl_sh_create(nullptr, headless_gl_get_proc, gl.gl, &shader),
+  EXPECT_EQ(prt_gl_sh_create(nullptr, a.asset(), headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_gl_sh_create(a.asset(), nullptr, gl.gl, &shader), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_gl_sh_create(a.asset(), headless_gl_get_proc, gl.gl, nullptr),
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), nullptr, headless_gl_get_proc, gl.gl, &shader),
+            PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), nullptr, gl.gl, &shader),
+            PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, nullptr),
             PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(shader, nullptr);
   const float light[12] = {};
@@ -352,13 +382,14 @@ TEST(GlSh, ShaderComesFromTheAssetsAllocator) {
   const GlAsset a(prt_test::random_transfer(3, 40, 3, 8, 4), PRT_BACKEND_AUTO, false, &allocator);
   const int before = counter.live;
   prt_gl_sh_shader* shader = nullptr;
-  ASSERT_EQ(prt_gl_sh_create(a.asset(), headless_gl_get_proc, gl.gl, &shader), PRT_OK);
+  ASSERT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
+            PRT_OK);
   EXPECT_GT(counter.live, before);
   prt_gl_sh_destroy(shader);
   EXPECT_EQ(counter.live, before);
 
   counter.fail = true;
-  EXPECT_EQ(prt_gl_sh_create(a.asset(), headless_gl_get_proc, gl.gl, &shader),
+  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_OUT_OF_MEMORY);
   EXPECT_EQ(shader, nullptr);
   counter.fail = false;

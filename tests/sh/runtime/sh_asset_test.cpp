@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -29,8 +30,8 @@ class ShAsset : public ::testing::Test {
   void expect_decodes_to_stored(const Transfer& t, bool zstd) {
     LoadedAsset a(ctx.ctx, make_blob(encode(t), t.vertices, zstd));
     ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
-    prt_sh_transfer_info info{};
-    ASSERT_EQ(prt_sh_get_transfer_info(a.asset, &info), PRT_OK);
+    prt_sh_info info = prt::sized<prt_sh_info>();
+    ASSERT_EQ(prt_sh_get_info(a.asset, &info), PRT_OK);
     EXPECT_EQ(info.order, t.order);
     EXPECT_EQ(info.vertex_count, t.vertices);
     EXPECT_EQ(info.channels, t.channels);
@@ -57,7 +58,8 @@ class ShAsset : public ::testing::Test {
     std::vector<float> light(size_t(n2) * 3);
     for (float& l : light) l = unit(rng);
     std::vector<float> rgb(size_t(t.vertices) * 3);
-    ASSERT_EQ(prt_sh_shade(a.asset, light.data(), 0, t.vertices, rgb.data()), PRT_OK);
+    ASSERT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), 0, t.vertices, rgb.data()),
+              PRT_OK);
     for (uint32_t v = 0; v < t.vertices; ++v)
       for (uint32_t ch = 0; ch < 3; ++ch) {
         const uint32_t c = t.channels == 3 ? ch : 0;
@@ -116,7 +118,8 @@ TEST_F(ShAsset, GreyTransferShadesRedGreenAndBlueWithItsOneChannel) {
   std::vector<float> light(27);
   for (size_t k = 0; k < 9; ++k) light[3 * k] = light[3 * k + 1] = light[3 * k + 2] = 0.3f * k - 1;
   std::vector<float> rgb(size_t(t.vertices) * 3);
-  ASSERT_EQ(prt_sh_shade(a.asset, light.data(), 0, t.vertices, rgb.data()), PRT_OK);
+  ASSERT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), 0, t.vertices, rgb.data()),
+            PRT_OK);
   for (uint32_t v = 0; v < t.vertices; ++v) {
     EXPECT_EQ(rgb[3 * v], rgb[3 * v + 1]);
     EXPECT_EQ(rgb[3 * v], rgb[3 * v + 2]);
@@ -130,11 +133,14 @@ TEST_F(ShAsset, SplitRangesOnTwoThreadsEqualOneCall) {
   std::vector<float> light(75);
   for (size_t i = 0; i < light.size(); ++i) light[i] = std::sin(float(i));
   std::vector<float> whole(size_t(t.vertices) * 3), split(whole.size(), -1.0f);
-  ASSERT_EQ(prt_sh_shade(a.asset, light.data(), 0, t.vertices, whole.data()), PRT_OK);
+  ASSERT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), 0, t.vertices, whole.data()),
+            PRT_OK);
   const uint32_t half = 37;
   prt_result first = PRT_ERROR_INVALID_OPERATION, second = PRT_ERROR_INVALID_OPERATION;
-  std::thread worker([&] { first = prt_sh_shade(a.asset, light.data(), 0, half, split.data()); });
-  second = prt_sh_shade(a.asset, light.data(), half, t.vertices - half, split.data() + 3 * half);
+  std::thread worker(
+      [&] { first = prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), 0, half, split.data()); });
+  second = prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), half, t.vertices - half,
+                        split.data() + 3 * half);
   worker.join();
   ASSERT_EQ(first, PRT_OK);
   ASSERT_EQ(second, PRT_OK);
@@ -158,19 +164,22 @@ TEST_F(ShAsset, RejectsInvalidRangesAndArguments) {
   const uint32_t bad[][2] = {{V + 1, 0}, {0, V + 1},      {V, 1},
                              {1, V},     {1, UINT32_MAX}, {UINT32_MAX, 2}};
   for (const auto& r : bad) {
-    EXPECT_EQ(prt_sh_shade(a.asset, light.data(), r[0], r[1], out.data()),
+    EXPECT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), r[0], r[1], out.data()),
               PRT_ERROR_INVALID_ARGUMENT)
         << r[0] << "+" << r[1];
     EXPECT_EQ(prt_sh_decode_transfer(a.asset, r[0], r[1], out.data()), PRT_ERROR_INVALID_ARGUMENT)
         << r[0] << "+" << r[1];
   }
-  EXPECT_EQ(prt_sh_shade(a.asset, nullptr, 0, V, out.data()), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_shade(a.asset, light.data(), 0, V, nullptr), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_shade(nullptr, light.data(), 0, V, out.data()), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, nullptr, 0, V, out.data()),
+            PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), 0, V, nullptr),
+            PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_shade(nullptr, PRT_BACKEND_CPU, light.data(), 0, V, out.data()),
+            PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_sh_decode_transfer(a.asset, 0, V, nullptr), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_get_transfer_info(a.asset, nullptr), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_get_info(a.asset, nullptr), PRT_ERROR_INVALID_ARGUMENT);
   // Empty ranges, including the one at the end, are valid and write nothing.
-  EXPECT_EQ(prt_sh_shade(a.asset, light.data(), V, 0, out.data()), PRT_OK);
+  EXPECT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light.data(), V, 0, out.data()), PRT_OK);
   EXPECT_EQ(prt_sh_decode_transfer(a.asset, 0, 0, out.data()), PRT_OK);
   EXPECT_EQ(out[0], 0.0f);
 }
@@ -181,11 +190,11 @@ TEST_F(ShAsset, AssetWithoutTransferReportsNotFound) {
   w.add_section(kVPOS, positions, sizeof positions, 3);
   LoadedAsset a(ctx.ctx, w.finish());
   ASSERT_EQ(a.result, PRT_OK);
-  prt_sh_transfer_info info;
+  prt_sh_info info = prt::sized<prt_sh_info>();
   float light[3] = {1, 1, 1}, out[9];
-  EXPECT_EQ(prt_sh_get_transfer_info(a.asset, &info), PRT_ERROR_NOT_FOUND);
+  EXPECT_EQ(prt_sh_get_info(a.asset, &info), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_sh_decode_transfer(a.asset, 0, 1, out), PRT_ERROR_NOT_FOUND);
-  EXPECT_EQ(prt_sh_shade(a.asset, light, 0, 1, out), PRT_ERROR_NOT_FOUND);
+  EXPECT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_CPU, light, 0, 1, out), PRT_ERROR_NOT_FOUND);
 }
 
 // The writer refuses these blobs, so they are made by editing the section table of a good one.
@@ -207,36 +216,41 @@ struct Corruption {
   const char* name;
   std::function<void(Bytes&)> edit;  // on the SHTR bytes
   prt_result expected;               // at full validation
-  bool header_breaks_reads;          // the runtime must refuse it even when quick-loaded
+  // A header field that does not fit the section fails the load at either validation level
+  // (CORRUPT, with a message containing this); nullptr: a content error, found by full
+  // validation only.
+  const char* quick_load_message;
 };
 
 // Base: order 2, 3 channels, 8 bits, 3 vertices: payload 32 + 96 + 36 = 164 bytes (no padding).
 const Corruption kCorruptions[] = {
-    {"order 0", [](Bytes& b) { put_u32(b, 0, 0); }, PRT_ERROR_CORRUPT, true},
-    {"order 17", [](Bytes& b) { put_u32(b, 0, 17); }, PRT_ERROR_CORRUPT, true},
+    {"order 0", [](Bytes& b) { put_u32(b, 0, 0); }, PRT_ERROR_CORRUPT, "order 0 is not in 1..16"},
+    {"order 17", [](Bytes& b) { put_u32(b, 0, 17); }, PRT_ERROR_CORRUPT, "order 17"},
     {"order 3 (size no longer matches)", [](Bytes& b) { put_u32(b, 0, 3); }, PRT_ERROR_CORRUPT,
-     true},
-    {"channels 2", [](Bytes& b) { put_u32(b, 8, 2); }, PRT_ERROR_CORRUPT, true},
-    {"channels 0", [](Bytes& b) { put_u32(b, 8, 0); }, PRT_ERROR_CORRUPT, true},
-    {"bits 12", [](Bytes& b) { put_u32(b, 12, 12); }, PRT_ERROR_CORRUPT, true},
-    {"reserved 24", [](Bytes& b) { put_u32(b, 24, 1); }, PRT_ERROR_CORRUPT, false},
-    {"reserved 28", [](Bytes& b) { put_u32(b, 28, 0x80000000u); }, PRT_ERROR_CORRUPT, false},
-    {"vertex_count 4 for 3 positions", [](Bytes& b) { put_u32(b, 4, 4); }, PRT_ERROR_CORRUPT, true},
+     "the header implies"},
+    {"channels 2", [](Bytes& b) { put_u32(b, 8, 2); }, PRT_ERROR_CORRUPT, "2 channels"},
+    {"channels 0", [](Bytes& b) { put_u32(b, 8, 0); }, PRT_ERROR_CORRUPT, "0 channels"},
+    {"bits 12", [](Bytes& b) { put_u32(b, 12, 12); }, PRT_ERROR_CORRUPT, "12 bits"},
+    {"reserved 24", [](Bytes& b) { put_u32(b, 24, 1); }, PRT_ERROR_CORRUPT, "reserved"},
+    {"reserved 28", [](Bytes& b) { put_u32(b, 28, 0x80000000u); }, PRT_ERROR_CORRUPT, "reserved"},
+    {"vertex_count 4 for 3 positions", [](Bytes& b) { put_u32(b, 4, 4); }, PRT_ERROR_CORRUPT,
+     "header says 4 vertices"},
     {"vertex_count 2 for 3 positions",
      [](Bytes& b) {
        put_u32(b, 4, 2);
        b.resize(b.size() - 12);  // consistent size, so only the count disagrees
      },
-     PRT_ERROR_CORRUPT, false},
-    {"raw size +4", [](Bytes& b) { b.resize(b.size() + 4, 0); }, PRT_ERROR_CORRUPT, true},
-    {"raw size -4", [](Bytes& b) { b.resize(b.size() - 4); }, PRT_ERROR_CORRUPT, true},
+     PRT_ERROR_CORRUPT, "header says 2 vertices"},
+    {"raw size +4", [](Bytes& b) { b.resize(b.size() + 4, 0); }, PRT_ERROR_CORRUPT,
+     "168 raw bytes"},
+    {"raw size -4", [](Bytes& b) { b.resize(b.size() - 4); }, PRT_ERROR_CORRUPT, "160 raw bytes"},
     {"NaN scale", [](Bytes& b) { put_f32(b, 32 + 8 * 5 + 4, std::nanf("")); }, PRT_ERROR_NON_FINITE,
-     false},
+     nullptr},
     {"infinite offset",
      [](Bytes& b) { put_f32(b, 32 + 8 * 11, -std::numeric_limits<float>::infinity()); },
-     PRT_ERROR_NON_FINITE, false},
+     PRT_ERROR_NON_FINITE, nullptr},
     {"negative scale", [](Bytes& b) { put_f32(b, 32 + 8 * 7 + 4, -1e-6f); }, PRT_ERROR_CORRUPT,
-     false},
+     nullptr},
 };
 
 TEST_F(ShAsset, EachCorruptHeaderFieldIsRejectedAtFullValidation) {
@@ -247,19 +261,30 @@ TEST_F(ShAsset, EachCorruptHeaderFieldIsRejectedAtFullValidation) {
   for (const Corruption& c : kCorruptions) {
     Bytes shtr = good;
     c.edit(shtr);
-    const Bytes blob = make_blob(shtr, 3);
-    EXPECT_EQ(validate(ctx.ctx, blob, PRT_VALIDATE_FULL), c.expected) << c.name;
-    EXPECT_EQ(load(ctx.ctx, blob, PRT_VALIDATE_FULL), c.expected) << c.name;
-    // Content checks run at full validation only; a quick-loaded asset still must not read
-    // outside the section when its header lies about the size.
-    LoadedAsset quick(ctx.ctx, blob, PRT_VALIDATE_QUICK);
-    ASSERT_EQ(quick.result, PRT_OK) << c.name;
-    if (c.header_breaks_reads) {
-      prt_sh_transfer_info info;
-      float light[3 * 289] = {}, out[3 * 3 * 289];
-      EXPECT_EQ(prt_sh_get_transfer_info(quick.asset, &info), PRT_ERROR_CORRUPT) << c.name;
-      EXPECT_EQ(prt_sh_decode_transfer(quick.asset, 0, 3, out), PRT_ERROR_CORRUPT) << c.name;
-      EXPECT_EQ(prt_sh_shade(quick.asset, light, 0, 3, out), PRT_ERROR_CORRUPT) << c.name;
+    for (bool zstd : {false, true}) {
+      const Bytes blob = make_blob(shtr, 3, zstd);
+      EXPECT_EQ(validate(ctx.ctx, blob, PRT_VALIDATE_FULL), c.expected) << c.name;
+      EXPECT_EQ(load(ctx.ctx, blob, PRT_VALIDATE_FULL), c.expected) << c.name;
+      // Content checks run at full validation only; the header is checked against the section
+      // by every load, so a quick-loaded asset never reads by a header that lies about the size.
+      LoadedAsset quick(ctx.ctx, blob, PRT_VALIDATE_QUICK);
+      if (c.quick_load_message) {
+        EXPECT_EQ(quick.result, PRT_ERROR_CORRUPT) << c.name;
+        EXPECT_EQ(quick.asset, nullptr) << c.name;
+        const std::string message = prt_context_last_message(ctx.ctx);
+        EXPECT_NE(message.find("'SHTR'"), std::string::npos) << c.name << ": " << message;
+        EXPECT_NE(message.find(c.quick_load_message), std::string::npos)
+            << c.name << ": " << message;
+        // Quick validation reads an uncompressed section's header in place, and agrees (the
+        // writer keeps a section raw when zstd does not make it smaller).
+        const bool compressed = blob[entry(2) + PRT_BLOB_SEC_OFF_CODEC] != PRT_BLOB_CODEC_NONE;
+        EXPECT_EQ(validate(ctx.ctx, blob, PRT_VALIDATE_QUICK),
+                  compressed ? PRT_OK : PRT_ERROR_CORRUPT)
+            << c.name;
+      } else {
+        ASSERT_EQ(quick.result, PRT_OK) << c.name;
+        EXPECT_EQ(prt_asset_techniques(quick.asset), 1u << PRT_TECHNIQUE_SH) << c.name;
+      }
     }
   }
 }

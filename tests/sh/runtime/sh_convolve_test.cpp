@@ -53,7 +53,7 @@ TEST(ShConvolve, ConstantMapGivesPiTimesRadianceAtEveryNormal) {
   std::vector<float> image(size_t(w) * h * 3);
   for (size_t i = 0; i < image.size(); ++i) image[i] = radiance[i % 3];
   std::vector<float> coeffs(order * order * 3), irradiance(order * order * 3);
-  ASSERT_EQ(prt_sh_project_latlong(order, w, h, image.data(), w * 3, coeffs.data()), PRT_OK);
+  ASSERT_EQ(prt_sh_test::ProjectLatLong(order, w, h, image.data(), w * 3, coeffs.data()), PRT_OK);
   ASSERT_EQ(prt_sh_convolve_cosine(order, coeffs.data(), irradiance.data(), 3), PRT_OK);
   std::mt19937 rng(5);
   for (int k = 0; k < 20; ++k) {

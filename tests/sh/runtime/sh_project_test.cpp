@@ -1,8 +1,8 @@
-// prt_sh_project_latlong / prt_sh_project_cube against analytic projections: a constant map,
-// and a map that is itself a known combination of low-order SH written from the textbook closed
-// forms (so its projection is those weights, by orthonormality).
+// prt_sh_project on lat-long and cube images against analytic projections: a constant map, and a
+// map that is itself a known combination of low-order SH written from the textbook closed forms
+// (so its projection is those weights, by orthonormality).
 #include <gtest/gtest.h>
-#include <prt/prt_sh.h>
+#include <prt/prt.hpp>
 
 #include <array>
 #include <cmath>
@@ -14,6 +14,7 @@
 namespace {
 
 using prt_sh_test::kPi;
+using prt_sh_test::ProjectLatLong;
 using Radiance = std::function<std::array<double, 3>(const std::array<double, 3>&)>;
 
 // Lat-long texel centre direction, from formats/SPEC.md §12.
@@ -68,12 +69,20 @@ std::array<std::vector<float>, 6> SampleCube(uint32_t size, const Radiance& f) {
   return faces;
 }
 
+// The six faces back to back, as a cube prt_env_image takes them.
+std::vector<float> Packed(const std::array<std::vector<float>, 6>& faces) {
+  std::vector<float> packed;
+  for (const auto& face : faces) packed.insert(packed.end(), face.begin(), face.end());
+  return packed;
+}
+
 std::vector<float> ProjectCube(uint32_t order, uint32_t size,
-                               const std::array<std::vector<float>, 6>& faces) {
-  const float* ptrs[6];
-  for (int i = 0; i < 6; ++i) ptrs[i] = faces[i].data();
+                               const std::array<std::vector<float>, 6>& faces,
+                               const float* rotation = nullptr) {
+  const std::vector<float> packed = Packed(faces);
+  const prt_env_image env = prt::cube_env(size, packed.data(), 3, rotation);
   std::vector<float> out(order * order * 3);
-  EXPECT_EQ(prt_sh_project_cube(order, size, ptrs, out.data()), PRT_OK);
+  EXPECT_EQ(prt_sh_project(order, &env, out.data()), PRT_OK);
   return out;
 }
 
@@ -92,7 +101,7 @@ void ExpectOnlyDc(const std::vector<float>& coeffs, double relative_tolerance) {
 TEST(ShProject, ConstantLatLongGivesOnlyDc) {
   const auto image = SampleLatLong(512, 256, [](const auto&) { return kConstant; });
   std::vector<float> out(64 * 3);
-  ASSERT_EQ(prt_sh_project_latlong(8, 512, 256, image.data(), 512 * 3, out.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(8, 512, 256, image.data(), 512 * 3, out.data()), PRT_OK);
   ExpectOnlyDc(out, 5e-5);
 }
 
@@ -152,7 +161,7 @@ TEST(ShProject, LatLongOfKnownShCombinationRecoversWeights) {
   const uint32_t w = 256, h = 128;
   const auto image = SampleLatLong(w, h, KnownMapRgb);
   std::vector<float> out(36 * 3);
-  ASSERT_EQ(prt_sh_project_latlong(6, w, h, image.data(), w * 3, out.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(6, w, h, image.data(), w * 3, out.data()), PRT_OK);
   ExpectKnownWeights(out, 6, 2e-3);
 }
 
@@ -164,8 +173,8 @@ TEST(ShProject, LatLongHonoursRowStride) {
     std::copy(tight.begin() + y * w * 3, tight.begin() + (y + 1) * w * 3,
               padded.begin() + y * stride);
   std::vector<float> a(16 * 3), b(16 * 3);
-  ASSERT_EQ(prt_sh_project_latlong(4, w, h, tight.data(), w * 3, a.data()), PRT_OK);
-  ASSERT_EQ(prt_sh_project_latlong(4, w, h, padded.data(), stride, b.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(4, w, h, tight.data(), w * 3, a.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(4, w, h, padded.data(), stride, b.data()), PRT_OK);
   for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]);
 }
 
@@ -185,7 +194,7 @@ TEST(ShProject, CubeAndLatLongAgreeOnSmoothMapOrder8) {
   const uint32_t w = 512, h = 256, size = 96, order = 8;
   const auto image = SampleLatLong(w, h, lobes);
   std::vector<float> latlong(order * order * 3);
-  ASSERT_EQ(prt_sh_project_latlong(order, w, h, image.data(), w * 3, latlong.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(order, w, h, image.data(), w * 3, latlong.data()), PRT_OK);
   const auto cube = ProjectCube(order, size, SampleCube(size, lobes));
   double scale = 0.0;
   for (float v : latlong) scale = std::max(scale, double(std::abs(v)));
@@ -206,8 +215,8 @@ TEST(ShProject, NonFiniteAndNegativeTexelsCountAsZero) {
   image[at + 3] = INFINITY;
   clean[at + 3] = 0.0f;
   std::vector<float> a(9 * 3), b(9 * 3);
-  ASSERT_EQ(prt_sh_project_latlong(3, w, h, image.data(), w * 3, a.data()), PRT_OK);
-  ASSERT_EQ(prt_sh_project_latlong(3, w, h, clean.data(), w * 3, b.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(3, w, h, image.data(), w * 3, a.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(3, w, h, clean.data(), w * 3, b.data()), PRT_OK);
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_TRUE(std::isfinite(a[i]));
     EXPECT_FLOAT_EQ(a[i], b[i]);
@@ -218,7 +227,7 @@ TEST(ShProject, AllBlackMapsGiveZero) {
   const auto black = [](const auto&) { return std::array<double, 3>{0, 0, 0}; };
   const auto image = SampleLatLong(64, 32, black);
   std::vector<float> out(64 * 3, 1.0f);
-  ASSERT_EQ(prt_sh_project_latlong(8, 64, 32, image.data(), 64 * 3, out.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(8, 64, 32, image.data(), 64 * 3, out.data()), PRT_OK);
   for (float v : out) EXPECT_EQ(v, 0.0f);
   for (float v : ProjectCube(8, 16, SampleCube(16, black))) EXPECT_EQ(v, 0.0f);
 }
@@ -230,8 +239,7 @@ TEST(ShProject, BrightSunStaysFiniteAndAddsItsPower) {
   auto image = SampleLatLong(w, h, [](const auto&) { return std::array<double, 3>{1, 1, 1}; });
   for (int c = 0; c < 3; ++c) image[(size_t(sun_y) * w + sun_x) * 3 + c] = 1e5f;
   std::vector<float> out(PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3);
-  ASSERT_EQ(prt_sh_project_latlong(PRT_SH_MAX_ORDER, w, h, image.data(), w * 3, out.data()),
-            PRT_OK);
+  ASSERT_EQ(ProjectLatLong(PRT_SH_MAX_ORDER, w, h, image.data(), w * 3, out.data()), PRT_OK);
   for (float v : out) ASSERT_TRUE(std::isfinite(v));
   const double sun_solid_angle =
       2.0 * kPi / w * (std::cos(kPi * sun_y / h) - std::cos(kPi * (sun_y + 1) / h));
@@ -241,34 +249,22 @@ TEST(ShProject, BrightSunStaysFiniteAndAddsItsPower) {
 
 TEST(ShProject, RejectsInvalidArguments) {
   std::vector<float> image(8 * 4 * 3, 1.0f), out(PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3);
-  EXPECT_EQ(prt_sh_project_latlong(0, 8, 4, image.data(), 24, out.data()),
-            PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_latlong(PRT_SH_MAX_ORDER + 1, 8, 4, image.data(), 24, out.data()),
-            PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_latlong(3, 0, 4, image.data(), 24, out.data()),
-            PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_latlong(3, 8, 0, image.data(), 24, out.data()),
-            PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_latlong(3, 8, 4, image.data(), 23, out.data()),
-            PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_latlong(3, 8, 4, nullptr, 24, out.data()), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_latlong(3, 8, 4, image.data(), 24, nullptr), PRT_ERROR_INVALID_ARGUMENT);
-  const float* faces[6] = {image.data(), image.data(), image.data(),
-                           image.data(), image.data(), nullptr};
-  EXPECT_EQ(prt_sh_project_cube(3, 2, faces, out.data()), PRT_ERROR_INVALID_ARGUMENT);
-  faces[5] = image.data();
-  EXPECT_EQ(prt_sh_project_cube(3, 2, faces, out.data()), PRT_OK);
-  EXPECT_EQ(prt_sh_project_cube(3, 0, faces, out.data()), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_cube(0, 2, faces, out.data()), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_cube(3, 2, nullptr, out.data()), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_sh_project_cube(3, 2, faces, nullptr), PRT_ERROR_INVALID_ARGUMENT);
+  const prt_env_image latlong = prt::latlong_env(8, 4, image.data());
+  const prt_env_image cube = prt::cube_env(2, image.data());
+  EXPECT_EQ(prt_sh_project(0, &latlong, out.data()), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_project(PRT_SH_MAX_ORDER + 1, &latlong, out.data()), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_project(3, &latlong, nullptr), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_project(3, nullptr, out.data()), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_project(3, &latlong, out.data()), PRT_OK);
+  EXPECT_EQ(prt_sh_project(0, &cube, out.data()), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_project(3, &cube, nullptr), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_sh_project(3, &cube, out.data()), PRT_OK);
 }
 
 TEST(ShProject, MaxOrderProjectionIsFinite) {
   const auto image = SampleLatLong(64, 32, KnownMapRgb);
   std::vector<float> out(PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3);
-  ASSERT_EQ(prt_sh_project_latlong(PRT_SH_MAX_ORDER, 64, 32, image.data(), 64 * 3, out.data()),
-            PRT_OK);
+  ASSERT_EQ(ProjectLatLong(PRT_SH_MAX_ORDER, 64, 32, image.data(), 64 * 3, out.data()), PRT_OK);
   for (float v : out) EXPECT_TRUE(std::isfinite(v));
 }
 

@@ -91,7 +91,7 @@ std::vector<float> ProjectLobes(uint32_t order, const Mat3* rotation) {
       for (int c = 0; c < 3; ++c) image[(size_t(y) * w + x) * 3 + c] = float(l[c]);
     }
   std::vector<float> out(order * order * 3);
-  EXPECT_EQ(prt_sh_project_latlong(order, w, h, image.data(), w * 3, out.data()), PRT_OK);
+  EXPECT_EQ(prt_sh_test::ProjectLatLong(order, w, h, image.data(), w * 3, out.data()), PRT_OK);
   return out;
 }
 

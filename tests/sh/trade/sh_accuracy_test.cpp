@@ -19,8 +19,7 @@
 // the reference, the test's dominant cost, at ~30 s of CPU time.
 #include <gtest/gtest.h>
 
-#include <prt/prt.h>
-#include <prt/prt_sh_asset.h>
+#include <prt/prt.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -94,20 +93,16 @@ TableRow read_trade_row(const std::string& path, const std::string& map, std::ui
 // Runtime shading (scalar reference) of every vertex of `blob` under `light`.
 std::vector<glm::vec3> shade_through_runtime(const std::vector<std::uint8_t>& blob,
                                              const std::vector<float>& light) {
-  prt_context* raw_context = nullptr;
-  EXPECT_EQ(prt_context_create(nullptr, &raw_context), PRT_OK);
-  std::unique_ptr<prt_context, decltype(&prt_context_destroy)> context(raw_context,
-                                                                       &prt_context_destroy);
-  prt_asset* raw_asset = nullptr;
-  EXPECT_EQ(
-      prt_asset_load_memory(raw_context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &raw_asset),
-      PRT_OK)
-      << prt_context_last_message(raw_context);
-  std::unique_ptr<prt_asset, decltype(&prt_asset_destroy)> asset(raw_asset, &prt_asset_destroy);
-  prt_sh_transfer_info info{};
-  EXPECT_EQ(prt_sh_get_transfer_info(raw_asset, &info), PRT_OK);
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_memory(context.get(), blob.data(), blob.size(), PRT_VALIDATE_FULL);
+  EXPECT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
+  prt_sh_info info = prt::sized<prt_sh_info>();
+  EXPECT_EQ(prt_sh_get_info(asset.get(), &info), PRT_OK);
   std::vector<glm::vec3> radiance(info.vertex_count);
-  EXPECT_EQ(prt_sh_shade(raw_asset, light.data(), 0, info.vertex_count, &radiance[0].x), PRT_OK);
+  EXPECT_EQ(prt_sh_shade(asset.get(), PRT_BACKEND_CPU, light.data(), 0, info.vertex_count,
+                         &radiance[0].x),
+            PRT_OK);
   return radiance;
 }
 

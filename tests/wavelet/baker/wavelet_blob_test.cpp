@@ -165,7 +165,7 @@ TEST(WaveletBlob, SectionDecodedByHandFromTheLoadedBlob) {
 
   // The runtime's dense row of vertex 0 and its shading agree with the hand values.
   std::vector<float> row(1536 * 3);
-  ASSERT_EQ(prt_wavelet_decode_row(a.asset, 0, row.data()), PRT_OK);
+  ASSERT_EQ(prt_wavelet_decode_transfer(a.asset, 0, 1, row.data()), PRT_OK);
   EXPECT_EQ(row[0 * 3 + 0], 127 * kUnit);
   EXPECT_EQ(row[1 * 3 + 1], 3 * 0.5f * kUnit);
   EXPECT_EQ(row[2 * 3 + 2], -3 * 0.25f * kUnit);
@@ -195,7 +195,7 @@ TEST(WaveletBlob, ABlockWith256NonZerosRoundTrips) {
     test::RuntimeAsset a;
     ASSERT_EQ(a.load(blob), PRT_OK) << a.message();
     std::vector<float> row(1536 * 3);
-    ASSERT_EQ(prt_wavelet_decode_row(a.asset, 1, row.data()), PRT_OK);
+    ASSERT_EQ(prt_wavelet_decode_transfer(a.asset, 1, 1, row.data()), PRT_OK);
     for (std::uint32_t p = 0; p < 256; ++p) EXPECT_EQ(row[q.index[p] * 3], q.dequantized(1, 0, p));
     const WaveletBlobCheck check = check_wavelet_blob(blob, t, q);
     EXPECT_TRUE(check.passed) << check.message;

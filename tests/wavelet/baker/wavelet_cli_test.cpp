@@ -4,7 +4,7 @@
 // fail without writing a blob.
 #include <gtest/gtest.h>
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 #include <prt/prt_wavelet.h>
 #include <prt/prt_wavelet_asset.h>
 
@@ -57,7 +57,7 @@ TEST(WaveletBakeCommand, BlobLoadsAndReportParses) {
   ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
   ASSERT_EQ(prt_asset_load_file(context, blob.string().c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK)
       << prt_context_last_message(context);
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   ASSERT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
   EXPECT_EQ(info.param, PRT_WAVELET_PARAM_CUBE);
   EXPECT_EQ(info.size, 16u);
@@ -96,7 +96,7 @@ TEST(WaveletBakeCommand, DualParaboloidAndKeepEnergy) {
   prt_asset* asset = nullptr;
   ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
   ASSERT_EQ(prt_asset_load_file(context, blob.string().c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK);
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   ASSERT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
   EXPECT_EQ(info.param, PRT_WAVELET_PARAM_DUAL_PARABOLOID);
   EXPECT_EQ(info.faces, 2u);

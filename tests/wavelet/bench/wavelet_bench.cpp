@@ -2,7 +2,7 @@
 // Technique `wavelet` relight benchmarks on the CPU, all in one run so that their figures
 // compare; printed, never asserted:
 //  - the memory-bandwidth roofline: STREAM triad on 1 and 2 threads (bench_triad.hpp);
-//  - relight: prt_wavelet_shade_on of a bunny-sized transfer (35,947 vertices, N = 64 cube, rows
+//  - relight: prt_wavelet_shade of a bunny-sized transfer (35,947 vertices, N = 64 cube, rows
 //    shaped like a `--keep 1000` bake: wavelet_bench_asset.hpp) on cpu, simd with SSE4.1 and simd
 //    with AVX2, on 1 thread and on 2 threads over split vertex ranges: vertices/s, frames/s of
 //    the bunny next to the implementation report's 3 frames/s for 40,000 vertices, and the bytes
@@ -23,9 +23,7 @@
 //
 //   prt_bench_wavelet [--benchmark_filter=...] [google benchmark flags]
 #include <benchmark/benchmark.h>
-#include <prt/prt.h>
-#include <prt/prt_wavelet.h>
-#include <prt/prt_wavelet_asset.h>
+#include <prt/prt.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -172,12 +170,11 @@ class Assets {
     const Backend& backend = kBackends[backend_index];
     prt_context*& ctx = contexts_[backend_index];
     if (!ctx) {
-      prt_context_desc desc{};
+      prt_context_desc desc = prt::sized<prt_context_desc>();
       desc.simd_isa_limit = backend.isa_limit;
-      desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
       if (prt_context_create(&desc, &ctx) != PRT_OK) return nullptr;
     }
-    prt_backend_info info{};
+    prt_backend_info info = prt::sized<prt_backend_info>();
     prt_backend_get_info(ctx, backend.backend, &info);
     if (!info.usable || (backend.backend == PRT_BACKEND_SIMD && info.isa != backend.isa_limit)) {
       *why = std::string(backend.name) + " not usable here: " + info.note;
@@ -207,10 +204,10 @@ class Assets {
 
 // A prepared light for shading: any values do (the loop reads every stored pair regardless).
 std::vector<float> shading_light(const prt_asset* asset) {
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   prt_wavelet_get_info(asset, &info);
   std::vector<float> light = prt_test::wvlt_random_light(info.coefficient_count, 3);
-  prt_wavelet_prepare_light(asset, light.data(), light.data());
+  prt_wavelet_prepare_light(asset, light.data(), light.data(), nullptr);
   return light;
 }
 
@@ -242,7 +239,7 @@ void BM_Relight(benchmark::State& state, int backend_index) {
     const auto start = std::chrono::steady_clock::now();
     const double cpu_start = prt_bench::thread_cpu_seconds();
     const prt_result r =
-        prt_wavelet_shade_on(asset, backend.backend, light.data(), first, count, out.data());
+        prt_wavelet_shade(asset, backend.backend, light.data(), nullptr, first, count, out.data());
     cpu_seconds += prt_bench::thread_cpu_seconds() - cpu_start;
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r != PRT_OK) {
@@ -322,6 +319,7 @@ void BM_LightUpdate(benchmark::State& state) {
   const uint32_t coefficients =
       prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize);
   std::vector<float> light(4 * size_t(coefficients)), prepared(light.size());
+  std::vector<uint8_t> zero_blocks(coefficients / 256);
   double seconds[4] = {0, 0, 0, 0};
   int frame = 0;
   auto lap = [](std::chrono::steady_clock::time_point& t) {
@@ -335,9 +333,10 @@ void BM_LightUpdate(benchmark::State& state) {
     const float c = float(std::cos(angle)), s = float(std::sin(angle));
     const float rotation[9] = {c, 0, s, 0, 1, 0, -s, 0, c};
     auto t = std::chrono::steady_clock::now();
+    const prt_env_image image =
+        prt::latlong_env(env.width, env.height, env.rgb.data(), 3, rotation);
     prt_result r =
-        prt_wavelet_resample_latlong(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
-                                     env.rgb.data(), env.width, env.height, rotation, light.data());
+        prt_wavelet_resample(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize, &image, light.data());
     seconds[0] += lap(t);
     if (r == PRT_OK)
       r = prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
@@ -347,7 +346,8 @@ void BM_LightUpdate(benchmark::State& state) {
       r = prt_wavelet_select_light(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
                                    m ? m : coefficients, light.data());
     seconds[2] += lap(t);
-    if (r == PRT_OK) r = prt_wavelet_prepare_light(asset, light.data(), prepared.data());
+    if (r == PRT_OK)
+      r = prt_wavelet_prepare_light(asset, light.data(), prepared.data(), zero_blocks.data());
     seconds[3] += lap(t);
     if (r != PRT_OK) {
       state.SkipWithError(prt_result_string(r));
@@ -378,18 +378,22 @@ BENCHMARK(BM_LightUpdate)
     ->UseRealTime()
     ->MinTime(0.3);
 
-// The environment's light cut to M coefficients (0 = all) and prepared for the asset.
-std::vector<float> environment_light(prt_asset* asset, uint32_t m) {
+// The environment's light cut to M coefficients (0 = all) and prepared for the asset, with its
+// zero-block mask in *zero_blocks.
+std::vector<float> environment_light(prt_asset* asset, uint32_t m,
+                                     std::vector<uint8_t>* zero_blocks) {
   const LatLong& env = environment();
   const uint32_t size = prt_bench::kWaveletSize,
                  coefficients = prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, size);
   std::vector<float> light(4 * size_t(coefficients));
-  prt_result r = prt_wavelet_resample_latlong(PRT_WAVELET_PARAM_CUBE, size, env.rgb.data(),
-                                              env.width, env.height, nullptr, light.data());
+  zero_blocks->assign(coefficients / 256, 0);
+  const prt_env_image image = prt::latlong_env(env.width, env.height, env.rgb.data());
+  prt_result r = prt_wavelet_resample(PRT_WAVELET_PARAM_CUBE, size, &image, light.data());
   if (r == PRT_OK) r = prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, size, light.data());
   if (r == PRT_OK)
     r = prt_wavelet_select_light(PRT_WAVELET_PARAM_CUBE, size, m ? m : coefficients, light.data());
-  if (r == PRT_OK) r = prt_wavelet_prepare_light(asset, light.data(), light.data());
+  if (r == PRT_OK)
+    r = prt_wavelet_prepare_light(asset, light.data(), light.data(), zero_blocks->data());
   if (r != PRT_OK) light.clear();
   return light;
 }
@@ -401,7 +405,9 @@ void BM_RelightAtM(benchmark::State& state) {
   prt_asset* asset = nullptr;
   int backend = kBackendCount;
   while (!asset && backend > 0) asset = g_assets.get(--backend, &why);
-  const std::vector<float> light = asset ? environment_light(asset, m) : std::vector<float>();
+  std::vector<uint8_t> zero_blocks;
+  const std::vector<float> light =
+      asset ? environment_light(asset, m, &zero_blocks) : std::vector<float>();
   if (light.empty()) {
     state.SkipWithError(asset ? "light update failed" : why.c_str());
     return;
@@ -410,8 +416,9 @@ void BM_RelightAtM(benchmark::State& state) {
   double seconds = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    const prt_result r = prt_wavelet_shade_on(asset, kBackends[backend].backend, light.data(), 0,
-                                              prt_bench::kBunnyVertices, out.data());
+    const prt_result r =
+        prt_wavelet_shade(asset, kBackends[backend].backend, light.data(), zero_blocks.data(), 0,
+                          prt_bench::kBunnyVertices, out.data());
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r != PRT_OK) {
       state.SkipWithError(prt_result_string(r));

@@ -91,8 +91,8 @@ struct GlBench {
     loaded = std::make_unique<prt_test::WvltAsset>(context, blob);
     light = prt_test::wvlt_random_light(t.coefficients(), 3);
     if (loaded->result == PRT_OK &&
-        prt_wavelet_prepare_light(loaded->asset, light.data(), light.data()) == PRT_OK)
-      prt_gl_wavelet_create(loaded->asset, headless_gl_get_proc, shared_gl(), &shader);
+        prt_wavelet_prepare_light(loaded->asset, light.data(), light.data(), nullptr) == PRT_OK)
+      prt_gl_wavelet_create(context, loaded->asset, headless_gl_get_proc, shared_gl(), &shader);
   }
   ~GlBench() {
     prt_gl_wavelet_destroy(shader);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The GL backend of `wavelet` (prt_gl.h) on a headless EGL context: results against the exact
-// double sum of the stored pairs and scales (wvlt_reference_shade, from blobs built byte by byte
-// per formats/SPEC.md §7.2), rows of every shape, vertex ranges, the output buffer's layout and
-// GL state, corrupt rows at quick validation, and every error path.
+// The GL backend of `wavelet` (prt_wavelet_asset.h) on a headless EGL context: results against the
+// exact double sum of the stored pairs and scales (wvlt_reference_shade, from blobs built byte by
+// byte per formats/SPEC.md §7.2), rows of every shape, vertex ranges, the output buffer's layout
+// and GL state, corrupt rows at quick validation, and every error path.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,7 +26,8 @@ using prt_test::WvltAsset;
 using prt_test::WvltTransfer;
 using namespace prt_test::gl_names;
 
-constexpr uint32_t kCube = PRT_WAVELET_PARAM_CUBE, kParaboloid = PRT_WAVELET_PARAM_DUAL_PARABOLOID;
+constexpr prt_wavelet_param kCube = PRT_WAVELET_PARAM_CUBE,
+                            kParaboloid = PRT_WAVELET_PARAM_DUAL_PARABOLOID;
 
 // A `wavelet` asset in its own context.
 struct GlAsset {
@@ -40,10 +41,9 @@ struct GlAsset {
   GlAsset(const WvltTransfer& t, const Bytes& blob, prt_backend limit,
           const prt_allocator* allocator, prt_validation validation)
       : transfer(t) {
-    prt_context_desc desc{};
+    prt_context_desc desc = prt::sized<prt_context_desc>();
     desc.backend_limit = limit;
     desc.allocator = allocator;
-    desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
     prt_context* ctx = nullptr;
     EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
     context.reset(ctx);
@@ -56,7 +56,8 @@ struct GlAsset {
 
 WaveletShaderPtr create_shader(const GlAsset& a, headless_gl* gl) {
   prt_gl_wavelet_shader* shader = nullptr;
-  EXPECT_EQ(prt_gl_wavelet_create(a.asset(), headless_gl_get_proc, gl, &shader), PRT_OK)
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), headless_gl_get_proc, gl, &shader),
+            PRT_OK)
       << a.message();
   return WaveletShaderPtr(shader);
 }
@@ -97,7 +98,7 @@ void expect_matches(const WvltTransfer& t, const std::vector<float>& light, cons
 TEST(GlWavelet, ShadesLikeTheExactSumForEveryShape) {
   PRT_REQUIRE_GL(gl);
   // 131 vertices: three work groups of 64, the last one partial.
-  for (uint32_t param : {kCube, kParaboloid})
+  for (prt_wavelet_param param : {kCube, kParaboloid})
     for (uint32_t size : {16u, 64u})
       for (uint32_t nonzeros : {0u, 1u, 37u, 600u}) {
         SCOPED_TRACE("param " + std::to_string(param) + ", size " + std::to_string(size) +
@@ -199,8 +200,8 @@ TEST(GlWavelet, OutputBufferIsTightlyPackedRgbAndStateIsLeftUnbound) {
   // back to 0.
   auto get_integerv = gl_function<GetIntegervFn>("glGetIntegerv");
   auto get_integeri_v = gl_function<GetIntegeriVFn>("glGetIntegeri_v");
-  ASSERT_EQ(prt_gl_wavelet_shade(shader.get(),
-                                 prt_test::wavelet_prepared(a.transfer, light).data(), 0, n),
+  ASSERT_EQ(prt_gl_wavelet_shade(shader.get(), prt_test::wavelet_prepared(a.transfer, light).data(),
+                                 0, n),
             PRT_OK);
   int value = -1;
   get_integerv(kGlCurrentProgram, &value);
@@ -272,7 +273,8 @@ TEST(GlWavelet, AssetWithoutVerticesShadesNothing) {
   WvltAsset loaded(ctx.get(), w.finish());
   ASSERT_EQ(loaded.result, PRT_OK) << prt_context_last_message(ctx.get());
   prt_gl_wavelet_shader* raw = nullptr;
-  ASSERT_EQ(prt_gl_wavelet_create(loaded.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
+  ASSERT_EQ(prt_gl_wavelet_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &raw),
+            PRT_OK)
       << prt_context_last_message(ctx.get());
   WaveletShaderPtr shader(raw);
   const std::vector<float> light = prt_test::wvlt_random_light(t.coefficients(), 1);
@@ -294,7 +296,7 @@ TEST(GlWavelet, NoWvltSectionIsNotFound) {
   WvltAsset loaded(ctx.get(), w.finish());
   ASSERT_EQ(loaded.result, PRT_OK);
   prt_gl_wavelet_shader* shader = reinterpret_cast<prt_gl_wavelet_shader*>(&loaded);
-  EXPECT_EQ(prt_gl_wavelet_create(loaded.asset, headless_gl_get_proc, gl.gl, &shader),
+  EXPECT_EQ(prt_gl_wavelet_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(shader, nullptr);
   EXPECT_NE(std::string(prt_context_last_message(ctx.get())).find("WVLT"), std::string::npos);
@@ -339,7 +341,8 @@ TEST(GlWavelet, MissingEntryPointIsUnsupportedAndNamed) {
     loader.gl = gl.gl;
     loader.hidden = name;
     prt_gl_wavelet_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_wavelet_create(a.asset(), prt_test::LoaderOverride::get, &loader, &shader),
+    EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), prt_test::LoaderOverride::get,
+                                    &loader, &shader),
               PRT_ERROR_UNSUPPORTED_BACKEND)
         << name;
     EXPECT_EQ(shader, nullptr);
@@ -352,7 +355,7 @@ TEST(GlWavelet, ContextOlderThan43IsUnsupported) {
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1));
   prt_gl_wavelet_shader* shader = nullptr;
   char lie[] = "version";
-  EXPECT_EQ(prt_gl_wavelet_create(a.asset(), lying_loader, lie, &shader),
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
             PRT_ERROR_UNSUPPORTED_BACKEND);
   EXPECT_EQ(shader, nullptr);
   EXPECT_NE(a.message().find("3.3"), std::string::npos) << a.message();
@@ -364,7 +367,7 @@ TEST(GlWavelet, AssetLargerThanTheSsboLimitIsUnsupported) {
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 4, 4, 1));
   prt_gl_wavelet_shader* shader = nullptr;
   char lie[] = "ssbo";
-  EXPECT_EQ(prt_gl_wavelet_create(a.asset(), lying_loader, lie, &shader),
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
             PRT_ERROR_UNSUPPORTED_BACKEND);
   EXPECT_EQ(shader, nullptr);
   EXPECT_NE(a.message().find("1024"), std::string::npos) << a.message();
@@ -375,8 +378,9 @@ TEST(GlWavelet, BackendLimitBelowGlIsUnsupported) {
   for (prt_backend limit : {PRT_BACKEND_CPU, PRT_BACKEND_SIMD}) {
     const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1), limit);
     prt_gl_wavelet_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_wavelet_create(a.asset(), headless_gl_get_proc, gl.gl, &shader),
-              PRT_ERROR_UNSUPPORTED_BACKEND);
+    EXPECT_EQ(
+        prt_gl_wavelet_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
+        PRT_ERROR_UNSUPPORTED_BACKEND);
     EXPECT_EQ(shader, nullptr);
   }
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1), PRT_BACKEND_GL);
@@ -400,20 +404,24 @@ TEST(GlWavelet, BadRangesAreInvalidArguments) {
               PRT_ERROR_INVALID_ARGUMENT)
         << range[0] << " + " << range[1];
   }
-  EXPECT_EQ(prt_context_last_result(a.context.get()), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_gl_wavelet_shade(shader.get(), nullptr, 0, n), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_gl_wavelet_read(shader.get(), 0, n, nullptr), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_gl_wavelet_read(shader.get(), n, 0, nullptr), PRT_OK) << "empty read";
+  // Per-frame calls report through their result only: no context was written.
+  EXPECT_EQ(prt_context_last_result(a.context.get()), PRT_OK) << a.message();
 }
 
 TEST(GlWavelet, NullArguments) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1));
   prt_gl_wavelet_shader* shader = nullptr;
-  EXPECT_EQ(prt_gl_wavelet_create(nullptr, headless_gl_get_proc, gl.gl, &shader),
+  EXPECT_EQ(prt_gl_wavelet_create(nullptr, a.asset(), headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_gl_wavelet_create(a.asset(), nullptr, gl.gl, &shader), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_gl_wavelet_create(a.asset(), headless_gl_get_proc, gl.gl, nullptr),
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), nullptr, headless_gl_get_proc, gl.gl, &shader),
+            PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), nullptr, gl.gl, &shader),
+            PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, nullptr),
             PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(shader, nullptr);
   const std::vector<float> light(4 * 1536);
@@ -431,13 +439,14 @@ TEST(GlWavelet, ShaderComesFromTheAssetsAllocator) {
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 40, 30, 4), PRT_BACKEND_AUTO, false, &allocator);
   const int before = counter.live;
   prt_gl_wavelet_shader* shader = nullptr;
-  ASSERT_EQ(prt_gl_wavelet_create(a.asset(), headless_gl_get_proc, gl.gl, &shader), PRT_OK);
+  ASSERT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
+            PRT_OK);
   EXPECT_GT(counter.live, before);
   prt_gl_wavelet_destroy(shader);
   EXPECT_EQ(counter.live, before);
 
   counter.fail = true;
-  EXPECT_EQ(prt_gl_wavelet_create(a.asset(), headless_gl_get_proc, gl.gl, &shader),
+  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_OUT_OF_MEMORY);
   EXPECT_EQ(shader, nullptr);
   counter.fail = false;

@@ -55,7 +55,7 @@ class WaveletAsset : public ::testing::Test {
 
   std::vector<float> prepare(const WvltAsset& a, const std::vector<float>& light) {
     std::vector<float> prepared(light.size());
-    EXPECT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data()), PRT_OK);
+    EXPECT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data(), nullptr), PRT_OK);
     return prepared;
   }
 
@@ -63,7 +63,9 @@ class WaveletAsset : public ::testing::Test {
                                const std::vector<float>& light) {
     const std::vector<float> prepared = prepare(a, light);
     std::vector<float> rgb(3 * size_t(t.vertices), -1.0f);
-    EXPECT_EQ(prt_wavelet_shade(a.asset, prepared.data(), 0, t.vertices, rgb.data()), PRT_OK);
+    EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 0, t.vertices,
+                                rgb.data()),
+              PRT_OK);
     return rgb;
   }
 
@@ -71,7 +73,7 @@ class WaveletAsset : public ::testing::Test {
   void expect_round_trip(const WvltTransfer& t, bool zstd = false) {
     WvltAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, zstd));
     ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
-    prt_wavelet_info info{};
+    prt_wavelet_info info = prt::sized<prt_wavelet_info>();
     ASSERT_EQ(prt_wavelet_get_info(a.asset, &info), PRT_OK);
     EXPECT_EQ(info.param, t.param);
     EXPECT_EQ(info.size, t.size);
@@ -85,7 +87,7 @@ class WaveletAsset : public ::testing::Test {
     EXPECT_EQ(info.pair_count, t.pair_count());
     std::vector<float> row(3 * size_t(t.coefficients()));
     for (uint32_t v = 0; v < t.vertices; ++v) {
-      ASSERT_EQ(prt_wavelet_decode_row(a.asset, v, row.data()), PRT_OK);
+      ASSERT_EQ(prt_wavelet_decode_transfer(a.asset, v, 1, row.data()), PRT_OK);
       std::vector<float> expected(row.size(), 0.0f);
       for (const WvltPair& p : t.rows[v])
         for (uint32_t c = 0; c < 3; ++c)
@@ -153,7 +155,7 @@ TEST_F(WaveletAsset, KnownRowDecodesByHandFromTheBlobBytes) {
   WvltAsset a(ctx.ctx, blob);
   ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
   std::vector<float> row(3 * size_t(F) * S * S);
-  ASSERT_EQ(prt_wavelet_decode_row(a.asset, 1, row.data()), PRT_OK);
+  ASSERT_EQ(prt_wavelet_decode_transfer(a.asset, 1, 1, row.data()), PRT_OK);
   size_t nonzero = 0;
   for (float value : row) nonzero += value != 0.0f;
   EXPECT_EQ(nonzero, 3 * known.size());
@@ -238,7 +240,7 @@ TEST_F(WaveletAsset, AllZeroRowShadesToExactlyZero) {
     EXPECT_EQ(rgb[6 + c], 0.0f);
   }
   std::vector<float> row(3 * size_t(t.coefficients()), 1.0f);
-  ASSERT_EQ(prt_wavelet_decode_row(a.asset, 2, row.data()), PRT_OK);
+  ASSERT_EQ(prt_wavelet_decode_transfer(a.asset, 2, 1, row.data()), PRT_OK);
   for (float value : row) ASSERT_EQ(value, 0.0f);
   expect_round_trip(t);
 }
@@ -250,7 +252,7 @@ TEST_F(WaveletAsset, PrepareLightFoldsBandScalesInPlace) {
   std::vector<float> light = wvlt_random_light(t.coefficients(), 8);
   for (size_t j = 0; j < t.coefficients(); ++j) light[4 * j + 3] = 7.0f;  // padding is ignored
   const std::vector<float> original = light;
-  ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data()), PRT_OK);
+  ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data(), nullptr), PRT_OK);
   for (uint32_t j = 0; j < t.coefficients(); ++j) {
     for (uint32_t c = 0; c < 3; ++c)
       ASSERT_EQ(light[4 * size_t(j) + c], original[4 * size_t(j) + c] * t.band_scale[t.band(j)]);
@@ -270,7 +272,9 @@ TEST_F(WaveletAsset, VertexRangesAndThreadsGiveTheSameBits) {
   const std::vector<float> prepared = prepare(a, light);
   const std::vector<float> whole = shade_all(a, t, light);
   std::vector<float> part(3 * 13);
-  ASSERT_EQ(prt_wavelet_shade(a.asset, prepared.data(), 20, 13, part.data()), PRT_OK);
+  ASSERT_EQ(
+      prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 20, 13, part.data()),
+      PRT_OK);
   EXPECT_EQ(std::memcmp(part.data(), whole.data() + 60, part.size() * 4), 0);
   expect_shading_matches_reference(t, light, part, 20);
   std::vector<float> threaded(whole.size());
@@ -278,20 +282,24 @@ TEST_F(WaveletAsset, VertexRangesAndThreadsGiveTheSameBits) {
   std::vector<prt_result> results(4);
   for (uint32_t i = 0; i < 4; ++i)
     pool.emplace_back([&, i] {
-      results[i] =
-          prt_wavelet_shade(a.asset, prepared.data(), 16 * i, 16, threaded.data() + 48 * size_t(i));
+      results[i] = prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 16 * i, 16,
+                                     threaded.data() + 48 * size_t(i));
     });
   for (auto& thread : pool) thread.join();
   for (prt_result r : results) EXPECT_EQ(r, PRT_OK);
   EXPECT_EQ(std::memcmp(threaded.data(), whole.data(), whole.size() * 4), 0);
   // Empty and out-of-range ranges.
-  EXPECT_EQ(prt_wavelet_shade(a.asset, prepared.data(), 64, 0, nullptr), PRT_OK);
-  EXPECT_EQ(prt_wavelet_shade(a.asset, prepared.data(), 60, 5, part.data()),
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 64, 0, nullptr),
+            PRT_OK);
+  EXPECT_EQ(
+      prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 60, 5, part.data()),
+      PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 65, 0, part.data()),
+      PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, nullptr, nullptr, 0, 1, part.data()),
             PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_wavelet_shade(a.asset, prepared.data(), 65, 0, part.data()),
-            PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_wavelet_shade(a.asset, nullptr, 0, 1, part.data()), PRT_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(prt_wavelet_decode_row(a.asset, 64, part.data()), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(prt_wavelet_decode_transfer(a.asset, 64, 1, part.data()), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_wavelet_get_info(nullptr, nullptr), PRT_ERROR_INVALID_ARGUMENT);
 }
 
@@ -303,10 +311,11 @@ TEST_F(WaveletAsset, AssetWithoutWvltIsNotFound) {
   w.add_section(kWvltTRIS, tri, sizeof tri, 1);
   WvltAsset a(ctx.ctx, w.finish());
   ASSERT_EQ(a.result, PRT_OK);
-  prt_wavelet_info info{};
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   EXPECT_EQ(prt_wavelet_get_info(a.asset, &info), PRT_ERROR_NOT_FOUND);
   float light[4] = {0, 0, 0, 0}, out[3];
-  EXPECT_EQ(prt_wavelet_shade(a.asset, light, 0, 1, out), PRT_ERROR_NOT_FOUND);
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, light, nullptr, 0, 1, out),
+            PRT_ERROR_NOT_FOUND);
 }
 
 // --- Corruption: full validation rejects, quick validation never reads out of bounds ---------
@@ -314,10 +323,12 @@ TEST_F(WaveletAsset, AssetWithoutWvltIsNotFound) {
 struct Corruption {
   const char* name;
   std::function<void(const WvltTransfer&, Bytes&)> edit;  // edits the section bytes
-  prt_result full;                                         // what full validation reports
-  const char* message;                                     // a part of its message
-  bool quick_shade_corrupt;   // at quick validation shading must return CORRUPT (else OK too)
-  bool quick_header_corrupt;  // ... even get_info fails (header, size or rs[V])
+  prt_result full;                                        // what full validation reports
+  const char* message;                                    // a part of its message
+  bool quick_shade_corrupt;  // at quick validation shading must return CORRUPT (else OK too)
+  // The header, the size or rs[V] are wrong: the load fails at either validation level (CORRUPT,
+  // with `message` in the message too), so nothing ever reads by them.
+  bool quick_load_fails;
 };
 
 // Rows: vertex 0 one pair (pair 0), vertex 1 pairs 1-3 in block 0 (indices 2, 9, 40) and pair 4
@@ -343,11 +354,9 @@ size_t row_start_at(const WvltTransfer& t, uint32_t v) {
 }
 
 const Corruption kCorruptions[] = {
-    {"count one too big",
-     [](const WvltTransfer& t, Bytes& b) { put_u16(b, count_at(t, 1, 0), 4); }, PRT_ERROR_CORRUPT,
-     "vertex 1 block 1", true, false},
-    {"count above 256",
-     [](const WvltTransfer& t, Bytes& b) { put_u16(b, count_at(t, 1, 1), 300); },
+    {"count one too big", [](const WvltTransfer& t, Bytes& b) { put_u16(b, count_at(t, 1, 0), 4); },
+     PRT_ERROR_CORRUPT, "vertex 1 block 1", true, false},
+    {"count above 256", [](const WvltTransfer& t, Bytes& b) { put_u16(b, count_at(t, 1, 1), 300); },
      PRT_ERROR_CORRUPT, "vertex 1 block 1", true, false},
     {"count huge", [](const WvltTransfer& t, Bytes& b) { put_u16(b, count_at(t, 2, 5), 65535); },
      PRT_ERROR_CORRUPT, "vertex 2 block 5", true, false},
@@ -376,9 +385,7 @@ const Corruption kCorruptions[] = {
      [](const WvltTransfer& t, Bytes& b) { put_u32(b, row_start_at(t, 3), 5); }, PRT_ERROR_CORRUPT,
      "last row start", true, true},
     {"NaN band scale",
-     [](const WvltTransfer& t, Bytes& b) {
-       wvlt_put_f32(b, wvlt_offsets(t).band_scale + 8, kNaN);
-     },
+     [](const WvltTransfer& t, Bytes& b) { wvlt_put_f32(b, wvlt_offsets(t).band_scale + 8, kNaN); },
      PRT_ERROR_NON_FINITE, "band scale 2", false, false},
     {"negative band scale",
      [](const WvltTransfer& t, Bytes& b) { wvlt_put_f32(b, wvlt_offsets(t).band_scale, -1.0f); },
@@ -393,9 +400,8 @@ const Corruption kCorruptions[] = {
        wvlt_put_f32(b, wvlt_offsets(t).vertex_scale + 24 + 8, -0.5f);
      },
      PRT_ERROR_CORRUPT, "vertex 2 scale 2 is negative", false, false},
-    {"pair count disagrees with the size",
-     [](const WvltTransfer&, Bytes& b) { put_u32(b, 24, 9); }, PRT_ERROR_CORRUPT, "raw bytes",
-     true, true},
+    {"pair count disagrees with the size", [](const WvltTransfer&, Bytes& b) { put_u32(b, 24, 9); },
+     PRT_ERROR_CORRUPT, "raw bytes", true, true},
     {"pair count within the padding",  // 8 pairs fit the same 4-byte-rounded size as 7
      [](const WvltTransfer&, Bytes& b) { put_u32(b, 24, 8); }, PRT_ERROR_CORRUPT, "last row start",
      true, true},
@@ -438,28 +444,45 @@ TEST_P(WaveletCorruption, FullRejectsQuickStaysInBounds) {
     EXPECT_NE(std::string(msg).find(c.message), std::string::npos) << msg;
 
     WvltAsset a(ctx.ctx, blob, PRT_VALIDATE_QUICK);
+    if (c.quick_load_fails) {
+      EXPECT_EQ(a.result, PRT_ERROR_CORRUPT);
+      EXPECT_EQ(a.asset, nullptr);
+      const std::string quick_message = prt_context_last_message(ctx.ctx);
+      EXPECT_NE(quick_message.find("'WVLT'"), std::string::npos) << quick_message;
+      EXPECT_NE(quick_message.find(c.message), std::string::npos) << quick_message;
+      // Quick validation reads an uncompressed section's header in place, and agrees (the
+      // writer keeps a section raw when zstd does not make it smaller).
+      const bool compressed = blob[entry(2) + PRT_BLOB_SEC_OFF_CODEC] != PRT_BLOB_CODEC_NONE;
+      EXPECT_EQ(validate(ctx.ctx, blob, PRT_VALIDATE_QUICK),
+                compressed ? PRT_OK : PRT_ERROR_CORRUPT);
+      continue;
+    }
     ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
-    prt_wavelet_info info{};
-    const prt_result info_result = prt_wavelet_get_info(a.asset, &info);
-    EXPECT_EQ(info_result, c.quick_header_corrupt ? PRT_ERROR_CORRUPT : PRT_OK);
+    EXPECT_EQ(prt_asset_techniques(a.asset), 1u << PRT_TECHNIQUE_WAVELET);
+    prt_wavelet_info info = prt::sized<prt_wavelet_info>();
+    ASSERT_EQ(prt_wavelet_get_info(a.asset, &info), PRT_OK);
     std::vector<float> light = wvlt_random_light(t.coefficients(), 3);
     std::vector<float> rgb(3 * size_t(t.vertices));
-    const prt_result prepared = prt_wavelet_prepare_light(a.asset, light.data(), light.data());
-    EXPECT_EQ(prepared, info_result);
+    std::vector<uint8_t> zero_blocks(t.blocks());
+    ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data(), zero_blocks.data()),
+              PRT_OK);
     for (prt_backend backend : {PRT_BACKEND_CPU, PRT_BACKEND_SIMD}) {
-      const prt_result r =
-          prt_wavelet_shade_on(a.asset, backend, light.data(), 0, t.vertices, rgb.data());
-      if (r == PRT_ERROR_UNSUPPORTED_BACKEND) continue;
-      if (c.quick_shade_corrupt)
-        EXPECT_EQ(r, PRT_ERROR_CORRUPT) << prt_backend_name(backend);
-      else
-        EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_CORRUPT) << prt_backend_name(backend);
-      for (uint32_t v = 0; v < t.vertices; ++v)  // one by one too: every row's own checks
-        prt_wavelet_shade_on(a.asset, backend, light.data(), v, 1, rgb.data());
+      for (const uint8_t* mask : {static_cast<const uint8_t*>(nullptr),
+                                  static_cast<const uint8_t*>(zero_blocks.data())}) {
+        const prt_result r =
+            prt_wavelet_shade(a.asset, backend, light.data(), mask, 0, t.vertices, rgb.data());
+        if (r == PRT_ERROR_UNSUPPORTED_BACKEND) continue;
+        if (c.quick_shade_corrupt)
+          EXPECT_EQ(r, PRT_ERROR_CORRUPT) << prt_backend_name(backend);
+        else
+          EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_CORRUPT) << prt_backend_name(backend);
+        for (uint32_t v = 0; v < t.vertices; ++v)  // one by one too: every row's own checks
+          prt_wavelet_shade(a.asset, backend, light.data(), mask, v, 1, rgb.data());
+      }
     }
     std::vector<float> row(3 * size_t(t.coefficients()));
     for (uint32_t v = 0; v < t.vertices; ++v) {
-      const prt_result r = prt_wavelet_decode_row(a.asset, v, row.data());
+      const prt_result r = prt_wavelet_decode_transfer(a.asset, v, 1, row.data());
       EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_CORRUPT);
     }
   }

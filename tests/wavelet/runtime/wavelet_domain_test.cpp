@@ -11,8 +11,8 @@
 
 namespace {
 
-constexpr uint32_t kCube = PRT_WAVELET_PARAM_CUBE;
-constexpr uint32_t kParaboloid = PRT_WAVELET_PARAM_DUAL_PARABOLOID;
+constexpr prt_wavelet_param kCube = PRT_WAVELET_PARAM_CUBE;
+constexpr prt_wavelet_param kParaboloid = PRT_WAVELET_PARAM_DUAL_PARABOLOID;
 constexpr uint32_t kNoTexel = 0xFFFFFFFFu;
 constexpr double kPi = 3.14159265358979323846;
 constexpr uint32_t kSizes[] = {16, 32, 64, 128};
@@ -34,7 +34,7 @@ double spec_cube_solid_angle(uint32_t size, uint32_t x, uint32_t y) {
 TEST(WaveletDomain, FaceAndCoefficientCounts) {
   EXPECT_EQ(prt_wavelet_face_count(kCube), 6u);
   EXPECT_EQ(prt_wavelet_face_count(kParaboloid), 2u);
-  EXPECT_EQ(prt_wavelet_face_count(2), 0u);
+  EXPECT_EQ(prt_wavelet_face_count(static_cast<prt_wavelet_param>(2)), 0u);
   for (uint32_t size : kSizes) {
     EXPECT_EQ(prt_wavelet_coefficient_count(kCube, size), 6u * size * size);
     EXPECT_EQ(prt_wavelet_coefficient_count(kParaboloid, size), 2u * size * size);
@@ -42,7 +42,7 @@ TEST(WaveletDomain, FaceAndCoefficientCounts) {
   for (uint32_t bad : {0u, 1u, 8u, 24u, 48u, 256u}) {
     EXPECT_EQ(prt_wavelet_coefficient_count(kCube, bad), 0u) << bad;
   }
-  EXPECT_EQ(prt_wavelet_coefficient_count(7, 64), 0u);
+  EXPECT_EQ(prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(7), 64), 0u);
 }
 
 TEST(WaveletDomain, CubeDirectionsFollowTheSpecTable) {
@@ -88,7 +88,7 @@ TEST(WaveletDomain, ParaboloidDirectionsFollowTheSpecFormula) {
 }
 
 TEST(WaveletDomain, DirectionLocateRoundTripOnEveryTexel) {
-  for (uint32_t param : {kCube, kParaboloid}) {
+  for (prt_wavelet_param param : {kCube, kParaboloid}) {
     for (uint32_t size : kSizes) {
       const uint32_t faces = prt_wavelet_face_count(param);
       uint32_t failures = 0;
@@ -182,7 +182,7 @@ TEST(WaveletDomain, CubeLocateTiesAndSpecialDirections) {
   EXPECT_EQ(prt_wavelet_locate(kCube, s, inf), 0u);
   EXPECT_EQ(prt_wavelet_locate(kCube, s, nullptr), 0u);
   EXPECT_EQ(prt_wavelet_locate(kCube, 20, px), kNoTexel);
-  EXPECT_EQ(prt_wavelet_locate(5, 16, px), kNoTexel);
+  EXPECT_EQ(prt_wavelet_locate(static_cast<prt_wavelet_param>(5), 16, px), kNoTexel);
 }
 
 // The rim rule: a direction whose (a, b) lies in an outside texel belongs to the inside texel of
@@ -252,7 +252,7 @@ TEST(WaveletDomain, BandsNumberedByHand) {
   EXPECT_EQ(prt_wavelet_band(kCube, 16, 6 * 256), kNoTexel);
   EXPECT_EQ(prt_wavelet_band(kParaboloid, 16, 2 * 256), kNoTexel);
   EXPECT_EQ(prt_wavelet_band(kCube, 12, 0), kNoTexel);
-  EXPECT_EQ(prt_wavelet_band(9, 16, 0), kNoTexel);
+  EXPECT_EQ(prt_wavelet_band(static_cast<prt_wavelet_param>(9), 16, 0), kNoTexel);
 }
 
 TEST(WaveletDomain, BadArgumentsRejected) {
@@ -264,7 +264,7 @@ TEST(WaveletDomain, BadArgumentsRejected) {
   EXPECT_EQ(prt_wavelet_direction(kCube, 16, 0, std::nanf(""), 1, d), 0);
   EXPECT_EQ(prt_wavelet_direction(kCube, 16, 0, 1, 1, nullptr), 0);
   EXPECT_EQ(prt_wavelet_direction(kCube, 256, 0, 1, 1, d), 0);
-  EXPECT_EQ(prt_wavelet_direction(3, 16, 0, 1, 1, d), 0);
+  EXPECT_EQ(prt_wavelet_direction(static_cast<prt_wavelet_param>(3), 16, 0, 1, 1, d), 0);
   EXPECT_EQ(prt_wavelet_texel_solid_angle(kCube, 16, 6, 0, 0), 0.0);
   EXPECT_EQ(prt_wavelet_texel_solid_angle(kCube, 16, 0, 16, 0), 0.0);
   EXPECT_EQ(prt_wavelet_texel_solid_angle(kCube, 16, 0, 0, 16), 0.0);

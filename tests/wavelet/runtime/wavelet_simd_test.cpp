@@ -26,14 +26,13 @@ namespace {
 
 using namespace prt_test;
 
-// A context with the given limits that ignores the environment.
+// A context with the given limits (contexts ignore the environment by default).
 struct LimitedContext {
   prt_context* ctx = nullptr;
   LimitedContext(prt_backend backend_limit, prt_simd_isa isa_limit) {
-    prt_context_desc desc{};
+    prt_context_desc desc = prt::sized<prt_context_desc>();
     desc.backend_limit = backend_limit;
     desc.simd_isa_limit = isa_limit;
-    desc.flags = PRT_CONTEXT_IGNORE_ENVIRONMENT;
     EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
   }
   ~LimitedContext() { prt_context_destroy(ctx); }
@@ -42,7 +41,7 @@ struct LimitedContext {
 };
 
 bool simd_usable(prt_context* ctx) {
-  prt_backend_info info{};
+  prt_backend_info info = prt::sized<prt_backend_info>();
   return prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable;
 }
 
@@ -78,7 +77,7 @@ class WaveletSimd : public ::testing::TestWithParam<prt_simd_isa> {
   prt_context* ctx = limited.ctx;
 
   void SetUp() override {
-    prt_backend_info info{};
+    prt_backend_info info = prt::sized<prt_backend_info>();
     ASSERT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info), PRT_OK);
     if (!info.usable || info.isa != GetParam())
       GTEST_SKIP() << "this CPU lacks " << prt_simd_isa_name(GetParam()) << " (" << info.note
@@ -91,12 +90,14 @@ class WaveletSimd : public ::testing::TestWithParam<prt_simd_isa> {
     ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx);
     const std::vector<float> light = wvlt_random_light(t.coefficients(), light_seed);
     std::vector<float> prepared(light.size());
-    ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data()), PRT_OK);
+    ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data(), nullptr), PRT_OK);
     std::vector<float> simd(3 * size_t(t.vertices)), scalar(simd.size());
-    ASSERT_EQ(prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, prepared.data(), 0, t.vertices,
-                                   simd.data()),
+    ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, prepared.data(), nullptr, 0, t.vertices,
+                                simd.data()),
               PRT_OK);
-    ASSERT_EQ(prt_wavelet_shade(a.asset, prepared.data(), 0, t.vertices, scalar.data()), PRT_OK);
+    ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, prepared.data(), nullptr, 0, t.vertices,
+                                scalar.data()),
+              PRT_OK);
     for (uint32_t v = 0; v < t.vertices; ++v) {
       double reference[3], magnitude[3];
       wvlt_reference_shade(t, light, v, reference, magnitude);
@@ -145,7 +146,7 @@ TEST_P(WaveletSimd, AllZeroRowIsExactlyZero) {
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light(4 * size_t(t.coefficients()), 3e30f);
   std::vector<float> rgb(9, -1.0f);
-  ASSERT_EQ(prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 1, 1, rgb.data()),
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 1, 1, rgb.data()),
             PRT_OK);
   for (uint32_t c = 0; c < 3; ++c) EXPECT_EQ(rgb[c], 0.0f);
   EXPECT_EQ(rgb[3], -1.0f);  // nothing written past the range
@@ -157,10 +158,10 @@ TEST_P(WaveletSimd, RangesAndThreadsGiveTheSameBits) {
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light = wvlt_random_light(t.coefficients(), 21);
   std::vector<float> whole(3 * size_t(t.vertices)), threaded(whole.size()), part(3 * 7 + 1, -2.0f);
-  ASSERT_EQ(
-      prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 0, t.vertices, whole.data()),
-      PRT_OK);
-  ASSERT_EQ(prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 50, 7, part.data()),
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 0, t.vertices,
+                              whole.data()),
+            PRT_OK);
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 50, 7, part.data()),
             PRT_OK);
   EXPECT_EQ(std::memcmp(part.data(), whole.data() + 150, 21 * 4), 0);
   EXPECT_EQ(part[21], -2.0f);
@@ -168,13 +169,13 @@ TEST_P(WaveletSimd, RangesAndThreadsGiveTheSameBits) {
   std::vector<prt_result> results(3);
   for (uint32_t i = 0; i < 3; ++i)
     pool.emplace_back([&, i] {
-      results[i] = prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 32 * i, 32,
-                                        threaded.data() + 96 * size_t(i));
+      results[i] = prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 32 * i, 32,
+                                     threaded.data() + 96 * size_t(i));
     });
   for (auto& thread : pool) thread.join();
   for (prt_result r : results) EXPECT_EQ(r, PRT_OK);
   EXPECT_EQ(std::memcmp(threaded.data(), whole.data(), whole.size() * 4), 0);
-  EXPECT_EQ(prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 90, 7, part.data()),
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 90, 7, part.data()),
             PRT_ERROR_INVALID_ARGUMENT);
 }
 
@@ -188,9 +189,9 @@ TEST_P(WaveletSimd, CorruptRowAtQuickValidationIsReported) {
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light = wvlt_random_light(t.coefficients(), 23);
   std::vector<float> rgb(15);
-  EXPECT_EQ(prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 0, 4, rgb.data()),
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 0, 4, rgb.data()),
             PRT_OK);
-  EXPECT_EQ(prt_wavelet_shade_on(a.asset, PRT_BACKEND_SIMD, light.data(), 0, 5, rgb.data()),
+  EXPECT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 0, 5, rgb.data()),
             PRT_ERROR_CORRUPT);
 }
 
@@ -208,8 +209,9 @@ struct Scene {
 std::vector<float> shade_on(const WvltAsset& a, prt_backend backend, const Scene& s,
                             prt_result expected = PRT_OK) {
   std::vector<float> out(3 * size_t(s.t.vertices));
-  EXPECT_EQ(prt_wavelet_shade_on(a.asset, backend, s.light.data(), 0, s.t.vertices, out.data()),
-            expected)
+  EXPECT_EQ(
+      prt_wavelet_shade(a.asset, backend, s.light.data(), nullptr, 0, s.t.vertices, out.data()),
+      expected)
       << prt_backend_name(backend);
   return out;
 }
@@ -233,7 +235,9 @@ TEST(WaveletSimdDispatch, ContextLimitedToCpuRefusesSimd) {
   shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
   const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
   std::vector<float> reference(automatic.size());
-  ASSERT_EQ(prt_wavelet_shade(a.asset, s.light.data(), 0, s.t.vertices, reference.data()), PRT_OK);
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, s.light.data(), nullptr, 0, s.t.vertices,
+                              reference.data()),
+            PRT_OK);
   EXPECT_EQ(std::memcmp(automatic.data(), reference.data(), reference.size() * 4), 0);
 }
 
@@ -311,13 +315,14 @@ void time_backends(const char* title, const WvltTransfer& t) {
     WvltAsset a(limited.ctx, blob);
     ASSERT_EQ(a.result, PRT_OK);
     std::vector<float> prepared(light.size()), rgb(3 * size_t(t.vertices));
-    ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data()), PRT_OK);
+    ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data(), nullptr), PRT_OK);
     const prt_backend backend = isa == PRT_SIMD_ISA_NONE ? PRT_BACKEND_CPU : PRT_BACKEND_SIMD;
     double best = 1e30;
     for (int rep = 0; rep < 7; ++rep) {
       const double start = thread_seconds();
-      ASSERT_EQ(prt_wavelet_shade_on(a.asset, backend, prepared.data(), 0, t.vertices, rgb.data()),
-                PRT_OK);
+      ASSERT_EQ(
+          prt_wavelet_shade(a.asset, backend, prepared.data(), nullptr, 0, t.vertices, rgb.data()),
+          PRT_OK);
       best = std::min(best, thread_seconds() - start);
     }
     std::printf("  %-7s %7.2f ms/frame  %6.1f fps  %5.2f GB/s  %4.0f%% of triad\n",

@@ -19,7 +19,7 @@
 // sqrt(error^2 - noise^2) estimates the error against the exact radiance.
 #include <gtest/gtest.h>
 
-#include <prt/prt.h>
+#include <prt/prt.hpp>
 #include <prt/prt_sh_asset.h>
 #include <prt/prt_wavelet.h>
 #include <prt/prt_wavelet_asset.h>
@@ -102,14 +102,14 @@ std::vector<glm::vec3> wavelet_radiance(const Scene& scene, const EmbreeScene& r
 
   const std::uint32_t count = prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, kSize);
   std::vector<float> light(std::size_t(count) * 4);
-  EXPECT_EQ(prt_wavelet_resample_latlong(PRT_WAVELET_PARAM_CUBE, kSize, env.pixels().data(),
-                                         env.width(), env.height(), nullptr, light.data()),
-            PRT_OK);
+  const prt_env_image image = prt::latlong_env(env.width(), env.height(), env.pixels().data());
+  EXPECT_EQ(prt_wavelet_resample(PRT_WAVELET_PARAM_CUBE, kSize, &image, light.data()), PRT_OK);
   EXPECT_EQ(prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, kSize, light.data()), PRT_OK);
   EXPECT_EQ(prt_wavelet_select_light(PRT_WAVELET_PARAM_CUBE, kSize, count, light.data()), PRT_OK);
-  EXPECT_EQ(prt_wavelet_prepare_light(loaded.asset.get(), light.data(), light.data()), PRT_OK);
+  EXPECT_EQ(prt_wavelet_prepare_light(loaded.asset.get(), light.data(), light.data(), nullptr),
+            PRT_OK);
   std::vector<glm::vec3> radiance(scene.vertex_count());
-  EXPECT_EQ(prt_wavelet_shade(loaded.asset.get(), light.data(), 0,
+  EXPECT_EQ(prt_wavelet_shade(loaded.asset.get(), PRT_BACKEND_CPU, light.data(), nullptr, 0,
                               static_cast<std::uint32_t>(radiance.size()), &radiance[0].x),
             PRT_OK);
   return radiance;
@@ -131,7 +131,7 @@ std::vector<glm::vec3> sh_radiance(const Scene& scene, const EmbreeScene& rays, 
   if (!loaded.asset) return {};
   const std::vector<float> light = project_env_sh(env, order).to_float();
   std::vector<glm::vec3> radiance(scene.vertex_count());
-  EXPECT_EQ(prt_sh_shade(loaded.asset.get(), light.data(), 0,
+  EXPECT_EQ(prt_sh_shade(loaded.asset.get(), PRT_BACKEND_CPU, light.data(), 0,
                          static_cast<std::uint32_t>(radiance.size()), &radiance[0].x),
             PRT_OK);
   return radiance;

@@ -142,7 +142,7 @@ EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& c
 EnvMap constant_envmap(const glm::vec3& radiance);
 
 // The map (rotation included) resampled with radiance() onto six face_size x face_size RGB cube
-// faces, in the order and orientation prt_sh_project_cube takes (prt/prt_sh.h). For a vertical
+// faces, in the order and orientation a cube prt_env_image has (prt/prt_env.h). For a vertical
 // cross at its own face size the texel centres coincide, so this is the cross's texels.
 std::vector<std::vector<float>> resample_to_cube(const EnvMap& map, int face_size);
 

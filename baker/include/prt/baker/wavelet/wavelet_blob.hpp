@@ -81,7 +81,7 @@ std::vector<std::uint8_t> build_wavelet_blob(const Scene& scene, const Quantized
                                              const std::string& info);
 
 // The baker's self-check: the blob loaded through the runtime at full validation; its header
-// as baked; prt_wavelet_decode_row of sample vertices equal to the quantised rows and within half
+// as baked; prt_wavelet_decode_transfer of sample vertices equal to the quantised rows and within half
 // a step of the float ones; prt_wavelet_shade of a random light equal to a double dot product.
 struct WaveletBlobCheck {
   bool passed = false;

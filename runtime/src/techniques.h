@@ -1,0 +1,51 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the runtime: the technique table. Each technique defines its entry in its own
+ * folder (runtime/src/<t>/<t>_section.c); techniques.c lists the entries once. Shared code
+ * (loading, queries) loops over the table and never names a technique. */
+#ifndef PRT_RUNTIME_TECHNIQUES_H
+#define PRT_RUNTIME_TECHNIQUES_H
+
+#include "internal.h"
+
+typedef struct prt_technique_entry {
+  prt_technique technique;
+  const char* name;          /* folder, tool and document name */
+  uint32_t section_tag;      /* the technique's section kind */
+  prt_element_domain domain; /* what one element of that section is */
+  size_t view_size;          /* bytes of the view `open` fills, kept on the asset */
+  /* Decodes the section's header and checks it against the section's size and element count,
+   * in O(1), so that every later read of the technique stays inside the section whatever the
+   * validation level: fills *view (view_size bytes, pointing into section->data), or returns
+   * PRT_ERROR_CORRUPT with msg naming the field. */
+  prt_result (*open)(const prt_asset_section* section, void* view, char* msg, size_t capacity);
+} prt_technique_entry;
+
+extern const prt_technique_entry prt_sh_technique_entry;
+extern const prt_technique_entry prt_wavelet_technique_entry;
+
+/* The entry of `technique`, NULL when this runtime does not implement it. */
+const prt_technique_entry* prt_internal_technique(prt_technique technique);
+
+/* The entry whose section has `tag`, NULL for a mesh section or an unknown tag. */
+const prt_technique_entry* prt_internal_technique_of_tag(uint32_t tag);
+
+/* Opens the view of every technique whose section is among `sections` (skipping zstd sections
+ * left undecoded), allocated with `allocator` into views[technique]. With keep == 0 the views are
+ * freed again (validation only). On failure nothing stays allocated and msg names the section and
+ * the field. */
+prt_result prt_internal_open_views(const prt_allocator* allocator,
+                                   const prt_asset_section* sections, uint32_t section_count,
+                                   int keep, void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
+                                   size_t capacity);
+
+/* Frees the views prt_internal_open_views kept. */
+void prt_internal_free_views(const prt_allocator* allocator,
+                             void* views[PRT_INTERNAL_MAX_TECHNIQUES]);
+
+/* The view `technique`'s open hook filled for this asset, NULL when the blob has no such
+ * section (its functions then return PRT_ERROR_NOT_FOUND). */
+static inline const void* prt_internal_view(const prt_asset* asset, prt_technique technique) {
+  return (unsigned)technique < PRT_INTERNAL_MAX_TECHNIQUES ? asset->views[technique] : NULL;
+}
+
+#endif /* PRT_RUNTIME_TECHNIQUES_H */
