@@ -1,6 +1,7 @@
 // prt_sh_project on lat-long and cube images against analytic projections: a constant map, and a
 // map that is itself a known combination of low-order SH written from the textbook closed forms
-// (so its projection is those weights, by orthonormality).
+// (so its projection is those weights, by orthonormality); strides, RGBA and the rotation
+// argument against the plain image. (prt_env_image's rejections: tests/runtime/env_test.cpp.)
 #include <gtest/gtest.h>
 #include <prt/prt.hpp>
 
@@ -266,6 +267,97 @@ TEST(ShProject, MaxOrderProjectionIsFinite) {
   std::vector<float> out(PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER * 3);
   ASSERT_EQ(ProjectLatLong(PRT_SH_MAX_ORDER, 64, 32, image.data(), 64 * 3, out.data()), PRT_OK);
   for (float v : out) EXPECT_TRUE(std::isfinite(v));
+}
+
+// RGBA texels (the 4th float ignored, here a NaN that would poison any sum it reached) and padded
+// rows give the bits of the tight RGB image.
+TEST(ShProject, RgbaAndPaddedRowsGiveTheTightResult) {
+  const uint32_t w = 64, h = 32, stride = w * 4 + 7;
+  const auto tight = SampleLatLong(w, h, KnownMapRgb);
+  std::vector<float> rgba(size_t(stride) * h, -1.0f);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      for (int c = 0; c < 3; ++c) rgba[y * stride + 4 * x + c] = tight[(y * w + x) * 3 + c];
+      rgba[y * stride + 4 * x + 3] = NAN;
+    }
+  std::vector<float> a(16 * 3), b(16 * 3);
+  ASSERT_EQ(ProjectLatLong(4, w, h, tight.data(), w * 3, a.data()), PRT_OK);
+  prt_env_image env = prt::latlong_env(w, h, rgba.data(), 4);
+  env.row_stride = stride;
+  ASSERT_EQ(prt_sh_project(4, &env, b.data()), PRT_OK);
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << i;
+}
+
+// Cube faces with padded rows and gaps between the faces give the bits of the packed faces.
+TEST(ShProject, CubeHonoursRowAndFaceStrides) {
+  const uint32_t size = 16, row_stride = size * 4 + 3, face_stride = row_stride * size + 11;
+  const auto faces = SampleCube(size, KnownMapRgb);
+  std::vector<float> spaced(size_t(face_stride) * 6, NAN);
+  for (uint32_t f = 0; f < 6; ++f)
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size; ++x) {
+        for (int c = 0; c < 3; ++c)
+          spaced[f * face_stride + y * row_stride + 4 * x + c] = faces[f][(y * size + x) * 3 + c];
+      }
+  prt_env_image env = prt::cube_env(size, spaced.data(), 4);
+  env.row_stride = row_stride;
+  env.face_stride = face_stride;
+  std::vector<float> spaced_out(16 * 3);
+  ASSERT_EQ(prt_sh_project(4, &env, spaced_out.data()), PRT_OK);
+  const std::vector<float> tight_out = ProjectCube(4, size, faces);
+  for (size_t i = 0; i < tight_out.size(); ++i) EXPECT_EQ(spaced_out[i], tight_out[i]) << i;
+}
+
+// A turn about +Y by a whole number of lat-long columns is the same quadrature on shifted
+// columns, and SH rotation about the pole is exact: the rotation argument must match the
+// projection of the column-shifted image to float rounding.
+TEST(ShProject, RotationAboutTheVerticalMatchesShiftedColumns) {
+  const uint32_t w = 128, h = 64, order = 6, shift = 16;  // 2 pi * 16 / 128 = 45 degrees
+  const double angle = 2.0 * kPi * shift / w;
+  const auto image = SampleLatLong(w, h, KnownMapRgb);
+  // R, the turn about +Y by `angle`, takes -Z (azimuth f = 0, SPEC §12) to (-sin a, 0, -cos a),
+  // azimuth -a: light from column x then comes from column x - shift.
+  std::vector<float> shifted(image.size());
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c)
+        shifted[(y * w + (x + w - shift) % w) * 3 + c] = image[(y * w + x) * 3 + c];
+  const float cs = float(std::cos(angle)), sn = float(std::sin(angle));
+  const float rotation[9] = {cs, 0, sn, 0, 1, 0, -sn, 0, cs};
+  std::vector<float> turned(order * order * 3), expected(order * order * 3);
+  const prt_env_image env = prt::latlong_env(w, h, image.data(), 3, rotation);
+  ASSERT_EQ(prt_sh_project(order, &env, turned.data()), PRT_OK);
+  ASSERT_EQ(ProjectLatLong(order, w, h, shifted.data(), w * 3, expected.data()), PRT_OK);
+  double scale = 0.0;
+  for (float v : expected) scale = std::max(scale, double(std::abs(v)));
+  for (size_t i = 0; i < turned.size(); ++i)
+    EXPECT_NEAR(turned[i], expected[i], 1e-5 * scale) << "coefficient " << i / 3;
+}
+
+// A turn about another axis: the rotated projection of the band-limited map recovers the weights
+// of the map sampled already turned (f(R^T d)), within the quadrature error of the other tests.
+TEST(ShProject, RotationAboutATiltedAxisMatchesTheTurnedMap) {
+  const uint32_t size = 64, order = 4;
+  const double a = 0.7;  // about +X
+  const float rotation[9] = {1,
+                             0,
+                             0,
+                             0,
+                             float(std::cos(a)),
+                             -float(std::sin(a)),
+                             0,
+                             float(std::sin(a)),
+                             float(std::cos(a))};
+  const auto turned_map = [&](const std::array<double, 3>& d) {
+    // R^T d
+    const std::array<double, 3> back = {d[0], std::cos(a) * d[1] + std::sin(a) * d[2],
+                                        -std::sin(a) * d[1] + std::cos(a) * d[2]};
+    return KnownMapRgb(back);
+  };
+  const auto rotated = ProjectCube(order, size, SampleCube(size, KnownMapRgb), rotation);
+  const auto expected = ProjectCube(order, size, SampleCube(size, turned_map));
+  for (size_t i = 0; i < rotated.size(); ++i)
+    EXPECT_NEAR(rotated[i], expected[i], 4e-3) << "coefficient " << i / 3;
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // The per-frame wavelet light (SPEC §14, prt_wavelet.h): resampling of lat-long and cube images
 // (prt_env_image), the per-face transform and the area-weighted selection, checked against
 // properties (constants stay constant, power is conserved, a quarter turn is a quarter-width
-// shift), directions computed here from SPEC §12 and an independent sort for the selection.
+// shift, strides and RGBA change no bit), directions computed here from SPEC §12 and an
+// independent sort for the selection. (prt_env_image's rejections: tests/runtime/env_test.cpp.)
 #include <gtest/gtest.h>
 #include <prt/prt.hpp>
 
@@ -575,6 +576,58 @@ TEST(WaveletLight, BadArgumentsRejected) {
   EXPECT_EQ(prt_wavelet_select_light(kCube, 512, 5, light.data()), PRT_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(prt_wavelet_select_light(static_cast<prt_wavelet_param>(3), 16, 5, light.data()),
             PRT_ERROR_INVALID_ARGUMENT);
+}
+
+// RGBA texels (the 4th float a NaN that would poison any sum it reached) with padded rows, and
+// cube faces with gaps between them, give the bits of the tight RGB images.
+TEST(WaveletLight, RgbaAndStridesGiveTheTightResult) {
+  const Rotation r = rotation_axis(1, 2, -0.5, 71);
+  const uint32_t width = 128, height = 64, row_stride = 4 * width + 9;
+  const std::vector<float> map = random_map(size_t(width) * height, 21, 0.1f, 3.0f);
+  std::vector<float> rgba(size_t(row_stride) * height, -7.0f);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      for (int c = 0; c < 3; ++c) rgba[y * row_stride + 4 * x + c] = map[(y * width + x) * 3 + c];
+      rgba[y * row_stride + 4 * x + 3] = std::nanf("");
+    }
+  const uint32_t face = 16, face_row = 4 * face + 1, face_stride = face_row * face + 5;
+  const std::vector<float> faces = random_map(6 * size_t(face) * face, 22, 0.1f, 3.0f);
+  std::vector<float> spaced(6 * size_t(face_stride), std::nanf(""));
+  for (uint32_t f = 0; f < 6; ++f)
+    for (uint32_t y = 0; y < face; ++y)
+      for (uint32_t x = 0; x < face; ++x)
+        for (int c = 0; c < 3; ++c)
+          spaced[f * face_stride + y * face_row + 4 * x + c] =
+              faces[((f * face + y) * face + x) * 3 + c];
+  for (prt_wavelet_param param : {kCube, kParaboloid}) {
+    std::vector<float> light(4 * size_t(texel_count(param, 32)));
+    prt_env_image env = prt::latlong_env(width, height, rgba.data(), 4, r.m);
+    env.row_stride = row_stride;
+    ASSERT_EQ(prt_wavelet_resample(param, 32, &env, light.data()), PRT_OK);
+    const std::vector<float> tight = resample_latlong(param, 32, map, width, r.m);
+    EXPECT_EQ(std::memcmp(light.data(), tight.data(), light.size() * sizeof(float)), 0);
+    env = prt::cube_env(face, spaced.data(), 4, r.m);
+    env.row_stride = face_row;
+    env.face_stride = face_stride;
+    ASSERT_EQ(prt_wavelet_resample(param, 32, &env, light.data()), PRT_OK);
+    const std::vector<float> tight_cube = resample_cube(param, 32, faces, face, r.m);
+    EXPECT_EQ(std::memcmp(light.data(), tight_cube.data(), light.size() * sizeof(float)), 0);
+  }
+}
+
+// A lat-long map need not be 2:1 (prt_env.h): a constant 3:1 map gives L dw on every texel, as
+// a 2:1 one does (expect_constant's property, with the source coarser than the target).
+TEST(WaveletLight, LatLongOfAnyAspectIsAccepted) {
+  const float rgb[3] = {1.5f, 0.25f, 8.0f};
+  const uint32_t width = 24, height = 8;
+  std::vector<float> map(size_t(width) * height * 3);
+  for (size_t i = 0; i < map.size(); ++i) map[i] = rgb[i % 3];
+  for (prt_wavelet_param param : {kCube, kParaboloid}) {
+    std::vector<float> light(4 * size_t(texel_count(param, 16)), -1.0f);
+    const prt_env_image env = prt::latlong_env(width, height, map.data());
+    ASSERT_EQ(prt_wavelet_resample(param, 16, &env, light.data()), PRT_OK);
+    expect_constant(param, 16, light, rgb, "3:1 lat-long");
+  }
 }
 
 }  // namespace

@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: MIT
+// The technique registry of the C API (prt_technique.h): what each technique says about itself,
+// checked against names, tags and domains typed here from formats/SPEC.md; which techniques a blob
+// holds; the domain and technique of each section; and allocation failures while a load decodes
+// the technique sections' headers.
+#include <gtest/gtest.h>
+
+#include <prt/format/blob_writer.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "sh/sh_blob_test_util.hpp"
+#include "wavelet/wavelet_blob_test_util.hpp"
+
+namespace {
+
+using namespace prt_test;
+
+TEST(Technique, EachTechniqueDescribesItself) {
+  struct Expected {
+    prt_technique technique;
+    const char* name;
+    uint32_t tag;
+  };
+  const Expected expected[] = {
+      {PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG('S', 'H', 'T', 'R')},
+      {PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG('W', 'V', 'L', 'T')},
+  };
+  for (const Expected& e : expected) {
+    prt_technique_info info = prt::sized<prt_technique_info>();
+    ASSERT_EQ(prt_technique_get_info(e.technique, &info), PRT_OK) << e.name;
+    EXPECT_EQ(info.technique, e.technique);
+    EXPECT_STREQ(info.name, e.name);
+    EXPECT_EQ(info.section_tag, e.tag) << e.name;
+    EXPECT_EQ(info.domain, PRT_ELEMENT_DOMAIN_VERTEX) << e.name;
+  }
+  EXPECT_EQ(PRT_SECTION_SHTR, expected[0].tag);
+  EXPECT_EQ(PRT_SECTION_WVLT, expected[1].tag);
+  // Every other value is not a technique of this runtime.
+  int known = 0;
+  for (uint32_t t = 0; t < 32; ++t) {
+    prt_technique_info info = prt::sized<prt_technique_info>();
+    const prt_result r = prt_technique_get_info(static_cast<prt_technique>(t), &info);
+    EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_NOT_FOUND) << t;
+    known += r == PRT_OK;
+  }
+  EXPECT_EQ(known, 2);
+  prt_technique_info info = prt::sized<prt_technique_info>();
+  EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_NONE, &info), PRT_ERROR_NOT_FOUND);
+  EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_SH, nullptr), PRT_ERROR_INVALID_ARGUMENT);
+  info.struct_size = 0;
+  EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_SH, &info), PRT_ERROR_INVALID_ARGUMENT);
+}
+
+// VPOS, TRIS, SHTR and WVLT in one blob (a blob may hold several techniques).
+Bytes both_techniques_blob(uint32_t vertices) {
+  const Transfer sh = random_transfer(2, vertices, 3, 8, 5);
+  const WvltTransfer wavelet = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, vertices, 20, 6);
+  const Bytes shtr = encode(sh), wvlt = wvlt_encode(wavelet);
+  std::vector<float> positions(3 * size_t(vertices), 0.5f);
+  const uint32_t tri[3] = {0, 1, 2};
+  prt::format::BlobWriter w;
+  prt::format::SectionOptions required;
+  required.required = true;
+  w.add_section(kVPOS, positions.data(), positions.size() * 4, vertices, required);
+  w.add_section(kTRIS, tri, sizeof tri, 1, required);
+  w.add_section(kSHTR, shtr.data(), shtr.size(), vertices, required);
+  w.add_section(kWvltWVLT, wvlt.data(), wvlt.size(), vertices, required);
+  return w.finish();
+}
+
+TEST(Technique, AssetTechniquesAreTheSectionsItHolds) {
+  Context ctx;
+  EXPECT_EQ(prt_asset_techniques(nullptr), 0u);
+  {
+    LoadedAsset mesh_only(ctx.ctx, read_file(golden_path()));
+    ASSERT_EQ(mesh_only.result, PRT_OK);
+    EXPECT_EQ(prt_asset_techniques(mesh_only.asset), 0u);
+  }
+  {
+    const Transfer t = random_transfer(3, 10, 1, 16, 1);
+    LoadedAsset sh(ctx.ctx, make_blob(encode(t), t.vertices));
+    ASSERT_EQ(sh.result, PRT_OK);
+    EXPECT_EQ(prt_asset_techniques(sh.asset), 1u << PRT_TECHNIQUE_SH);
+  }
+  {
+    const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_DUAL_PARABOLOID, 16, 10, 30, 2);
+    WvltAsset wavelet(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, true));
+    ASSERT_EQ(wavelet.result, PRT_OK);
+    EXPECT_EQ(prt_asset_techniques(wavelet.asset), 1u << PRT_TECHNIQUE_WAVELET);
+  }
+  for (prt_validation level : {PRT_VALIDATE_QUICK, PRT_VALIDATE_FULL}) {
+    LoadedAsset both(ctx.ctx, both_techniques_blob(12), level);
+    ASSERT_EQ(both.result, PRT_OK) << prt_context_last_message(ctx.ctx);
+    EXPECT_EQ(prt_asset_techniques(both.asset),
+              (1u << PRT_TECHNIQUE_SH) | (1u << PRT_TECHNIQUE_WAVELET));
+    prt_sh_info sh = prt::sized<prt_sh_info>();
+    prt_wavelet_info wavelet = prt::sized<prt_wavelet_info>();
+    EXPECT_EQ(prt_sh_get_info(both.asset, &sh), PRT_OK);
+    EXPECT_EQ(prt_wavelet_get_info(both.asset, &wavelet), PRT_OK);
+    EXPECT_EQ(sh.vertex_count, 12u);
+    EXPECT_EQ(wavelet.vertex_count, 12u);
+  }
+}
+
+TEST(Technique, SectionInfoSaysDomainAndTechnique) {
+  Context ctx;
+  LoadedAsset both(ctx.ctx, both_techniques_blob(4));
+  ASSERT_EQ(both.result, PRT_OK);
+  struct Expected {
+    uint32_t tag;
+    prt_element_domain domain;
+    prt_technique technique;
+  };
+  const Expected expected[] = {
+      {PRT_BLOB_TAG('V', 'P', 'O', 'S'), PRT_ELEMENT_DOMAIN_VERTEX, PRT_TECHNIQUE_NONE},
+      {PRT_BLOB_TAG('T', 'R', 'I', 'S'), PRT_ELEMENT_DOMAIN_TRIANGLE, PRT_TECHNIQUE_NONE},
+      {PRT_BLOB_TAG('S', 'H', 'T', 'R'), PRT_ELEMENT_DOMAIN_VERTEX, PRT_TECHNIQUE_SH},
+      {PRT_BLOB_TAG('W', 'V', 'L', 'T'), PRT_ELEMENT_DOMAIN_VERTEX, PRT_TECHNIQUE_WAVELET},
+  };
+  ASSERT_EQ(prt_asset_section_count(both.asset), 4u);
+  for (uint32_t i = 0; i < 4; ++i) {
+    prt_section_info info = prt::sized<prt_section_info>();
+    ASSERT_EQ(prt_asset_get_section_info(both.asset, i, &info), PRT_OK);
+    EXPECT_EQ(info.tag, expected[i].tag) << i;
+    EXPECT_EQ(info.domain, expected[i].domain) << i;
+    EXPECT_EQ(info.technique, expected[i].technique) << i;
+  }
+  // The INFO text of the golden blob: element = byte.
+  LoadedAsset golden(ctx.ctx, read_file(golden_path()));
+  ASSERT_EQ(golden.result, PRT_OK);
+  uint32_t index = 0;
+  ASSERT_EQ(prt_asset_find_section(golden.asset, PRT_SECTION_INFO, &index), PRT_OK);
+  prt_section_info info = prt::sized<prt_section_info>();
+  ASSERT_EQ(prt_asset_get_section_info(golden.asset, index, &info), PRT_OK);
+  EXPECT_EQ(info.domain, PRT_ELEMENT_DOMAIN_NONE);
+  EXPECT_EQ(info.technique, PRT_TECHNIQUE_NONE);
+}
+
+struct Counter {
+  int live = 0, total = 0, fail_at = -1;
+  static void* alloc(void* user, size_t size, size_t align) {
+    auto* self = static_cast<Counter*>(user);
+    if (self->total++ == self->fail_at) return nullptr;
+    ++self->live;
+    return std::aligned_alloc(align, (size + align - 1) / align * align);
+  }
+  static void release(void* user, void* ptr, size_t) {
+    --static_cast<Counter*>(user)->live;
+    std::free(ptr);
+  }
+};
+
+// Every allocation of a load or a validation of a blob with both techniques failing in turn
+// (the technique views included) gives OUT_OF_MEMORY and leaks nothing.
+TEST(Technique, EveryAllocationFailureWhileOpeningViewsIsReported) {
+  const Bytes blob = both_techniques_blob(9);
+  for (int mode = 0; mode < 3; ++mode) {
+    for (int fail_at = 1;; ++fail_at) {  // allocation 0 is the context itself
+      Counter counter;
+      counter.fail_at = fail_at;
+      prt_allocator allocator{&Counter::alloc, &Counter::release, &counter};
+      prt_context_desc desc = prt::sized<prt_context_desc>();
+      desc.allocator = &allocator;
+      prt_context* c = nullptr;
+      ASSERT_EQ(prt_context_create(&desc, &c), PRT_OK);
+      prt_asset* asset = nullptr;
+      prt_result r;
+      if (mode == 0)
+        r = prt_asset_load_memory(c, blob.data(), blob.size(), PRT_VALIDATE_QUICK, &asset);
+      else if (mode == 1)
+        r = prt_asset_load_memory(c, blob.data(), blob.size(), PRT_VALIDATE_FULL, &asset);
+      else
+        r = prt_asset_validate(c, blob.data(), blob.size(), PRT_VALIDATE_QUICK, nullptr, 0);
+      if (r == PRT_OK && asset) {
+        EXPECT_EQ(prt_asset_techniques(asset),
+                  (1u << PRT_TECHNIQUE_SH) | (1u << PRT_TECHNIQUE_WAVELET));
+      }
+      prt_asset_destroy(asset);
+      prt_context_destroy(c);
+      EXPECT_EQ(counter.live, 0) << "mode " << mode << " fail_at " << fail_at;
+      if (counter.total <= fail_at) {  // no allocation failed: done
+        EXPECT_EQ(r, PRT_OK);
+        break;
+      }
+      EXPECT_EQ(r, PRT_ERROR_OUT_OF_MEMORY) << "mode " << mode << " fail_at " << fail_at;
+    }
+  }
+}
+
+}  // namespace
