@@ -1,13 +1,16 @@
 /* SPDX-License-Identifier: MIT */
 /* libFuzzer target: validate (quick, full) and load (copying, borrowed; quick, full) arbitrary
- * bytes, then read every decoded section end to end and shade with every technique the blob
- * holds (CPU and SIMD), so that any out-of-bounds access shows up under AddressSanitizer. Built
- * with -fsanitize=fuzzer when PRT_BUILD_FUZZERS=ON, otherwise with fuzz_replay.c as a plain program
- * that replays files (a CTest test runs it on the golden blob). */
+ * bytes, then read every decoded section end to end and exercise every technique the blob holds
+ * (prt_asset_techniques() and the test-side table of exercises, one row per technique), so that
+ * any out-of-bounds access shows up under AddressSanitizer. Built with -fsanitize=fuzzer when
+ * PRT_BUILD_FUZZERS=ON, otherwise with fuzz_replay.c as a plain program that replays files (a
+ * CTest test runs it on the golden blobs). */
 #include <prt/prt.h>
 
 #include <stdlib.h>
 #include <string.h>
+
+#include "../support/technique_exercises.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 
@@ -28,45 +31,6 @@ static unsigned touch_sections(const prt_asset* asset) {
   return sum;
 }
 
-/* Shades the first vertices of the blob's `sh` and `wavelet` sections on the CPU and SIMD
- * backends (a corrupt row may return an error at quick validation; never after full validation,
- * which promises every row is well formed). */
-static void shade_techniques(const prt_asset* asset, prt_validation level) {
-  static const prt_backend backends[2] = {PRT_BACKEND_CPU, PRT_BACKEND_SIMD};
-  float out[3 * 16];
-  prt_sh_info sh;
-  prt_wavelet_info wavelet;
-  int b;
-  sh.struct_size = sizeof sh;
-  wavelet.struct_size = sizeof wavelet;
-  if (prt_sh_get_info(asset, &sh) == PRT_OK) {
-    float light[3 * 256] = {0.0f};
-    const uint32_t count = sh.vertex_count < 16u ? sh.vertex_count : 16u;
-    light[0] = light[1] = light[2] = 1.0f;
-    for (b = 0; b < 2; ++b) (void)prt_sh_shade(asset, backends[b], light, 0, count, out);
-  }
-  if (prt_wavelet_get_info(asset, &wavelet) == PRT_OK) {
-    const uint32_t count = wavelet.vertex_count < 16u ? wavelet.vertex_count : 16u;
-    float* light = (float*)calloc(4u * (size_t)wavelet.coefficient_count, sizeof(float));
-    float* row = (float*)malloc(3u * (size_t)wavelet.coefficient_count * sizeof(float));
-    prt_result r;
-    if (!light || !row) abort();
-    light[0] = light[1] = light[2] = 1.0f;
-    r = prt_wavelet_prepare_light(asset, light, light, NULL);
-    if (level == PRT_VALIDATE_FULL && r != PRT_OK) abort();
-    for (b = 0; b < 2; ++b) {
-      r = prt_wavelet_shade(asset, backends[b], light, NULL, 0, count, out);
-      if (level == PRT_VALIDATE_FULL && r != PRT_OK && r != PRT_ERROR_UNSUPPORTED_BACKEND) abort();
-    }
-    if (wavelet.vertex_count > 0) {
-      r = prt_wavelet_decode_transfer(asset, 0, 1, row);
-      if (level == PRT_VALIDATE_FULL && r != PRT_OK) abort();
-    }
-    free(row);
-    free(light);
-  }
-}
-
 static prt_result load_and_touch(prt_context* context, const void* data, size_t size,
                                  prt_validation level, int borrowed) {
   prt_asset* asset = NULL;
@@ -75,7 +39,8 @@ static prt_result load_and_touch(prt_context* context, const void* data, size_t 
   if (r == PRT_OK) {
     volatile unsigned sink = touch_sections(asset);
     (void)sink;
-    shade_techniques(asset, level);
+    /* A corrupt row may fail at quick validation; after full validation every call succeeds. */
+    if (!prt_test_exercise_techniques(asset, level)) abort();
   } else if (asset != NULL) {
     abort(); /* a failed load must not hand out an asset */
   }
@@ -84,19 +49,18 @@ static prt_result load_and_touch(prt_context* context, const void* data, size_t 
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  prt_context_desc desc;
   prt_context* context = NULL;
-  prt_result quick, full, loaded;
+  prt_result quick, full, quick_loaded, loaded;
   uint8_t* copy;
   char message[256];
-  memset(&desc, 0, sizeof desc);
-  desc.struct_size = sizeof desc;
-  if (prt_context_create(&desc, &context) != PRT_OK) abort();
+  if (prt_context_create(NULL, &context) != PRT_OK) abort();
 
   quick = prt_asset_validate(context, data, size, PRT_VALIDATE_QUICK, message, sizeof message);
   full = prt_asset_validate(context, data, size, PRT_VALIDATE_FULL, message, sizeof message);
   if (full == PRT_OK && quick != PRT_OK) abort(); /* full validation includes quick */
-  load_and_touch(context, data, size, PRT_VALIDATE_QUICK, 0);
+  /* A quick load checks what quick validation checks, and every technique header besides. */
+  quick_loaded = load_and_touch(context, data, size, PRT_VALIDATE_QUICK, 0);
+  if (quick_loaded == PRT_OK && quick != PRT_OK) abort();
   /* Full validation and a fully validated load agree (short of running out of memory). */
   loaded = load_and_touch(context, data, size, PRT_VALIDATE_FULL, 0);
   if (loaded != full && loaded != PRT_ERROR_OUT_OF_MEMORY && full != PRT_ERROR_OUT_OF_MEMORY)
