@@ -19,6 +19,14 @@ static const char* codec_name(prt_codec codec) {
   return codec == PRT_CODEC_ZSTD ? "zstd" : "none";
 }
 
+/* The name of the technique whose section this is ("sh", ...), from the runtime's registry; NULL
+ * for the mesh sections every technique shares. */
+static const char* technique_name(prt_technique technique) {
+  prt_technique_info info = {0};
+  info.struct_size = sizeof info;
+  return prt_technique_get_info(technique, &info) == PRT_OK ? info.name : NULL;
+}
+
 int main(int argc, char** argv) {
   prt_context_desc desc = {0};
   prt_context* context = NULL;
@@ -32,7 +40,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   desc.struct_size = sizeof desc; /* every struct that may grow starts with its size */
-  desc.message = print_message;  /* NULL allocator: malloc/free */
+  desc.message = print_message;   /* NULL allocator: malloc/free */
   if (prt_context_create(&desc, &context) != PRT_OK) return 1;
 
   result = prt_asset_load_file(context, argv[1], PRT_VALIDATE_FULL, &asset);
@@ -49,17 +57,20 @@ int main(int argc, char** argv) {
          (const char*)info.producer);
   for (i = 0; i < prt_asset_section_count(asset); ++i) {
     prt_section_info s = {0};
+    const char* technique;
     char tag[5];
     int k;
     s.struct_size = sizeof s;
     prt_asset_get_section_info(asset, i, &s);
     for (k = 0; k < 4; ++k) tag[k] = (char)((s.tag >> (8 * k)) & 0xFF);
     tag[4] = '\0';
-    printf("  %u: '%s' v%u %-8s %-4s %8llu stored %8llu raw %8llu elements%s\n", (unsigned)i, tag,
-           (unsigned)s.layout_version,
+    technique = technique_name(s.technique);
+    printf("  %u: '%s' v%u %-8s %-4s %8llu stored %8llu raw %8llu elements%s%s%s%s\n", (unsigned)i,
+           tag, (unsigned)s.layout_version,
            (s.flags & PRT_SECTION_FLAG_REQUIRED) ? "required" : "optional", codec_name(s.codec),
            (unsigned long long)s.stored_size, (unsigned long long)s.raw_size,
-           (unsigned long long)s.element_count, s.known ? "" : " (unknown kind, skipped)");
+           (unsigned long long)s.element_count, s.known ? "" : " (unknown kind, skipped)",
+           technique ? " (technique " : "", technique ? technique : "", technique ? ")" : "");
   }
   printf("valid (full validation)\n");
 
