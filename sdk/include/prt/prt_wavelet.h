@@ -12,8 +12,10 @@
  *   the left half, (a-b)/sqrt 2 in the right half), then every column of it the same way (sums
  *   on top, differences below), and the next level repeats on the n/2 x n/2 top-left block, down
  *   to 1 x 1. So each 2x2 block [a b; c d] gives
- *       scaling (a+b+c+d)/2  -> top-left quadrant        difference along x (a-b+c-d)/2 ->
- * top-right difference along y (a+b-c-d)/2 -> bottom-left    diagonal (a-b-c+d)/2 -> bottom-right
+ *       scaling              (a+b+c+d)/2  -> top-left quadrant
+ *       difference along x   (a-b+c-d)/2  -> top-right
+ *       difference along y   (a+b-c-d)/2  -> bottom-left
+ *       diagonal             (a-b-c+d)/2  -> bottom-right
  *   ("Mallat" placement). After the last level, texel (0, 0) holds the face's single scaling
  *   coefficient, sum / size; the coefficient at (x, y) with max(x, y) in [2^j, 2^(j+1)) belongs
  *   to level j (support size / 2^j texels wide), level 0 being the coarsest detail.
