@@ -13,7 +13,7 @@ install(TARGETS prt_runtime prt_formats EXPORT prtkitTargets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/sdk/include/prt DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  FILES_MATCHING PATTERN "*.h")
+  FILES_MATCHING PATTERN "*.h" PATTERN "*.hpp")  # the C headers and the C++ layer prt.hpp
 install(FILES ${PROJECT_BINARY_DIR}/sdk/include/prt/prt_version.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/prt)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/formats/include/prt/format
