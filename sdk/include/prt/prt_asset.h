@@ -42,7 +42,7 @@ typedef enum prt_section_flag {
 } prt_section_flag;
 
 typedef enum prt_validation {
-  PRT_VALIDATE_QUICK = 0, /* structure only: O(section count), no decompression */
+  PRT_VALIDATE_QUICK = 0, /* structure and technique headers: O(section count) */
   PRT_VALIDATE_FULL = 1   /* also checksums, padding, decoded contents */
 } prt_validation;
 
