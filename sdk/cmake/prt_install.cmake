@@ -84,11 +84,14 @@ install(FILES ${PROJECT_BINARY_DIR}/prtkitConfig.cmake ${PROJECT_BINARY_DIR}/prt
 # --- pkg-config (runtime only) ----------------------------------------------------------------
 get_target_property(PRT_RUNTIME_TYPE prt_runtime TYPE)
 if(PRT_RUNTIME_TYPE STREQUAL "STATIC_LIBRARY")
-  # A static runtime needs the reader core and zstd at the consumer's link.
-  set(PRT_PC_LIBS "-L\${libdir} -lprt -lprt_formats")
+  # A static runtime needs the reader core, zstd and libm at the consumer's link, also without
+  # --static: `cc app.c $(pkg-config --cflags --libs prtkit)` must link.
+  set(PRT_PC_LIBS "-L\${libdir} -lprt -lprt_formats -lm")
+  set(PRT_PC_LIBS_PRIVATE "")
   set(PRT_PC_REQUIRES "Requires: libzstd")
 else()
   set(PRT_PC_LIBS "-L\${libdir} -lprt")
+  set(PRT_PC_LIBS_PRIVATE "Libs.private: -lm")
   set(PRT_PC_REQUIRES "Requires.private: libzstd")
 endif()
 configure_file(${CMAKE_CURRENT_LIST_DIR}/prtkit.pc.in ${PROJECT_BINARY_DIR}/prtkit.pc @ONLY)

@@ -9,8 +9,9 @@ int main() {
   prt_context* context = nullptr;
   if (prt_context_create(nullptr, &context) != PRT_OK) return 1;
   const prt_backend backend = prt_context_backend(context);
+  prt_context_destroy(context);
+  if (prt_blob_find_kind(PRT_BLOB_TAG_VPOS, 1) == nullptr) return 2;
   std::printf("prtkit %s from C++: best backend %s\n", prt_get_version_string(),
               prt_backend_name(backend));
-  prt_context_destroy(context);
-  return prt_blob_find_kind(PRT_BLOB_TAG_VPOS, 1) != nullptr ? 0 : 2;
+  return 0;
 }
