@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: MIT
-// The section layouts (prt_blob_shtr_layout_of, prt_blob_wvlt_layout_of) against formats/SPEC.md
-// §7, with every offset worked out by hand from the SPEC's tables.
+// The section layouts (prt_blob_shtr_layout_of, prt_blob_wvlt_layout_of) and the kind table
+// against formats/SPEC.md §7, with every offset worked out by hand from the SPEC's tables.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
+#include <set>
 
+#include <prt/format/section_kinds.h>
 #include <prt/format/sh_layout.h>
 #include <prt/format/wavelet_layout.h>
 
+#include "support/blob_test_util.hpp"
+
 namespace {
+
+using namespace prt_test;
 
 TEST(ShtrLayout, HeaderFieldOffsetsAreTheSpecs) {
   // SPEC §7.1: order, vertex_count, channels, bits, kind, bounces, two reserved u32.
@@ -175,6 +181,74 @@ TEST(WvltLayout, InvalidFieldsLeaveTheLayoutUntouched) {
   EXPECT_EQ(prt_blob_wvlt_layout_of(0, 256, 1, 0, &l), 0);  // above 128
   EXPECT_EQ(prt_blob_wvlt_layout_of(0, 48, 1, 0, &l), 0);   // not a power of two
   EXPECT_EQ(std::memcmp(&l, &before, sizeof l), 0);
+}
+
+// SPEC §7's table: tag, element size and domain of every 1.0 kind, and its relations.
+TEST(SectionKinds, TableIsTheSpecs) {
+  struct Row {
+    uint32_t tag;
+    uint32_t element_size;
+    prt_blob_domain domain;
+  };
+  const Row spec[] = {
+      {PRT_BLOB_TAG('I', 'N', 'F', 'O'), 1, PRT_BLOB_DOMAIN_NONE},
+      {PRT_BLOB_TAG('V', 'P', 'O', 'S'), 12, PRT_BLOB_DOMAIN_VERTEX},
+      {PRT_BLOB_TAG('V', 'N', 'R', 'M'), 12, PRT_BLOB_DOMAIN_VERTEX},
+      {PRT_BLOB_TAG('T', 'R', 'I', 'S'), 12, PRT_BLOB_DOMAIN_TRIANGLE},
+      {PRT_BLOB_TAG('S', 'H', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
+      {PRT_BLOB_TAG('W', 'V', 'L', 'T'), 0, PRT_BLOB_DOMAIN_VERTEX},
+  };
+  EXPECT_EQ(prt_blob_kind_count(), sizeof spec / sizeof spec[0]);
+  for (const Row& row : spec) {
+    const prt_blob_kind* kind = prt_blob_find_kind(row.tag, 1);
+    ASSERT_NE(kind, nullptr) << row.tag;
+    EXPECT_EQ(kind->element_size, row.element_size) << kind->name;
+    EXPECT_EQ(kind->domain, row.domain) << kind->name;
+    EXPECT_NE(kind->check_content, nullptr) << kind->name;
+    EXPECT_EQ(prt_blob_find_kind(row.tag, 2), nullptr) << kind->name;
+  }
+  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_VERTEX)->tag, PRT_BLOB_TAG_VPOS);
+  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_TRIANGLE)->tag, PRT_BLOB_TAG_TRIS);
+  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_NONE), nullptr);
+  EXPECT_EQ(prt_blob_find_kind(PRT_BLOB_TAG_TRIS, 1)->depends_on[0], PRT_BLOB_TAG_VPOS);
+}
+
+// Properties every future row must keep too.
+TEST(SectionKinds, RowsAreConsistent) {
+  std::set<std::pair<uint32_t, uint8_t>> seen;
+  std::set<int> counted;
+  for (size_t i = 0; i < prt_blob_kind_count(); ++i) {
+    const prt_blob_kind* kind = prt_blob_kind_at(i);
+    ASSERT_NE(kind, nullptr);
+    SCOPED_TRACE(kind->name);
+    EXPECT_TRUE(seen.insert({kind->tag, kind->layout_version}).second) << "row twice";
+    EXPECT_EQ(prt_blob_find_kind(kind->tag, kind->layout_version), kind);
+    EXPECT_NE(kind->name, nullptr);
+    EXPECT_NE(kind->element_noun, nullptr);
+    if (kind->counts_domain) {
+      EXPECT_NE(kind->domain, PRT_BLOB_DOMAIN_NONE);
+      EXPECT_TRUE(counted.insert(kind->domain).second) << "two kinds count one domain";
+      EXPECT_EQ(prt_blob_domain_counter(kind->domain), kind);
+    }
+    for (uint32_t tag : kind->depends_on) {
+      if (tag == 0) break;
+      bool known = false;
+      for (size_t j = 0; j < prt_blob_kind_count(); ++j)
+        known = known || prt_blob_kind_at(j)->tag == tag;
+      EXPECT_TRUE(known) << "depends on an unknown tag";
+    }
+  }
+  EXPECT_EQ(prt_blob_kind_at(prt_blob_kind_count()), nullptr);
+}
+
+TEST(SectionKinds, DomainCountsOfTheGoldenMesh) {
+  const Bytes blob = read_file(golden_path());
+  prt_blob_header h;
+  ASSERT_EQ(prt_blob_validate_structure(blob.data(), blob.size(), &h, nullptr, 0), PRT_BLOB_OK);
+  EXPECT_EQ(prt_blob_domain_count(blob.data(), &h, PRT_BLOB_DOMAIN_VERTEX), 9u);    // 3 x 3 grid
+  EXPECT_EQ(prt_blob_domain_count(blob.data(), &h, PRT_BLOB_DOMAIN_TRIANGLE), 8u);  // 2 per cell
+  EXPECT_EQ(prt_blob_domain_count(blob.data(), &h, PRT_BLOB_DOMAIN_NONE), 0u);
+  EXPECT_EQ(prt_blob_domain_count(blob.data(), &h, PRT_BLOB_DOMAIN_MATERIAL), 0u);
 }
 
 }  // namespace
