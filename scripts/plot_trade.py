@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
-"""Plots the speed/accuracy trade that `prt-bake trade` writes (trade.csv) as a 2x2 figure:
+"""Plots the speed/accuracy trade that `prt-bake trade sh` writes (trade.csv) as a 2x2 figure:
 error vs SH order (one line per map, log y), error vs blob size, shading time per frame vs order
 (CPU and SIMD backends) and bake time vs rays per vertex.
 

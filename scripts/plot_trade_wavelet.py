@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
-"""Plots the wavelet-against-sh trade that `prt-bake trade-wavelet` writes (trade.csv) as a 2x2
+"""Plots the wavelet-against-sh trade that `prt-bake trade wavelet` writes (trade.csv) as a 2x2
 figure: error vs transfer bytes per vertex (both techniques, both maps: the equal-bytes
 comparison), error vs light terms M, error vs cube size N (and the dual paraboloid), and shading
 time per frame vs bytes per vertex. Errors are the relative RMSE with the reference's noise
@@ -139,7 +139,7 @@ def main():
     error_vs_size(axes[1][0], rows, maps)
     time_vs_bytes(axes[1][1], rows, maps)
     scene = rows[0]["scene"]
-    fig.suptitle(f"prt-bake trade-wavelet: {scene}, {rows[0]['vertices']} vertices")
+    fig.suptitle(f"prt-bake trade wavelet: {scene}, {rows[0]['vertices']} vertices")
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=110)
 
