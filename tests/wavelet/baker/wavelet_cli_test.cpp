@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `prt-bake bake wavelet` end to end: the blob loads at full validation with the settings asked
 // for, the JSON report carries what it promises, bad or foreign options fail without writing a
-// blob, and --help lists wavelet's flags and no other technique's.
+// blob, --help lists wavelet's flags and no other technique's, and the self-check decodes each
+// row of a small mesh once.
 #include <gtest/gtest.h>
 
 #include <prt/prt.h>
@@ -56,6 +57,10 @@ CommandResult run_command(const std::string& arguments) {
   text << in.rdbuf();
   r.output = text.str();
   return r;
+}
+
+std::string quoted(const std::filesystem::path& path) {
+  return "\"" + path.string() + "\"";
 }
 
 // A small scene: a plane and a sphere on it (a few hundred vertices).
@@ -185,6 +190,19 @@ TEST(WaveletBakeCommand, HelpListsWaveletFlagsOnly) {
   }
   EXPECT_GT(foreign, 0u);  // sh's --order, --transfer, ...
   EXPECT_FALSE(lists_flag(help.output, "--technique"));
+}
+
+// A quad of two triangles has four vertices: the self-check decodes each row once.
+TEST(WaveletBakeCommand, SelfCheckOfAFourVertexMeshDecodesFourRows) {
+  const std::filesystem::path obj = temp_dir() / "quad.obj", blob = temp_dir() / "quad.prtk";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0 1\nvn 0 1 0\n"
+                        "f 1//1 3//1 2//1\nf 2//1 3//1 4//1\n";
+  const CommandResult r =
+      run_command("bake wavelet " + quoted(obj) + " --cube 16 -o " + quoted(blob));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("self-check passed: 4 decoded rows match"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("degenerate"), std::string::npos) << r.output;
 }
 
 }  // namespace
