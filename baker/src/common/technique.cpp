@@ -6,6 +6,8 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace prt::bake {
 namespace {
@@ -26,6 +28,35 @@ void check_map_names(const std::vector<std::string>& envs) {
   for (const std::string& path : envs) {
     const std::string name = fs::path(path).stem().string();
     if (!names.insert(name).second) throw Error("--env: two maps are named '" + name + "'");
+  }
+}
+
+// A mesh whose every triangle is degenerate casts no shadow and has no surface to draw, yet its
+// vertices bake as if nothing were there: almost always a broken export (a zero scale, a wrong
+// index buffer). It is a warning, not an error, because the blob is still valid and what it
+// stores is exact for what the file describes; a pipeline baking many assets keeps going.
+void warn_about_degenerate_meshes(const Scene& scene, const std::string& file, const Context& ctx) {
+  const std::string what =
+      "degenerate (a repeated or out-of-range index, a non-finite position or zero area)";
+  std::size_t triangles = 0, degenerate = 0;
+  std::vector<std::string> meshes;  // the meshes whose every triangle is degenerate
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    std::size_t bad = 0;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) bad += is_degenerate_triangle(mesh, t);
+    if (bad > 0 && bad == mesh.triangle_count())
+      meshes.push_back("mesh " + std::to_string(m) + " ('" + mesh.name + "')");
+    triangles += mesh.triangle_count();
+    degenerate += bad;
+  }
+  if (triangles > 0 && degenerate == triangles) {
+    ctx.warn(file + ": every triangle is " + what +
+             ": nothing casts shadows and there is nothing to draw");
+    return;
+  }
+  for (const std::string& mesh : meshes) {
+    ctx.warn(file + ": every triangle of " + mesh + " is " + what +
+             ": it casts no shadow and has nothing to draw");
   }
 }
 
@@ -51,6 +82,7 @@ glm::vec3 parse_albedo(const std::string& text) {
 void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx) {
   if (!input.albedo.empty()) parse_albedo(input.albedo);  // a typo fails before the import
   const Scene scene = import_scene(input.scene, ctx);
+  warn_about_degenerate_meshes(scene, input.scene, ctx);
   bake.bake(scene, input, ctx);
   bake.quantize();
   const std::vector<std::uint8_t> blob = bake.write(scene, input);
@@ -82,6 +114,7 @@ void run_trade(TechniqueTrade& trade, TradeInput input, const Context& ctx) {
   fs::create_directories(input.cache_dir);
 
   const Scene scene = import_scene(input.scene, ctx);
+  warn_about_degenerate_meshes(scene, input.scene, ctx);
   trade.prepare(scene, input, ctx);
   const EmbreeScene rays(scene, ctx);
   trade.sweep(scene, rays, input, ctx);

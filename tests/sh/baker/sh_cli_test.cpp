@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `prt-bake bake sh` end to end: the blob loads at full validation with the settings asked for,
 // the JSON report carries what it promises, bad or foreign options fail without writing a blob,
-// and --help lists sh's flags and no other technique's.
+// --help lists sh's flags and no other technique's, and a mesh of degenerate triangles is named.
 #include <gtest/gtest.h>
 
 #include <prt/prt.h>
@@ -170,6 +170,35 @@ TEST(ShBakeCommand, HelpListsShFlagsOnly) {
   }
   EXPECT_GT(foreign, 0u);  // wavelet's --cube, --keep, ...
   EXPECT_FALSE(lists_flag(help.output, "--technique"));
+}
+
+// Four vertices on a line with normals: both triangles have zero area. Unshadowed sh builds no
+// ray-tracing scene, so only the bake's own check can say so.
+TEST(ShBakeCommand, AllDegenerateMeshIsNamed) {
+  const fs::path obj = temp_dir() / "flat.obj", blob = temp_dir() / "flat.prtk";
+  std::ofstream(obj) << "o flat\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nvn 0 1 0\n"
+                        "f 1//1 2//1 3//1\nf 2//1 3//1 4//1\n";
+  for (const char* transfer : {"unshadowed", "shadowed"}) {
+    const CommandResult r = run_bake("bake sh " + quoted(obj) + " --transfer " + transfer +
+                                     " --rays 16 -o " + quoted(blob));
+    EXPECT_EQ(r.status, 0) << r.output;  // a warning, not an error: the blob is valid
+    EXPECT_NE(r.output.find("warning: " + obj.string() +
+                            ": every triangle is degenerate (a repeated or out-of-range index, "
+                            "a non-finite position or zero area): nothing casts shadows"),
+              std::string::npos)
+        << transfer << "\n"
+        << r.output;
+    EXPECT_TRUE(fs::exists(blob));
+  }
+  // One good mesh beside the flat one: the flat one is named, the scene is not.
+  std::ofstream(obj, std::ios::app) << "o good\nv 0 0 1\nv 1 0 1\nv 0 1 1\nvn 0 0 1\n"
+                                       "f 5//2 6//2 7//2\n";
+  const CommandResult mixed = run_bake("bake sh " + quoted(obj) + " --rays 16 -o " + quoted(blob));
+  EXPECT_EQ(mixed.status, 0) << mixed.output;
+  EXPECT_NE(mixed.output.find("every triangle of mesh 0 ('flat') is degenerate"), std::string::npos)
+      << mixed.output;
+  EXPECT_EQ(mixed.output.find("every triangle is degenerate"), std::string::npos) << mixed.output;
+  fs::remove_all(temp_dir());
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `prt-bake bake wavelet` end to end: the blob loads at full validation with the settings asked
 // for, the JSON report carries what it promises, bad or foreign options fail without writing a
-// blob, --help lists wavelet's flags and no other technique's, and the self-check decodes each
-// row of a small mesh once.
+// blob, --help lists wavelet's flags and no other technique's, the self-check decodes each row
+// of a small mesh once, and a mesh of degenerate triangles is named.
 #include <gtest/gtest.h>
 
 #include <prt/prt.h>
@@ -203,6 +203,22 @@ TEST(WaveletBakeCommand, SelfCheckOfAFourVertexMeshDecodesFourRows) {
   EXPECT_NE(r.output.find("self-check passed: 4 decoded rows match"), std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("degenerate"), std::string::npos) << r.output;
+}
+
+// Four vertices on a line: both triangles have zero area.
+TEST(WaveletBakeCommand, AllDegenerateMeshIsNamed) {
+  const std::filesystem::path obj = temp_dir() / "flat.obj", blob = temp_dir() / "flat.prtk";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nvn 0 1 0\n"
+                        "f 1//1 2//1 3//1\nf 2//1 3//1 4//1\n";
+  const CommandResult r =
+      run_command("bake wavelet " + quoted(obj) + " --cube 16 -o " + quoted(blob));
+  EXPECT_EQ(r.status, 0) << r.output;  // a warning, not an error: the blob is valid
+  EXPECT_NE(r.output.find("warning: " + obj.string() +
+                          ": every triangle is degenerate (a repeated or out-of-range index, a "
+                          "non-finite position or zero area): nothing casts shadows"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(std::filesystem::exists(blob));
 }
 
 }  // namespace
