@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The pieces prt-bake trade and prt-bake trade-wavelet share (trade_common.hpp).
+// The pieces every technique's trade shares (trade_common.hpp).
 #include "trade_common.hpp"
 
 #include <prt/prt_sh.h>
+#include <prt/prt_sh_asset.h>
 
 #include <algorithm>
 #include <chrono>
@@ -10,13 +11,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
-#include "command.hpp"
-#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/image_io.hpp"
 #include "prt/baker/reference.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 
-namespace prt::bake::cli {
+namespace prt::bake::trade {
 
 namespace fs = std::filesystem;
 
@@ -30,8 +31,18 @@ std::string stem(const std::string& path) {
   return fs::path(path).stem().string();
 }
 
+std::string optional_number(double value, const char* fmt) {
+  return value < 0.0 ? "" : format(fmt, value);
+}
+
 std::string ms_text(double ms) {
   return ms < 0.0 ? "n/a" : format("%.3f", ms);
+}
+
+std::string joined(const std::vector<std::uint32_t>& values) {
+  std::string text;
+  for (std::uint32_t v : values) text += (text.empty() ? "" : ",") + std::to_string(v);
+  return text;
 }
 
 void check_runtime(prt_result result, const std::string& what) {
@@ -62,6 +73,10 @@ void check_against_baker_projection(ShLight& light, std::uint32_t order, const C
 }
 
 }  // namespace
+
+std::vector<float> ShLight::at_order(std::uint32_t order) const {
+  return std::vector<float>(rgb.begin(), rgb.begin() + std::size_t(order) * order * 3);
+}
 
 ShLight load_sh_light(const std::string& path, std::uint32_t order, const Context& ctx) {
   ShLight light;
@@ -119,12 +134,12 @@ std::string albedo_key(const std::string& albedo) {
 
 }  // namespace
 
-Reference cached_reference(const Scene& scene, const EnvMap& map, const ReferenceRequest& r,
-                           const Context& ctx) {
-  const std::string key = stem(r.scene_path) + "_" + r.map_name + "_b" + std::to_string(r.bounces) +
-                          "_spp" + std::to_string(r.spp) + "_seed" + std::to_string(r.seed) +
-                          "_albedo-" + albedo_key(r.albedo);
-  const std::string npy = r.cache_dir + "/" + key + ".npy", noise_file = npy + ".noise";
+Reference cached_reference(const Scene& scene, const EnvMap& map, const std::string& map_name,
+                           int bounces, const TradeInput& input, const Context& ctx) {
+  const std::string key = stem(input.scene) + "_" + map_name + "_b" + std::to_string(bounces) +
+                          "_spp" + std::to_string(input.ref_spp) + "_seed" +
+                          std::to_string(input.seed) + "_albedo-" + albedo_key(input.albedo);
+  const std::string npy = input.cache_dir + "/" + key + ".npy", noise_file = npy + ".noise";
   Reference ref;
   std::ifstream noise_in(noise_file);
   if (noise_in >> ref.noise && cached_radiance(npy, &ref.radiance) &&
@@ -133,12 +148,12 @@ Reference cached_reference(const Scene& scene, const EnvMap& map, const Referenc
     return ref;
   }
   ReferenceSettings settings;
-  settings.bounces = r.bounces;
-  settings.spp = r.spp;
-  settings.seed = r.seed;
-  if (!r.albedo.empty()) {
+  settings.bounces = bounces;
+  settings.spp = input.ref_spp;
+  settings.seed = input.seed;
+  if (!input.albedo.empty()) {
     settings.override_albedo = true;
-    settings.albedo = parse_albedo(r.albedo);
+    settings.albedo = parse_albedo(input.albedo);
   }
   ctx.info("reference " + key + ": rendering");
   const ReferenceRenderer renderer(scene, map, settings, ctx);
@@ -193,6 +208,14 @@ double median_frame_ms(int frames, const std::string& what,
   return ms[ms.size() / 2];
 }
 
+double time_sh_shading(const prt_asset* asset, prt_backend backend, const std::vector<float>& light,
+                       std::uint32_t vertices, int frames, std::vector<float>* out) {
+  out->resize(std::size_t(vertices) * 3);
+  return median_frame_ms(
+      frames, std::string("prt_sh_shade_on(") + prt_backend_name(backend) + ")",
+      [&] { return prt_sh_shade_on(asset, backend, light.data(), 0, vertices, out->data()); });
+}
+
 std::vector<glm::vec3> as_vec3(const std::vector<float>& rgb) {
   std::vector<glm::vec3> out(rgb.size() / 3);
   for (std::size_t v = 0; v < out.size(); ++v)
@@ -202,6 +225,9 @@ std::vector<glm::vec3> as_vec3(const std::vector<float>& rgb) {
 
 // --- machine ------------------------------------------------------------------------------------
 
+namespace {
+
+// "model name" of /proc/cpuinfo, or "unknown".
 std::string cpu_model() {
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;
@@ -214,6 +240,7 @@ std::string cpu_model() {
   return "unknown";
 }
 
+// The SIMD backend as the runtime reports it: "usable, avx2" or "not usable (...)".
 std::string simd_description() {
   prt_context* context = nullptr;
   if (prt_context_create(nullptr, &context) != PRT_OK) return "unknown";
@@ -227,4 +254,44 @@ std::string simd_description() {
   return text;
 }
 
-}  // namespace prt::bake::cli
+}  // namespace
+
+std::string scene_description(const std::string& path, const Scene& scene) {
+  return "Scene `" + fs::path(path).filename().string() +
+         "`: " + std::to_string(scene.vertex_count()) + " vertices, " +
+         std::to_string(scene.triangle_count()) + " triangles";
+}
+
+std::string machine_description(unsigned bake_threads) {
+  return cpu_model() + ", " + std::to_string(std::thread::hardware_concurrency()) +
+         " hardware threads; bakes on " + std::to_string(bake_threads) +
+         " threads; SIMD backend: " + simd_description();
+}
+
+// --- tables -------------------------------------------------------------------------------------
+
+void write_csv_row(std::ostream& out, const std::vector<std::string>& cells) {
+  for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i];
+  out << '\n';
+}
+
+void write_markdown_header(std::ostream& out, const std::vector<Column>& columns) {
+  std::vector<std::string> titles;
+  for (const Column& c : columns) titles.push_back(c.title);
+  write_markdown_row(out, titles);
+  out << '|';
+  for (const Column& c : columns) out << (c.numeric ? "---:|" : "---|");
+  out << '\n';
+}
+
+void write_markdown_row(std::ostream& out, const std::vector<std::string>& cells) {
+  out << '|';
+  for (const std::string& cell : cells) out << ' ' << cell << " |";
+  out << '\n';
+}
+
+void check_written(const std::ostream& out, const std::string& path) {
+  if (!out) throw Error(path + ": cannot write");
+}
+
+}  // namespace prt::bake::trade
