@@ -28,13 +28,13 @@
 
 #include "command.hpp"
 #include "prt/baker/embree_scene.hpp"
-#include "prt/baker/sh/env_sh.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/image_io.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/reference.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/image_io.hpp"
+#include "prt/io/radiance_error.hpp"
 #include "trade_common.hpp"
 
 namespace prt::bake::cli {
@@ -191,10 +191,11 @@ Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const 
   row.simd_ms = time_shading(asset, PRT_BACKEND_SIMD, l.data(), vertices, o.frames, &simd_shaded);
   row.cpu_ms = time_shading(asset, PRT_BACKEND_CPU, l.data(), vertices, o.frames, &shaded);
   const std::vector<glm::vec3> radiance = as_vec3(shaded);
-  row.error = relative_rmse(radiance, ref.radiance);
+  row.error = io::relative_rmse(radiance, ref.radiance);
   row.ref_noise = ref.noise;
   // What 16/8-bit storage costs in radiance: runtime shading vs the float transfer's.
-  row.quant_shading_error = relative_rmse(radiance, shade_sh_transfer(baked.transfer, as_light(l)));
+  row.quant_shading_error =
+      io::relative_rmse(radiance, shade_sh_transfer(baked.transfer, as_light(l)));
   row.blob_bytes = baked.blob.size();
   row.bake_seconds = baked.transfer.seconds;
   row.rays_traced = static_cast<double>(baked.transfer.rays_traced);
@@ -266,7 +267,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
      << " hardware threads; bake on " << threads << " threads; SIMD backend: " << simd_note
      << ".\n";
   for (const ShLight& light : lights) {
-    md << "\n## " << light.name << " (" << env_mapping_name(light.map->mapping()) << ", "
+    md << "\n## " << light.name << " (" << io::env_mapping_name(light.map->mapping()) << ", "
        << light.map->width() << "x" << light.map->height() << ", light by " << light.projection
        << ")\n\n";
     md << "| sweep | order | rays | bounces | error % | ref noise % | error, noise removed % | CPU "

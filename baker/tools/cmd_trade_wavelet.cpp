@@ -33,12 +33,12 @@
 
 #include "command.hpp"
 #include "prt/baker/embree_scene.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
 #include "prt/baker/wavelet/wavelet_blob.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/radiance_error.hpp"
 #include "trade_common.hpp"
 
 namespace prt::bake::cli {
@@ -103,13 +103,13 @@ std::uint32_t parse_terms(const std::string& text) {
 // The relative RMSE over the measured vertices (every `stride`-th).
 double subset_rmse(const std::vector<glm::vec3>& estimate, const std::vector<glm::vec3>& reference,
                    std::uint32_t stride) {
-  if (stride <= 1) return relative_rmse(estimate, reference);
+  if (stride <= 1) return io::relative_rmse(estimate, reference);
   std::vector<glm::vec3> a, b;
   for (std::size_t v = 0; v < estimate.size() && v < reference.size(); v += stride) {
     a.push_back(estimate[v]);
     b.push_back(reference[v]);
   }
-  return relative_rmse(a, b);
+  return io::relative_rmse(a, b);
 }
 
 bool is_power_of_two(std::uint32_t n) {
@@ -223,11 +223,12 @@ TradeLight load_trade_light(const std::string& path, const Scene& scene,
   for (std::uint32_t order : o.sh_orders) max_order = std::max(max_order, order);
   TradeLight light;
   light.sh = load_sh_light(path, max_order, ctx);
-  const EnvMap& map = *light.sh.map;
-  light.latlong = map.mapping() == EnvMapping::LatLong;
+  const io::EnvMap& map = *light.sh.map;
+  light.latlong = map.mapping() == io::EnvMapping::LatLong;
   if (!light.latlong) {
-    light.face_size = map.mapping() == EnvMapping::VerticalCross ? map.face_size() : kProbeFaceSize;
-    for (const std::vector<float>& face : resample_to_cube(map, light.face_size))
+    light.face_size =
+        map.mapping() == io::EnvMapping::VerticalCross ? map.face_size() : kProbeFaceSize;
+    for (const std::vector<float>& face : io::resample_to_cube(map, light.face_size))
       light.faces.insert(light.faces.end(), face.begin(), face.end());
   }
   ReferenceRequest request;
@@ -244,7 +245,7 @@ TradeLight load_trade_light(const std::string& path, const Scene& scene,
 
 // The map's texel values on a parameterisation (prt_wavelet_resample_*), RGBA.
 prt_result resample(const TradeLight& light, std::uint32_t param, std::uint32_t size, float* rgba) {
-  const EnvMap& map = *light.sh.map;
+  const io::EnvMap& map = *light.sh.map;
   if (light.latlong)
     return prt_wavelet_resample_latlong(param, size, map.pixels().data(), map.width(), map.height(),
                                         nullptr, rgba);
@@ -485,7 +486,7 @@ QuantizedShTransfer grey_if_possible(QuantizedShTransfer q) {
 }
 
 double time_sh_projection(const TradeLight& light, std::uint32_t order, int frames) {
-  const EnvMap& map = *light.sh.map;
+  const io::EnvMap& map = *light.sh.map;
   std::vector<float> rgb(std::size_t(order) * order * 3);
   const float* faces[6];
   const std::size_t face_floats = std::size_t(light.face_size) * light.face_size * 3;
@@ -730,7 +731,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
                                                                      {"sh", "sh orders"}};
   for (const TradeLight& light : lights) {
     const std::string& name = light.sh.name;
-    md << "\n## " << name << " (" << env_mapping_name(light.sh.map->mapping()) << ", "
+    md << "\n## " << name << " (" << io::env_mapping_name(light.sh.map->mapping()) << ", "
        << light.sh.map->width() << "x" << light.sh.map->height() << "; reference noise "
        << pct(light.reference.noise) << " %)\n";
     for (const auto& [sweep, title] : sections) {

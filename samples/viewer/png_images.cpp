@@ -23,7 +23,7 @@ void write_png(const std::string& path, int width, int height, const std::uint8_
 
 }  // namespace
 
-void write_display_png(const std::string& path, const prt::bake::LinearImage& image) {
+void write_display_png(const std::string& path, const prt::io::LinearImage& image) {
   std::vector<std::uint8_t> rgb(image.pixels.size() * 3);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) {

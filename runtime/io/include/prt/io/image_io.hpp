@@ -9,7 +9,9 @@
 
 #include <glm/glm.hpp>
 
-namespace prt::bake {
+#include "prt/io/error.hpp"
+
+namespace prt::io {
 
 // Linear RGB radiance, row-major from the top row.
 struct LinearImage {
@@ -42,4 +44,4 @@ std::vector<std::uint8_t> tone_map_srgb8(const LinearImage& image, float exposur
 // linear radiance (no exposure). Throws Error naming the file on any other extension or failure.
 void write_image(const std::string& path, const LinearImage& image, float exposure_ev);
 
-}  // namespace prt::bake
+}  // namespace prt::io

@@ -4,9 +4,9 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake::detail {
+namespace prt::io::detail {
 namespace {
 
 class ByteReader {
@@ -126,4 +126,4 @@ void check_radiance_stream(const std::string& path, const std::vector<unsigned c
   }
 }
 
-}  // namespace prt::bake::detail
+}  // namespace prt::io::detail

@@ -14,11 +14,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "prt/baker/envmap.hpp"
-#include "test_files.hpp"
+#include "prt/io/envmap.hpp"
+#include "support/test_files.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
+
+using prt_test::shared_asset;
+using prt_test::TempDir;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -242,11 +245,10 @@ TEST(EnvMap, LoadsAWrittenHdrFile) {
   for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.5f + 0.25f * static_cast<float>(i % 7);
   ASSERT_NE(stbi_write_hdr(path.c_str(), 8, 4, 3, rgb.data()), 0);
   std::vector<std::string> warnings;
-  Context ctx;
-  ctx.log = [&](LogLevel level, const std::string& text) {
-    if (level == LogLevel::Warning) warnings.push_back(text);
+  const MessageHook messages = [&](MessageLevel level, const std::string& text) {
+    if (level == MessageLevel::Warning) warnings.push_back(text);
   };
-  const EnvMap map = load_envmap(path, EnvMapping::Auto, ctx);
+  const EnvMap map = load_envmap(path, EnvMapping::Auto, messages);
   EXPECT_EQ(map.mapping(), EnvMapping::LatLong);
   ASSERT_EQ(map.pixels().size(), rgb.size());
   for (std::size_t i = 0; i < rgb.size(); ++i) {
@@ -299,9 +301,8 @@ TEST(EnvMapAssets, ProbeAndCrossOfTheSameSceneAgree) {
   const std::string probe_path = shared_asset("envmaps/rnl_probe.hdr");
   const std::string cross_path = shared_asset("envmaps/rnl_cross.hdr");
   if (probe_path.empty() || cross_path.empty()) GTEST_SKIP() << "shared assets not found";
-  const Context ctx;
-  const Sh9 probe = project_sh9(load_envmap(probe_path, EnvMapping::Auto, ctx));
-  const Sh9 cross = project_sh9(load_envmap(cross_path, EnvMapping::Auto, ctx));
+  const Sh9 probe = project_sh9(load_envmap(probe_path, EnvMapping::Auto));
+  const Sh9 cross = project_sh9(load_envmap(cross_path, EnvMapping::Auto));
   const glm::dvec3 exposure = probe[0] / cross[0];  // the files may differ in exposure
   // Measured agreement is ~0.003 % of the largest coefficient; 0.2 % leaves room.
   const double tol = 0.002 * largest(probe);
@@ -320,7 +321,7 @@ TEST(EnvMapAssets, ProbeReproducesPublishedEucalyptusGroveSh9) {
   const auto table = nlohmann::json::parse(std::ifstream(table_path));
   const auto& published = table["environments"]["eucalyptus_grove"]["coefficients"];
   const char* names[9] = {"L00", "L1m1", "L10", "L11", "L2m2", "L2m1", "L20", "L21", "L22"};
-  const Sh9 sh = project_sh9(load_envmap(probe_path, EnvMapping::Auto, Context{}));
+  const Sh9 sh = project_sh9(load_envmap(probe_path, EnvMapping::Auto));
   // The table holds 1/10 of the raw projection (its "scale" note).
   Sh9 want{};
   for (int k = 0; k < 9; ++k) {
@@ -347,7 +348,7 @@ TEST(EnvMapAssets, EveryShippedMapLoadsWithTheRightMapping) {
   for (const Case& c : cases) {
     const std::string path = shared_asset(c.file);
     if (path.empty()) GTEST_SKIP() << "shared assets not found";
-    const EnvMap map = load_envmap(path, EnvMapping::Auto, Context{});
+    const EnvMap map = load_envmap(path, EnvMapping::Auto);
     EXPECT_EQ(map.mapping(), c.mapping) << c.file;
     EXPECT_EQ(map.width(), c.width);
     EXPECT_EQ(map.height(), c.height);
@@ -360,7 +361,7 @@ TEST(EnvMapAssets, EveryShippedMapLoadsWithTheRightMapping) {
 TEST(EnvMapAssets, MondelloSunHoldsHalfThePower) {
   const std::string path = shared_asset("envmaps/spiaggia_di_mondello_1k.hdr");
   if (path.empty()) GTEST_SKIP() << "shared assets not found";
-  const EnvMap map = load_envmap(path, EnvMapping::Auto, Context{});
+  const EnvMap map = load_envmap(path, EnvMapping::Auto);
   std::vector<std::pair<double, double>> texels;  // (luminance, solid angle)
   double total = 0.0;
   for (int y = 0; y < map.height(); ++y) {
@@ -384,4 +385,4 @@ TEST(EnvMapAssets, MondelloSunHoldsHalfThePower) {
 }
 
 }  // namespace
-}  // namespace prt::bake
+}  // namespace prt::io

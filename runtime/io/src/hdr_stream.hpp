@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace prt::bake::detail {
+namespace prt::io::detail {
 
 // True when the bytes start with a Radiance signature ("#?RADIANCE" or "#?RGBE").
 bool has_radiance_signature(const std::vector<unsigned char>& bytes);
@@ -16,4 +16,4 @@ bool has_radiance_signature(const std::vector<unsigned char>& bytes);
 // "-Y H +X W") or the pixel stream, flat or run-length encoded, ends before W x H texels.
 void check_radiance_stream(const std::string& path, const std::vector<unsigned char>& bytes);
 
-}  // namespace prt::bake::detail
+}  // namespace prt::io::detail

@@ -10,14 +10,13 @@
 #include <iterator>
 #include <string>
 
-#include "prt/baker/context.hpp"
-#include "prt/baker/image_io.hpp"
+#include "prt/io/image_io.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
 
 std::string output_path(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(PRT_TEST_OUTPUT_DIR) / "render_outputs";
+  const std::filesystem::path dir = std::filesystem::path(PRT_TEST_OUTPUT_DIR) / "image_io";
   std::filesystem::create_directories(dir);
   return (dir / name).string();
 }
@@ -121,4 +120,4 @@ TEST(ImageIo, UnknownExtensionIsAnError) {
 }
 
 }  // namespace
-}  // namespace prt::bake
+}  // namespace prt::io

@@ -2,7 +2,7 @@
 // Environment maps: the three mappings of formats/SPEC.md §Environment maps. World frame: glTF,
 // +Y up, the "front" of every mapping (lat-long and probe image centre, cross centre face) at -Z,
 // image right = +X, image up = +Y.
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 #include <stb_image.h>
 
@@ -13,9 +13,9 @@
 #include <iterator>
 
 #include "hdr_stream.hpp"
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -516,7 +516,7 @@ void rotation_about_y_row_major(double degrees, float out[9]) {
   }
 }
 
-EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx) {
+EnvMap load_envmap(const std::string& path, EnvMapping mapping, const MessageHook& messages) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error(path + ": cannot open file");
   const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
@@ -536,12 +536,13 @@ EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& c
   std::vector<float> rgb(data, data + static_cast<std::size_t>(width) * height * 3);
   stbi_image_free(data);
   EnvMap map(width, height, std::move(rgb), mapping, path);
+  if (!messages) return map;
   if (map.sanitized_texels() > 0) {
-    ctx.warn(path + ": replaced " + std::to_string(map.sanitized_texels()) +
-             " texels holding NaN, infinite or negative values by 0");
+    messages(MessageLevel::Warning, path + ": replaced " + std::to_string(map.sanitized_texels()) +
+                                        " texels holding NaN, infinite or negative values by 0");
   }
-  ctx.message(LogLevel::Debug, path + ": " + std::to_string(width) + "x" + std::to_string(height) +
-                                   " " + env_mapping_name(map.mapping()) + " environment map");
+  messages(MessageLevel::Debug, path + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " " + env_mapping_name(map.mapping()) + " environment map");
   return map;
 }
 
@@ -597,4 +598,4 @@ std::vector<std::vector<float>> resample_to_cube(const EnvMap& map, int face_siz
   return faces;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::io
