@@ -22,7 +22,6 @@
 #include "blob_scene.hpp"
 #include "compare.hpp"
 #include "env_light.hpp"
-#include "png_images.hpp"
 #include "prt/io/envmap.hpp"
 #include "prt/io/image_io.hpp"
 #include "prt/io/radiance_error.hpp"
@@ -92,7 +91,7 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
   const prt::io::LinearImage heat =
       render_mesh(camera, width, height, options.supersample, mesh, colours.data(),
                   [&](const glm::vec3&) { return backdrop; });
-  write_display_png(options.error_out, heat);
+  prt::io::write_display_png(options.error_out, heat);
   std::printf(
       "wrote %s: per-vertex |x - ref| / mean |ref|, colour scale 0 (black) .. %.3g (white): "
       "black, blue, magenta, orange, yellow, white\n",
@@ -148,7 +147,7 @@ std::vector<float> wavelet_light(const BlobScene& scene, const prt::io::EnvMap& 
 
 int run(const Options& options) {
   if (!options.montage.empty()) {
-    write_montage(options.montage, options.inputs, options.montage_columns, 4);
+    prt::io::write_montage(options.montage, options.inputs, options.montage_columns, 4);
     std::printf("wrote %s (%zu images, %d per row)\n", options.montage.c_str(),
                 options.inputs.size(), options.montage_columns);
     return 0;
