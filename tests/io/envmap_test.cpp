@@ -257,6 +257,49 @@ TEST(EnvMap, LoadsAWrittenHdrFile) {
   EXPECT_TRUE(warnings.empty());
 }
 
+// RGBE's largest exponent, 255, decodes to 2^119 .. 2^127 per channel (m * 2^(e - 136)): finite
+// and accepted, but said in one warning with the count and the largest value. Flat encoding
+// (under 8 wide), bytes written by hand.
+TEST(EnvMap, WarnsAboutTexelsAtTheLargestRgbeExponent) {
+  const TempDir dir("envmap_top_exponent");
+  const unsigned char texels[8][4] = {
+      {128, 128, 128, 129},  // 1.0
+      {128, 64, 32, 255},    // 2^126, 2^125, 2^124: counted
+      {255, 0, 0, 255},      // 255 * 2^119, the largest: counted
+      {255, 255, 255, 254},  // 255 * 2^118, just below 2^126 but exponent 254: not counted
+      {1, 0, 0, 255},        // 2^119, exponent 255 with a small mantissa: counted
+      {64, 64, 64, 130},     // 1.0
+      {64, 64, 64, 130},    {64, 64, 64, 130}};
+  std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
+  bytes.append(reinterpret_cast<const char*>(texels), sizeof texels);
+  const std::string path = dir.write("top_exponent.hdr", bytes);
+  std::vector<std::string> warnings;
+  const EnvMap map =
+      load_envmap(path, EnvMapping::LatLong, [&](MessageLevel level, const std::string& text) {
+        if (level == MessageLevel::Warning) warnings.push_back(text);
+      });
+  EXPECT_EQ(map.texel_value(2, 0).r, std::ldexp(255.0f, 119));
+  EXPECT_EQ(map.texel_value(0, 0), glm::vec3(1.0f));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find(path + ": 3 texels have the largest RGBE exponent (255), values up "
+                                    "to 1.69e+38"),
+            std::string::npos)
+      << warnings[0];
+
+  // Run-length encoded (8 wide, as stb writes it): five texels of ~1.5e38 (exponent 255).
+  std::vector<float> rgb(8 * 4 * 3, 0.5f);
+  for (int i = 9; i < 14; ++i) rgb[3 * i] = 1.5e38f;
+  const std::string rle = dir.file("top_exponent_rle.hdr");
+  ASSERT_NE(stbi_write_hdr(rle.c_str(), 8, 4, 3, rgb.data()), 0);
+  warnings.clear();
+  load_envmap(rle, EnvMapping::Auto, [&](MessageLevel level, const std::string& text) {
+    if (level == MessageLevel::Warning) warnings.push_back(text);
+  });
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find(": 5 texels have the largest RGBE exponent"), std::string::npos)
+      << warnings[0];
+}
+
 // ---- the two Debevec files of the Eucalyptus Grove --------------------------------------------
 
 using Sh9 = std::array<glm::dvec3, 9>;

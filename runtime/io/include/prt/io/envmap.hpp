@@ -134,8 +134,9 @@ inline float atan2_float(float y, float x) {
 }
 
 // Reads a Radiance .hdr file. NaN, Inf and negative texels are replaced by 0 and counted in one
-// warning through `messages`. Throws Error naming the file when it is not a readable .hdr image
-// or its shape fits no mapping.
+// warning through `messages`; texels at RGBE's largest exponent (255, values of 2^119 and more)
+// are kept and counted in another. Throws Error naming the file when it is not a readable .hdr
+// image or its shape fits no mapping.
 EnvMap load_envmap(const std::string& path, EnvMapping mapping, const MessageHook& messages = {});
 
 // A constant environment of the given radiance (lat-long, tiny): for furnace tests.
