@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::test {
 
@@ -88,8 +88,8 @@ struct RuntimeAsset {
 };
 
 // The runtime's per-frame light of a lat-long map: resample -> transform -> select(m).
-inline std::vector<float> runtime_light(const EnvMap& map, std::uint32_t param, std::uint32_t size,
-                                        std::uint32_t m = 0xFFFFFFFFu) {
+inline std::vector<float> runtime_light(const io::EnvMap& map, std::uint32_t param,
+                                        std::uint32_t size, std::uint32_t m = 0xFFFFFFFFu) {
   std::vector<float> light(std::size_t(prt_wavelet_coefficient_count(param, size)) * 4);
   EXPECT_EQ(prt_wavelet_resample_latlong(param, size, map.pixels().data(), map.width(),
                                          map.height(), nullptr, light.data()),

@@ -13,9 +13,9 @@
 #include <fstream>
 #include <thread>
 
-#include "prt/baker/image_io.hpp"
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sh/env_sh.hpp"
+#include "prt/io/image_io.hpp"
 
 namespace prt::bake::trade {
 
@@ -54,7 +54,7 @@ void check_runtime(prt_result result, const std::string& what) {
 namespace {
 
 // The runtime's projection must agree with the baker's, which reads the map in its own mapping
-// (EnvMap::texel) by separate code: a wrong face order or orientation would show here.
+// (io::EnvMap::texel) by separate code: a wrong face order or orientation would show here.
 void check_against_baker_projection(ShLight& light, std::uint32_t order, const Context& ctx) {
   const std::vector<float> baker = project_env_sh(*light.map, order).to_float();
   double largest = 0.0, difference = 0.0;
@@ -81,19 +81,20 @@ std::vector<float> ShLight::at_order(std::uint32_t order) const {
 ShLight load_sh_light(const std::string& path, std::uint32_t order, const Context& ctx) {
   ShLight light;
   light.name = stem(path);
-  light.map = std::make_unique<EnvMap>(load_envmap(path, EnvMapping::Auto, ctx));
-  const EnvMap& map = *light.map;
+  light.map =
+      std::make_unique<io::EnvMap>(io::load_envmap(path, io::EnvMapping::Auto, ctx.io_messages()));
+  const io::EnvMap& map = *light.map;
   light.rgb.resize(std::size_t(order) * order * 3);
   switch (map.mapping()) {
-    case EnvMapping::LatLong:
+    case io::EnvMapping::LatLong:
       light.projection = "runtime lat-long";
       check_runtime(prt_sh_project_latlong(order, map.width(), map.height(), map.pixels().data(),
                                            std::size_t(map.width()) * 3, light.rgb.data()),
                     path + ": prt_sh_project_latlong");
       break;
-    case EnvMapping::VerticalCross: {
+    case io::EnvMapping::VerticalCross: {
       light.projection = "runtime cube";
-      const auto faces = resample_to_cube(map, map.face_size());
+      const auto faces = io::resample_to_cube(map, map.face_size());
       const float* pointers[6];
       for (int i = 0; i < 6; ++i) pointers[i] = faces[i].data();
       check_runtime(prt_sh_project_cube(order, map.face_size(), pointers, light.rgb.data()),
@@ -101,7 +102,7 @@ ShLight load_sh_light(const std::string& path, std::uint32_t order, const Contex
       break;
     }
     default:  // the runtime takes lat-long and cube maps only; the baker projects the others
-      light.projection = "baker " + std::string(env_mapping_name(map.mapping()));
+      light.projection = "baker " + std::string(io::env_mapping_name(map.mapping()));
       light.rgb = project_env_sh(map, order).to_float();
       return light;
   }
@@ -118,7 +119,7 @@ namespace {
 bool cached_radiance(const std::string& path, std::vector<glm::vec3>* radiance) {
   if (!fs::exists(path)) return false;
   try {
-    *radiance = read_npy_vec3(path);
+    *radiance = io::read_npy_vec3(path);
     return true;
   } catch (const Error&) {
     return false;
@@ -134,7 +135,7 @@ std::string albedo_key(const std::string& albedo) {
 
 }  // namespace
 
-Reference cached_reference(const Scene& scene, const EnvMap& map, const std::string& map_name,
+Reference cached_reference(const Scene& scene, const io::EnvMap& map, const std::string& map_name,
                            int bounces, const TradeInput& input, const Context& ctx) {
   const std::string key = stem(input.scene) + "_" + map_name + "_b" + std::to_string(bounces) +
                           "_spp" + std::to_string(input.ref_spp) + "_seed" +
@@ -160,7 +161,7 @@ Reference cached_reference(const Scene& scene, const EnvMap& map, const std::str
   VertexRadiance result = renderer.render_vertices(ctx);
   ctx.info(format("  noise %.3f %%, ", 100 * result.relative_rmse) +
            format("%.1f s", result.stats.seconds));
-  write_npy_vec3(npy, result.radiance);
+  io::write_npy_vec3(npy, result.radiance);
   std::ofstream noise_out(noise_file);
   noise_out.precision(17);
   noise_out << result.relative_rmse << "\n";

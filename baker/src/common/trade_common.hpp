@@ -16,9 +16,9 @@
 #include <glm/glm.hpp>
 
 #include "prt/baker/context.hpp"
-#include "prt/baker/envmap.hpp"
 #include "prt/baker/scene.hpp"
 #include "prt/baker/technique.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::trade {
 
@@ -40,7 +40,7 @@ void check_runtime(prt_result result, const std::string& what);
 // projected by the baker.
 struct ShLight {
   std::string name;
-  std::unique_ptr<EnvMap> map;
+  std::unique_ptr<io::EnvMap> map;
   std::string projection;  // which projection made `rgb`
   std::vector<float> rgb;  // coefficient-major RGB
 
@@ -57,7 +57,7 @@ struct Reference {
   std::vector<glm::vec3> radiance;
   double noise = 0.0;  // the renderer's own relative RMSE estimate
 };
-Reference cached_reference(const Scene& scene, const EnvMap& map, const std::string& map_name,
+Reference cached_reference(const Scene& scene, const io::EnvMap& map, const std::string& map_name,
                            int bounces, const TradeInput& input, const Context& ctx);
 
 // The error with the reference's noise taken out: the two are independent, so their squares add.

@@ -17,9 +17,9 @@
 #include <tuple>
 #include <vector>
 
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/io/radiance_error.hpp"
 
 #include "../common/trade_common.hpp"
 #include "sh_technique.hpp"
@@ -142,10 +142,11 @@ Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const 
   row.simd_ms = time_sh_shading(asset, PRT_BACKEND_SIMD, l, vertices, frames, &simd_shaded);
   row.cpu_ms = time_sh_shading(asset, PRT_BACKEND_CPU, l, vertices, frames, &shaded);
   const std::vector<glm::vec3> radiance = as_vec3(shaded);
-  row.error = relative_rmse(radiance, ref.radiance);
+  row.error = io::relative_rmse(radiance, ref.radiance);
   row.ref_noise = ref.noise;
   // What 16/8-bit storage costs in radiance: runtime shading vs the float transfer's.
-  row.quant_shading_error = relative_rmse(radiance, shade_sh_transfer(baked.transfer, as_vec3(l)));
+  row.quant_shading_error =
+      io::relative_rmse(radiance, shade_sh_transfer(baked.transfer, as_vec3(l)));
   row.blob_bytes = baked.blob.size();
   row.bake_seconds = baked.transfer.seconds;
   row.rays_traced = static_cast<double>(baked.transfer.rays_traced);
@@ -271,7 +272,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
      << "-bit storage adds to the shading (runtime vs float transfer).\n\n";
   md << "Machine: " << machine_description(threads) << ".\n";
   for (const ShLight& light : lights) {
-    md << "\n## " << light.name << " (" << env_mapping_name(light.map->mapping()) << ", "
+    md << "\n## " << light.name << " (" << io::env_mapping_name(light.map->mapping()) << ", "
        << light.map->width() << "x" << light.map->height() << ", light by " << light.projection
        << ")\n\n";
     write_markdown_header(md, kMarkdownColumns);

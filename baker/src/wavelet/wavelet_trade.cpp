@@ -27,10 +27,10 @@
 #include <tuple>
 #include <vector>
 
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/wavelet/wavelet_blob.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/radiance_error.hpp"
 
 #include "wavelet_technique.hpp"
 #include "wavelet_trade.hpp"
@@ -47,13 +47,13 @@ std::string terms_text(std::uint32_t m) {
 // The relative RMSE over the measured vertices (every `stride`-th).
 double subset_rmse(const std::vector<glm::vec3>& estimate, const std::vector<glm::vec3>& reference,
                    std::uint32_t stride) {
-  if (stride <= 1) return relative_rmse(estimate, reference);
+  if (stride <= 1) return io::relative_rmse(estimate, reference);
   std::vector<glm::vec3> a, b;
   for (std::size_t v = 0; v < estimate.size() && v < reference.size(); v += stride) {
     a.push_back(estimate[v]);
     b.push_back(reference[v]);
   }
-  return relative_rmse(a, b);
+  return io::relative_rmse(a, b);
 }
 
 std::uint32_t base_keep(const Settings& o) {
@@ -181,11 +181,12 @@ TradeLight load_trade_light(const std::string& path, const Scene& scene, const S
   for (std::uint32_t order : o.sh_orders) max_order = std::max(max_order, order);
   TradeLight light;
   light.sh = load_sh_light(path, max_order, ctx);
-  const EnvMap& map = *light.sh.map;
-  light.latlong = map.mapping() == EnvMapping::LatLong;
+  const io::EnvMap& map = *light.sh.map;
+  light.latlong = map.mapping() == io::EnvMapping::LatLong;
   if (!light.latlong) {
-    light.face_size = map.mapping() == EnvMapping::VerticalCross ? map.face_size() : kProbeFaceSize;
-    for (const std::vector<float>& face : resample_to_cube(map, light.face_size))
+    light.face_size =
+        map.mapping() == io::EnvMapping::VerticalCross ? map.face_size() : kProbeFaceSize;
+    for (const std::vector<float>& face : io::resample_to_cube(map, light.face_size))
       light.faces.insert(light.faces.end(), face.begin(), face.end());
   }
   light.reference = cached_reference(scene, map, light.sh.name, 0, input, ctx);
@@ -194,7 +195,7 @@ TradeLight load_trade_light(const std::string& path, const Scene& scene, const S
 
 // The map's texel values on a parameterisation (prt_wavelet_resample_*), RGBA.
 prt_result resample(const TradeLight& light, std::uint32_t param, std::uint32_t size, float* rgba) {
-  const EnvMap& map = *light.sh.map;
+  const io::EnvMap& map = *light.sh.map;
   if (light.latlong)
     return prt_wavelet_resample_latlong(param, size, map.pixels().data(), map.width(), map.height(),
                                         nullptr, rgba);

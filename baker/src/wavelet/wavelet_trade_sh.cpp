@@ -44,7 +44,7 @@ QuantizedShTransfer grey_if_possible(QuantizedShTransfer q) {
 }
 
 double time_sh_projection(const TradeLight& light, std::uint32_t order, int frames) {
-  const EnvMap& map = *light.sh.map;
+  const io::EnvMap& map = *light.sh.map;
   std::vector<float> rgb(std::size_t(order) * order * 3);
   const float* faces[6];
   const std::size_t face_floats = std::size_t(light.face_size) * light.face_size * 3;

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 #include "wavelet_trade.hpp"
 
@@ -249,7 +249,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
                                                                      {"sh", "sh orders"}};
   for (const TradeLight& light : lights) {
     const std::string& name = light.sh.name;
-    md << "\n## " << name << " (" << env_mapping_name(light.sh.map->mapping()) << ", "
+    md << "\n## " << name << " (" << io::env_mapping_name(light.sh.map->mapping()) << ", "
        << light.sh.map->width() << "x" << light.sh.map->height() << "; reference noise "
        << pct(light.reference.noise) << " %)\n";
     for (const auto& [sweep, title] : sections) {

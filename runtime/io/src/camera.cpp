@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "prt/baker/camera.hpp"
+#include "prt/io/camera.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace prt::bake {
+namespace prt::io {
 
 Camera Camera::look_at(const glm::vec3& eye, const glm::vec3& target, float vertical_fov_degrees,
                        float aspect) {
@@ -39,4 +39,4 @@ glm::vec3 Camera::direction(float sx, float sy) const {
   return glm::normalize(forward + x * right + y * up);
 }
 
-}  // namespace prt::bake
+}  // namespace prt::io

@@ -4,9 +4,9 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake::detail {
+namespace prt::io::detail {
 namespace {
 
 class ByteReader {
@@ -31,12 +31,15 @@ class ByteReader {
     }
     return bytes_[pos_++];
   }
-  void skip(std::size_t n, const char* what, long scanline) {
+  // The next n bytes (skipped over).
+  const unsigned char* take(std::size_t n, const char* what, long scanline) {
     if (n > remaining()) {
       throw Error(path_ + ": truncated .hdr: the pixel data ends in scanline " +
                   std::to_string(scanline) + " (" + what + ")");
     }
+    const unsigned char* start = bytes_.data() + pos_;
     pos_ += n;
+    return start;
   }
 
  private:
@@ -45,11 +48,15 @@ class ByteReader {
   std::size_t pos_ = 0;
 };
 
-// Flat RGBE from the current position: texels x 4 bytes.
-void check_flat(ByteReader& in, std::size_t texels, long width) {
-  if (texels * 4 > in.remaining()) {
-    in.skip(texels * 4, "flat RGBE texels", static_cast<long>(in.remaining() / 4 / width));
-  }
+constexpr unsigned kTopExponent = 255;
+
+// Flat RGBE from the current position: texels x 4 bytes. Returns how many have the top exponent.
+std::size_t check_flat(ByteReader& in, std::size_t texels, long width) {
+  const long scanline = static_cast<long>(in.remaining() / 4 / width);
+  const unsigned char* rgbe = in.take(texels * 4, "flat RGBE texels", scanline);
+  std::size_t top = 0;
+  for (std::size_t i = 0; i < texels; ++i) top += rgbe[4 * i + 3] == kTopExponent ? 1 : 0;
+  return top;
 }
 
 }  // namespace
@@ -63,7 +70,8 @@ bool has_radiance_signature(const std::vector<unsigned char>& bytes) {
   return starts("#?RADIANCE") || starts("#?RGBE");
 }
 
-void check_radiance_stream(const std::string& path, const std::vector<unsigned char>& bytes) {
+RadianceStreamSummary check_radiance_stream(const std::string& path,
+                                            const std::vector<unsigned char>& bytes) {
   ByteReader in(path, bytes);
   in.line();  // signature, checked by has_radiance_signature
   bool rgbe = false;
@@ -91,15 +99,21 @@ void check_radiance_stream(const std::string& path, const std::vector<unsigned c
                 " is invalid");
   }
   const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  if (width < 8 || width >= 32768) return check_flat(in, texels, width);
+  RadianceStreamSummary summary;
+  if (width < 8 || width >= 32768) {
+    summary.top_exponent_texels = check_flat(in, texels, width);
+    return summary;
+  }
   for (long y = 0; y < height; ++y) {
     const unsigned c1 = in.byte("scanline header", y), c2 = in.byte("scanline header", y);
     unsigned length = in.byte("scanline header", y);
     if (c1 != 2 || c2 != 2 || (length & 0x80)) {
       // Not run-length encoded: stb reads the whole image as flat texels from here, the
       // three bytes just read being the first texel's.
-      in.byte("flat RGBE texel", y);
-      return check_flat(in, texels - 1, width);
+      const unsigned exponent = in.byte("flat RGBE texel", y);
+      summary.top_exponent_texels +=
+          (exponent == kTopExponent ? 1 : 0) + check_flat(in, texels - 1, width);
+      return summary;
     }
     length = (length << 8) | in.byte("scanline header", y);
     if (static_cast<long>(length) != width) {
@@ -110,20 +124,24 @@ void check_radiance_stream(const std::string& path, const std::vector<unsigned c
       long x = 0;
       while (x < width) {
         unsigned count = in.byte("run length", y);
+        std::size_t top = 0;
         if (count > 128) {
           count -= 128;
-          in.byte("run value", y);
+          top = in.byte("run value", y) == kTopExponent ? count : 0;
         } else {
-          in.skip(count, "literal run", y);
+          const unsigned char* literal = in.take(count, "literal run", y);
+          for (unsigned i = 0; i < count; ++i) top += literal[i] == kTopExponent ? 1 : 0;
         }
         if (static_cast<long>(count) > width - x) {
           throw Error(path + ": corrupt .hdr: a run in scanline " + std::to_string(y) +
                       " is longer than the scanline");
         }
+        if (channel == 3) summary.top_exponent_texels += top;
         x += count;
       }
     }
   }
+  return summary;
 }
 
-}  // namespace prt::bake::detail
+}  // namespace prt::io::detail

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Writing the reference renderer's outputs: per-vertex radiance as NumPy .npy, images as
-// tone-mapped sRGB PNG or linear Radiance .hdr.
+// Image and array files: per-vertex radiance as NumPy .npy, images as tone-mapped sRGB PNG or
+// linear Radiance .hdr (the reference renderer's outputs and the viewers'), display-colour PNGs
+// and montages.
 #pragma once
 
 #include <cstdint>
@@ -9,7 +10,9 @@
 
 #include <glm/glm.hpp>
 
-namespace prt::bake {
+#include "prt/io/error.hpp"
+
+namespace prt::io {
 
 // Linear RGB radiance, row-major from the top row.
 struct LinearImage {
@@ -42,4 +45,15 @@ std::vector<std::uint8_t> tone_map_srgb8(const LinearImage& image, float exposur
 // linear radiance (no exposure). Throws Error naming the file on any other extension or failure.
 void write_image(const std::string& path, const LinearImage& image, float exposure_ev);
 
-}  // namespace prt::bake
+// Writes `image` as an 8-bit RGB PNG, its values taken as display colours already: sRGB-encoded
+// in [0,1] (clamped; non-finite values show as 1), as a heat map or false colours are. Throws
+// Error naming the file on failure.
+void write_display_png(const std::string& path, const LinearImage& image);
+
+// Tiles `inputs` (PNG files of one size, row-major, `columns` per row) with `gap` black pixels
+// between tiles into the PNG `output`. Throws Error naming the file that cannot be read or whose
+// size differs from the first.
+void write_montage(const std::string& output, const std::vector<std::string>& inputs, int columns,
+                   int gap);
+
+}  // namespace prt::io

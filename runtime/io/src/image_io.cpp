@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "prt/baker/image_io.hpp"
+#include "prt/io/image_io.hpp"
 
 #include <stb_image_write.h>
 
@@ -12,9 +12,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
 
 std::uint32_t little_endian(const unsigned char* p, int bytes) {
@@ -203,4 +203,4 @@ std::vector<glm::vec3> read_npy_vec3(const std::string& path) {
   return values;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::io

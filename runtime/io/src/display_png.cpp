@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-#include "png_images.hpp"
+// PNGs that are not tone mapped: display colours as they are, and montages of PNG files.
+#include "prt/io/image_io.hpp"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -10,20 +11,20 @@
 #include <cstring>
 #include <memory>
 
-#include "blob_scene.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::view {
+namespace prt::io {
 namespace {
 
 void write_png(const std::string& path, int width, int height, const std::uint8_t* rgb) {
   if (!stbi_write_png(path.c_str(), width, height, 3, rgb, width * 3)) {
-    throw ViewerError(path + ": cannot write the PNG file");
+    throw Error(path + ": cannot write the PNG file");
   }
 }
 
 }  // namespace
 
-void write_display_png(const std::string& path, const prt::bake::LinearImage& image) {
+void write_display_png(const std::string& path, const LinearImage& image) {
   std::vector<std::uint8_t> rgb(image.pixels.size() * 3);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
@@ -37,7 +38,8 @@ void write_display_png(const std::string& path, const prt::bake::LinearImage& im
 
 void write_montage(const std::string& output, const std::vector<std::string>& inputs, int columns,
                    int gap) {
-  if (inputs.empty() || columns < 1) throw ViewerError("--montage: no input images");
+  if (inputs.empty() || columns < 1)
+    throw Error(output + ": a montage needs at least one input image");
   struct Free {
     void operator()(unsigned char* p) const { stbi_image_free(p); }
   };
@@ -47,15 +49,15 @@ void write_montage(const std::string& output, const std::vector<std::string>& in
     int w = 0, h = 0, channels = 0;
     std::unique_ptr<unsigned char, Free> pixels(stbi_load(path.c_str(), &w, &h, &channels, 3));
     if (!pixels)
-      throw ViewerError(path + ": cannot read the image (" +
-                        (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
+      throw Error(path + ": cannot read the image (" +
+                  (stbi_failure_reason() ? stbi_failure_reason() : "?") + ")");
     if (tiles.empty()) {
       width = w;
       height = h;
     } else if (w != width || h != height) {
-      throw ViewerError(path + ": " + std::to_string(w) + "x" + std::to_string(h) +
-                        " differs from the first image's " + std::to_string(width) + "x" +
-                        std::to_string(height));
+      throw Error(path + ": " + std::to_string(w) + "x" + std::to_string(h) +
+                  " differs from the first image's " + std::to_string(width) + "x" +
+                  std::to_string(height));
     }
     tiles.push_back(std::move(pixels));
   }
@@ -76,4 +78,4 @@ void write_montage(const std::string& output, const std::vector<std::string>& in
   write_png(output, out_width, out_height, rgb.data());
 }
 
-}  // namespace prt::view
+}  // namespace prt::io

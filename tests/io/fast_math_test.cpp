@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -39,4 +39,4 @@ TEST(Atan2Float, AxesAndSignedZerosFollowAtan2) {
 }
 
 }  // namespace
-}  // namespace prt::bake
+}  // namespace prt::io

@@ -13,9 +13,9 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 
 enum class EnvMapping {
   Auto,           // detect from the image shape: 2:1 lat-long, 3:4 vertical cross, 1:1 angular
@@ -134,9 +134,10 @@ inline float atan2_float(float y, float x) {
 }
 
 // Reads a Radiance .hdr file. NaN, Inf and negative texels are replaced by 0 and counted in one
-// warning through ctx. Throws Error naming the file when it is not a readable .hdr image or its
-// shape fits no mapping.
-EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx);
+// warning through `messages`; texels at RGBE's largest exponent (255, values of 2^119 and more)
+// are kept and counted in another. Throws Error naming the file when it is not a readable .hdr
+// image or its shape fits no mapping.
+EnvMap load_envmap(const std::string& path, EnvMapping mapping, const MessageHook& messages = {});
 
 // A constant environment of the given radiance (lat-long, tiny): for furnace tests.
 EnvMap constant_envmap(const glm::vec3& radiance);
@@ -146,4 +147,4 @@ EnvMap constant_envmap(const glm::vec3& radiance);
 // cross at its own face size the texel centres coincide, so this is the cross's texels.
 std::vector<std::vector<float>> resample_to_cube(const EnvMap& map, int face_size);
 
-}  // namespace prt::bake
+}  // namespace prt::io

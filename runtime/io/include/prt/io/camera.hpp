@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-namespace prt::bake {
+namespace prt::io {
 
 struct Camera {
   glm::vec3 eye{0.0f, 0.0f, 1.0f};
@@ -26,4 +26,4 @@ struct Camera {
   glm::vec3 direction(float sx, float sy) const;
 };
 
-}  // namespace prt::bake
+}  // namespace prt::io

@@ -14,11 +14,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "prt/baker/envmap.hpp"
-#include "test_files.hpp"
+#include "prt/io/envmap.hpp"
+#include "support/test_files.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
+
+using prt_test::shared_asset;
+using prt_test::TempDir;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -242,17 +245,59 @@ TEST(EnvMap, LoadsAWrittenHdrFile) {
   for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.5f + 0.25f * static_cast<float>(i % 7);
   ASSERT_NE(stbi_write_hdr(path.c_str(), 8, 4, 3, rgb.data()), 0);
   std::vector<std::string> warnings;
-  Context ctx;
-  ctx.log = [&](LogLevel level, const std::string& text) {
-    if (level == LogLevel::Warning) warnings.push_back(text);
+  const MessageHook messages = [&](MessageLevel level, const std::string& text) {
+    if (level == MessageLevel::Warning) warnings.push_back(text);
   };
-  const EnvMap map = load_envmap(path, EnvMapping::Auto, ctx);
+  const EnvMap map = load_envmap(path, EnvMapping::Auto, messages);
   EXPECT_EQ(map.mapping(), EnvMapping::LatLong);
   ASSERT_EQ(map.pixels().size(), rgb.size());
   for (std::size_t i = 0; i < rgb.size(); ++i) {
     EXPECT_NEAR(map.pixels()[i], rgb[i], rgb[i] / 128.0f);  // RGBE: 8-bit shared-exponent mantissa
   }
   EXPECT_TRUE(warnings.empty());
+}
+
+// RGBE's largest exponent, 255, decodes to 2^119 .. 2^127 per channel (m * 2^(e - 136)): finite
+// and accepted, but said in one warning with the count and the largest value. Flat encoding
+// (under 8 wide), bytes written by hand.
+TEST(EnvMap, WarnsAboutTexelsAtTheLargestRgbeExponent) {
+  const TempDir dir("envmap_top_exponent");
+  const unsigned char texels[8][4] = {
+      {128, 128, 128, 129},  // 1.0
+      {128, 64, 32, 255},    // 2^126, 2^125, 2^124: counted
+      {255, 0, 0, 255},      // 255 * 2^119, the largest: counted
+      {255, 255, 255, 254},  // 255 * 2^118, just below 2^126 but exponent 254: not counted
+      {1, 0, 0, 255},        // 2^119, exponent 255 with a small mantissa: counted
+      {64, 64, 64, 130},     // 1.0
+      {64, 64, 64, 130},    {64, 64, 64, 130}};
+  std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
+  bytes.append(reinterpret_cast<const char*>(texels), sizeof texels);
+  const std::string path = dir.write("top_exponent.hdr", bytes);
+  std::vector<std::string> warnings;
+  const EnvMap map =
+      load_envmap(path, EnvMapping::LatLong, [&](MessageLevel level, const std::string& text) {
+        if (level == MessageLevel::Warning) warnings.push_back(text);
+      });
+  EXPECT_EQ(map.texel_value(2, 0).r, std::ldexp(255.0f, 119));
+  EXPECT_EQ(map.texel_value(0, 0), glm::vec3(1.0f));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find(path + ": 3 texels have the largest RGBE exponent (255), values up "
+                                    "to 1.69e+38"),
+            std::string::npos)
+      << warnings[0];
+
+  // Run-length encoded (8 wide, as stb writes it): five texels of ~1.5e38 (exponent 255).
+  std::vector<float> rgb(8 * 4 * 3, 0.5f);
+  for (int i = 9; i < 14; ++i) rgb[3 * i] = 1.5e38f;
+  const std::string rle = dir.file("top_exponent_rle.hdr");
+  ASSERT_NE(stbi_write_hdr(rle.c_str(), 8, 4, 3, rgb.data()), 0);
+  warnings.clear();
+  load_envmap(rle, EnvMapping::Auto, [&](MessageLevel level, const std::string& text) {
+    if (level == MessageLevel::Warning) warnings.push_back(text);
+  });
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find(": 5 texels have the largest RGBE exponent"), std::string::npos)
+      << warnings[0];
 }
 
 // ---- the two Debevec files of the Eucalyptus Grove --------------------------------------------
@@ -299,9 +344,8 @@ TEST(EnvMapAssets, ProbeAndCrossOfTheSameSceneAgree) {
   const std::string probe_path = shared_asset("envmaps/rnl_probe.hdr");
   const std::string cross_path = shared_asset("envmaps/rnl_cross.hdr");
   if (probe_path.empty() || cross_path.empty()) GTEST_SKIP() << "shared assets not found";
-  const Context ctx;
-  const Sh9 probe = project_sh9(load_envmap(probe_path, EnvMapping::Auto, ctx));
-  const Sh9 cross = project_sh9(load_envmap(cross_path, EnvMapping::Auto, ctx));
+  const Sh9 probe = project_sh9(load_envmap(probe_path, EnvMapping::Auto));
+  const Sh9 cross = project_sh9(load_envmap(cross_path, EnvMapping::Auto));
   const glm::dvec3 exposure = probe[0] / cross[0];  // the files may differ in exposure
   // Measured agreement is ~0.003 % of the largest coefficient; 0.2 % leaves room.
   const double tol = 0.002 * largest(probe);
@@ -320,7 +364,7 @@ TEST(EnvMapAssets, ProbeReproducesPublishedEucalyptusGroveSh9) {
   const auto table = nlohmann::json::parse(std::ifstream(table_path));
   const auto& published = table["environments"]["eucalyptus_grove"]["coefficients"];
   const char* names[9] = {"L00", "L1m1", "L10", "L11", "L2m2", "L2m1", "L20", "L21", "L22"};
-  const Sh9 sh = project_sh9(load_envmap(probe_path, EnvMapping::Auto, Context{}));
+  const Sh9 sh = project_sh9(load_envmap(probe_path, EnvMapping::Auto));
   // The table holds 1/10 of the raw projection (its "scale" note).
   Sh9 want{};
   for (int k = 0; k < 9; ++k) {
@@ -347,7 +391,7 @@ TEST(EnvMapAssets, EveryShippedMapLoadsWithTheRightMapping) {
   for (const Case& c : cases) {
     const std::string path = shared_asset(c.file);
     if (path.empty()) GTEST_SKIP() << "shared assets not found";
-    const EnvMap map = load_envmap(path, EnvMapping::Auto, Context{});
+    const EnvMap map = load_envmap(path, EnvMapping::Auto);
     EXPECT_EQ(map.mapping(), c.mapping) << c.file;
     EXPECT_EQ(map.width(), c.width);
     EXPECT_EQ(map.height(), c.height);
@@ -360,7 +404,7 @@ TEST(EnvMapAssets, EveryShippedMapLoadsWithTheRightMapping) {
 TEST(EnvMapAssets, MondelloSunHoldsHalfThePower) {
   const std::string path = shared_asset("envmaps/spiaggia_di_mondello_1k.hdr");
   if (path.empty()) GTEST_SKIP() << "shared assets not found";
-  const EnvMap map = load_envmap(path, EnvMapping::Auto, Context{});
+  const EnvMap map = load_envmap(path, EnvMapping::Auto);
   std::vector<std::pair<double, double>> texels;  // (luminance, solid angle)
   double total = 0.0;
   for (int y = 0; y < map.height(); ++y) {
@@ -384,4 +428,4 @@ TEST(EnvMapAssets, MondelloSunHoldsHalfThePower) {
 }
 
 }  // namespace
-}  // namespace prt::bake
+}  // namespace prt::io

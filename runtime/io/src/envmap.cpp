@@ -2,7 +2,7 @@
 // Environment maps: the three mappings of formats/SPEC.md §Environment maps. World frame: glTF,
 // +Y up, the "front" of every mapping (lat-long and probe image centre, cross centre face) at -Z,
 // image right = +X, image up = +Y.
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 #include <stb_image.h>
 
@@ -13,9 +13,9 @@
 #include <iterator>
 
 #include "hdr_stream.hpp"
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -516,7 +516,23 @@ void rotation_about_y_row_major(double degrees, float out[9]) {
   }
 }
 
-EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& ctx) {
+namespace {
+
+// Texels at RGBE's largest exponent decode to 2^119 .. 2^127 per channel: finite, but far above
+// any real radiance, and a sum of two of them is already infinite in single precision.
+std::string top_exponent_warning(const std::string& path, std::size_t texels, float largest) {
+  char text[200];
+  std::snprintf(
+      text, sizeof text,
+      ": %zu %s the largest RGBE exponent (255), values up to %.3g; no real scene is that "
+      "bright, and sums over such texels overflow single precision",
+      texels, texels == 1 ? "texel has" : "texels have", static_cast<double>(largest));
+  return path + text;
+}
+
+}  // namespace
+
+EnvMap load_envmap(const std::string& path, EnvMapping mapping, const MessageHook& messages) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error(path + ": cannot open file");
   const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
@@ -525,7 +541,7 @@ EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& c
       !stbi_is_hdr_from_memory(bytes.data(), static_cast<int>(bytes.size()))) {
     throw Error(path + ": not a Radiance .hdr image (no #?RADIANCE / #?RGBE signature)");
   }
-  detail::check_radiance_stream(path, bytes);
+  const detail::RadianceStreamSummary stream = detail::check_radiance_stream(path, bytes);
   int width = 0, height = 0, channels = 0;
   float* data = stbi_loadf_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
                                        &height, &channels, 3);
@@ -535,13 +551,19 @@ EnvMap load_envmap(const std::string& path, EnvMapping mapping, const Context& c
   }
   std::vector<float> rgb(data, data + static_cast<std::size_t>(width) * height * 3);
   stbi_image_free(data);
+  const float largest = *std::max_element(rgb.begin(), rgb.end());
   EnvMap map(width, height, std::move(rgb), mapping, path);
-  if (map.sanitized_texels() > 0) {
-    ctx.warn(path + ": replaced " + std::to_string(map.sanitized_texels()) +
-             " texels holding NaN, infinite or negative values by 0");
+  if (!messages) return map;
+  if (stream.top_exponent_texels > 0) {
+    messages(MessageLevel::Warning,
+             top_exponent_warning(path, stream.top_exponent_texels, largest));
   }
-  ctx.message(LogLevel::Debug, path + ": " + std::to_string(width) + "x" + std::to_string(height) +
-                                   " " + env_mapping_name(map.mapping()) + " environment map");
+  if (map.sanitized_texels() > 0) {
+    messages(MessageLevel::Warning, path + ": replaced " + std::to_string(map.sanitized_texels()) +
+                                        " texels holding NaN, infinite or negative values by 0");
+  }
+  messages(MessageLevel::Debug, path + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " " + env_mapping_name(map.mapping()) + " environment map");
   return map;
 }
 
@@ -597,4 +619,4 @@ std::vector<std::vector<float>> resample_to_cube(const EnvMap& map, int face_siz
   return faces;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::io

@@ -14,9 +14,9 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/context.hpp"
+#include "prt/io/error.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 
 // Throws Error when the sizes differ or the reference is all zero.
 inline double relative_rmse(const std::vector<glm::vec3>& estimate,
@@ -35,4 +35,4 @@ inline double relative_rmse(const std::vector<glm::vec3>& estimate,
   return std::sqrt(difference_sq / reference_sq);
 }
 
-}  // namespace prt::bake
+}  // namespace prt::io

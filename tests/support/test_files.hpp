@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: MIT
-// Test helpers: the shared assets folder (tests skip when it is missing) and a scratch folder
-// for files the tests write (broken inputs are made on the fly, never stored in the repo).
+// Test helpers: the shared assets folder (tests skip when it is missing), a scratch folder for
+// files the tests write (broken inputs are made on the fly, never stored in the repo) and reading
+// a file whole.
 #pragma once
 
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
-namespace prt::bake {
+namespace prt_test {
 
 // Full path of shared/assets/<relative>, or "" when it does not exist.
 inline std::string shared_asset(const std::string& relative) {
@@ -22,7 +24,7 @@ class TempDir {
  public:
   explicit TempDir(const std::string& name)
       : path_(std::filesystem::temp_directory_path() /
-              ("prt_import_" + name + "_" + std::to_string(::getpid()))) {
+              ("prt_test_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -49,4 +51,4 @@ inline std::string read_bytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-}  // namespace prt::bake
+}  // namespace prt_test
