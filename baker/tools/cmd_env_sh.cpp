@@ -31,7 +31,8 @@ void add_env_sh_command(CLI::App& app, CommandEnv& env) {
       ->check(CLI::IsMember({"auto", "latlong", "cross", "probe"}));
   cmd->callback([options, &env] {
     const Context ctx = env.context();
-    const EnvMap map = load_envmap(options->map, parse_env_mapping(options->env_mapping), ctx);
+    const io::EnvMap map = io::load_envmap(
+        options->map, io::parse_env_mapping(options->env_mapping), ctx.io_messages());
     const EnvSh sh = project_env_sh(map, options->order);
     std::printf("%s\n", env_sh_json(map, sh).c_str());
   });

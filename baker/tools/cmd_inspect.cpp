@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "command.hpp"
-#include "prt/baker/envmap.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::cli {
 namespace {
@@ -55,7 +55,7 @@ void print_scene(const Scene& scene, bool per_mesh) {
   }
 }
 
-void print_envmap(const EnvMap& map) {
+void print_envmap(const io::EnvMap& map) {
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
   glm::dvec3 integral(0.0);
   double solid_angle = 0.0;
@@ -73,7 +73,7 @@ void print_envmap(const EnvMap& map) {
   const glm::dvec3 mean = integral / std::max(solid_angle, 1e-30);
   std::printf("environment: %s\n", map.source().c_str());
   std::printf("  size:       %d x %d\n", map.width(), map.height());
-  std::printf("  mapping:    %s\n", env_mapping_name(map.mapping()));
+  std::printf("  mapping:    %s\n", io::env_mapping_name(map.mapping()));
   std::printf("  radiance:   min (%g, %g, %g)  max (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y,
               hi.z);
   std::printf("  mean:       (%g, %g, %g) over %.5f sr\n", mean.x, mean.y, mean.z, solid_angle);
@@ -101,13 +101,13 @@ void add_inspect_command(CLI::App& app, CommandEnv& env) {
     const Context ctx = env.context();
     // Load both before printing, so broken input prints nothing but the error.
     std::unique_ptr<Scene> scene;
-    std::unique_ptr<EnvMap> map;
+    std::unique_ptr<io::EnvMap> map;
     if (!options->scene.empty()) {
       scene = std::make_unique<Scene>(import_scene(options->scene, ctx));
     }
     if (!options->env.empty()) {
-      map = std::make_unique<EnvMap>(
-          load_envmap(options->env, parse_env_mapping(options->env_mapping), ctx));
+      map = std::make_unique<io::EnvMap>(io::load_envmap(
+          options->env, io::parse_env_mapping(options->env_mapping), ctx.io_messages()));
     }
     if (scene) print_scene(*scene, options->per_mesh);
     if (map) print_envmap(*map);

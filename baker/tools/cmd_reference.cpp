@@ -55,19 +55,20 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
   }
   int width = 0, height = 0;
   parse_image_size(options.image_size, &width, &height);
-  const EnvMapping mapping = parse_env_mapping(options.env_mapping);
+  const io::EnvMapping mapping = io::parse_env_mapping(options.env_mapping);
 
   const Scene scene = import_scene(options.scene, ctx);
-  EnvMap env_map = options.env.empty() ? constant_envmap(glm::vec3(1.0f))
-                                       : load_envmap(options.env, mapping, ctx);
+  io::EnvMap env_map = options.env.empty()
+                           ? io::constant_envmap(glm::vec3(1.0f))
+                           : io::load_envmap(options.env, mapping, ctx.io_messages());
   if (options.env.empty()) ctx.info("no --env: a constant white environment of radiance 1");
-  env_map.set_rotation(rotation_about_y(options.env_rotate_degrees));
+  env_map.set_rotation(io::rotation_about_y(options.env_rotate_degrees));
   const ReferenceRenderer renderer(scene, env_map, settings, ctx);
 
   ReferenceReport report;
   report.scene = options.scene;
   report.env = options.env.empty() ? "constant 1" : options.env;
-  report.env_mapping = env_mapping_name(env_map.mapping());
+  report.env_mapping = io::env_mapping_name(env_map.mapping());
   report.env_rotate_degrees = options.env_rotate_degrees;
   report.vertices = scene.vertex_count();
   report.triangles = scene.triangle_count();
@@ -85,7 +86,7 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
              format("%.3g rays in %.1f s (%.2f Mrays/s)", static_cast<double>(result.stats.rays),
                     result.stats.seconds, result.stats.rays_per_second() * 1e-6));
     if (!options.vertex_out.empty()) {
-      write_npy_vec3(options.vertex_out, result.radiance);
+      io::write_npy_vec3(options.vertex_out, result.radiance);
       ctx.info("wrote " + options.vertex_out);
     }
     result.radiance.clear();
@@ -94,12 +95,12 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
   }
   if (!options.image_outs.empty()) {
     const EmbreeScene& rays = renderer.embree_scene();
-    const Camera camera =
-        Camera::auto_frame(rays.bounds_lo(), rays.bounds_hi(), static_cast<float>(width) / height);
-    const LinearImage image =
+    const io::Camera camera = io::Camera::auto_frame(rays.bounds_lo(), rays.bounds_hi(),
+                                                     static_cast<float>(width) / height);
+    const io::LinearImage image =
         renderer.render_image(camera, width, height, ctx, &report.image_stats);
-    const float ev = options.exposure_given ? options.exposure_ev : auto_exposure_ev(image);
-    for (const std::string& path : options.image_outs) write_image(path, image, ev);
+    const float ev = options.exposure_given ? options.exposure_ev : io::auto_exposure_ev(image);
+    for (const std::string& path : options.image_outs) io::write_image(path, image, ev);
     ctx.info("wrote " + join(options.image_outs) + " (" + std::to_string(width) + "x" +
              std::to_string(height) + ", " + std::to_string(settings.image_spp) + " spp, " +
              format("exposure %+.2f EV, %.1f s)", ev, report.image_stats.seconds));

@@ -1,13 +1,12 @@
 // SPDX-License-Identifier: MIT
 // What the prt-bake commands share: the terminal context (log lines on stderr, a progress line
-// when stderr is a TTY) and flag parsing.
+// when stderr is a TTY).
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <mutex>
-#include <sstream>
 
 #include "command.hpp"
 
@@ -35,17 +34,6 @@ struct TerminalState {
 };
 
 }  // namespace
-
-glm::vec3 parse_albedo(const std::string& text) {
-  glm::vec3 rgb;
-  char comma1 = 0, comma2 = 0, rest = 0;
-  std::istringstream in(text);
-  if (!(in >> rgb.r >> comma1 >> rgb.g >> comma2 >> rgb.b) || comma1 != ',' || comma2 != ',' ||
-      (in >> rest)) {
-    throw Error("--albedo: expected r,g,b (e.g. 0.8,0.8,0.8), got '" + text + "'");
-  }
-  return rgb;
-}
 
 Context CommandEnv::context() const {
   auto state = std::make_shared<TerminalState>();

@@ -2,12 +2,14 @@
 // What every prt-bake subcommand shares: global flags, the terminal context, the exit code.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <glm/glm.hpp>
 
 #include "prt/baker/context.hpp"
+#include "prt/baker/options.hpp"
+#include "prt/baker/technique.hpp"
 
 namespace prt::bake::cli {
 
@@ -19,8 +21,9 @@ struct CommandEnv {
   Context context() const;
 };
 
-// Parses "r,g,b" (the --albedo flag of several commands); throws Error on anything else.
-glm::vec3 parse_albedo(const std::string& text);
+// Adds every option of `options` to `cmd` as a CLI11 option (cli_options.cpp). The returned
+// callback records which options were given; the command calls it before it runs.
+std::function<void()> add_options(CLI::App* cmd, const OptionList& options);
 
 // Each command file registers one subcommand; its callback runs the command, throws Error on
 // failure, and sets env.exit_code when it has something other than 0 to say.
@@ -29,8 +32,8 @@ void add_inspect_command(CLI::App& app, CommandEnv& env);
 void add_demo_scene_command(CLI::App& app, CommandEnv& env);
 void add_info_command(CLI::App& app, CommandEnv& env);
 void add_env_sh_command(CLI::App& app, CommandEnv& env);
+// `bake` and `trade`, with one subcommand per technique of prt::bake::techniques().
 void add_bake_command(CLI::App& app, CommandEnv& env);
 void add_trade_command(CLI::App& app, CommandEnv& env);
-void add_trade_wavelet_command(CLI::App& app, CommandEnv& env);
 
 }  // namespace prt::bake::cli

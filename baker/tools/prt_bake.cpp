@@ -28,7 +28,6 @@ int main(int argc, char** argv) {
   add_env_sh_command(app, env);
   add_bake_command(app, env);
   add_trade_command(app, env);
-  add_trade_wavelet_command(app, env);
 
   try {
     app.parse(argc, argv);

@@ -22,29 +22,6 @@ prt_result prt_asset_get_info(const prt_asset* asset, prt_asset_info* out) {
   return PRT_OK;
 }
 
-/* The element domains of the mesh sections every technique shares; a technique's section has
- * its entry's domain (techniques.h). */
-typedef struct mesh_section_domain {
-  uint32_t tag;
-  prt_element_domain domain;
-} mesh_section_domain;
-
-static const mesh_section_domain kMeshDomains[] = {
-    {PRT_BLOB_TAG_INFO, PRT_ELEMENT_DOMAIN_NONE},
-    {PRT_BLOB_TAG_VPOS, PRT_ELEMENT_DOMAIN_VERTEX},
-    {PRT_BLOB_TAG_VNRM, PRT_ELEMENT_DOMAIN_VERTEX},
-    {PRT_BLOB_TAG_TRIS, PRT_ELEMENT_DOMAIN_TRIANGLE},
-};
-
-static prt_element_domain section_domain(uint32_t tag) {
-  const prt_technique_entry* t = prt_internal_technique_of_tag(tag);
-  size_t i;
-  if (t) return t->domain;
-  for (i = 0; i < sizeof kMeshDomains / sizeof kMeshDomains[0]; ++i)
-    if (kMeshDomains[i].tag == tag) return kMeshDomains[i].domain;
-  return PRT_ELEMENT_DOMAIN_NONE;
-}
-
 uint32_t prt_asset_section_count(const prt_asset* asset) {
   return asset ? asset->header.section_count : 0;
 }
@@ -52,6 +29,7 @@ uint32_t prt_asset_section_count(const prt_asset* asset) {
 prt_result prt_asset_get_section_info(const prt_asset* asset, uint32_t index,
                                       prt_section_info* out) {
   const prt_blob_section* s;
+  const prt_blob_kind* kind;
   const prt_technique_entry* technique;
   prt_section_info info;
   if (!asset || !out || !prt_internal_struct_size_ok(out, PRT_SECTION_INFO_SIZE_1_0))
@@ -64,14 +42,15 @@ prt_result prt_asset_get_section_info(const prt_asset* asset, uint32_t index,
   info.flags = s->flags;
   info.codec = (prt_codec)s->codec;
   info.layout_version = s->layout_version;
-  info.known = prt_blob_find_kind(s->tag, s->layout_version) != NULL;
+  kind = prt_blob_find_kind(s->tag, s->layout_version);
+  info.known = kind != NULL;
   info.checksum = s->checksum;
   info.offset = s->offset;
   info.stored_size = s->stored_size;
   info.raw_size = s->raw_size;
   info.element_count = s->element_count;
-  info.domain = info.known ? section_domain(s->tag) : PRT_ELEMENT_DOMAIN_NONE;
-  technique = info.known ? prt_internal_technique_of_tag(s->tag) : NULL;
+  info.domain = kind ? (prt_element_domain)kind->domain : PRT_ELEMENT_DOMAIN_NONE;
+  technique = kind ? prt_internal_technique_of_tag(s->tag) : NULL;
   info.technique = technique ? technique->technique : PRT_TECHNIQUE_NONE;
   prt_internal_write_struct(out, &info, sizeof info);
   return PRT_OK;

@@ -17,6 +17,15 @@ PRT_STATIC_ASSERT(PRT_SECTION_FLAG_REQUIRED == PRT_BLOB_SECTION_REQUIRED, sectio
 PRT_STATIC_ASSERT(PRT_CODEC_NONE == PRT_BLOB_CODEC_NONE, codec_none);
 PRT_STATIC_ASSERT(PRT_CODEC_ZSTD == PRT_BLOB_CODEC_ZSTD, codec_zstd);
 
+/* The element domains (prt_section_info.domain is read from the kind table). */
+PRT_STATIC_ASSERT((int)PRT_ELEMENT_DOMAIN_NONE == (int)PRT_BLOB_DOMAIN_NONE, domain_none);
+PRT_STATIC_ASSERT((int)PRT_ELEMENT_DOMAIN_VERTEX == (int)PRT_BLOB_DOMAIN_VERTEX, domain_vertex);
+PRT_STATIC_ASSERT((int)PRT_ELEMENT_DOMAIN_TRIANGLE == (int)PRT_BLOB_DOMAIN_TRIANGLE,
+                  domain_triangle);
+PRT_STATIC_ASSERT((int)PRT_ELEMENT_DOMAIN_MATERIAL == (int)PRT_BLOB_DOMAIN_MATERIAL,
+                  domain_material);
+PRT_STATIC_ASSERT((int)PRT_ELEMENT_DOMAIN_OBJECT == (int)PRT_BLOB_DOMAIN_OBJECT, domain_object);
+
 /* Every reader status is returned as the prt_result of the same number. */
 PRT_STATIC_ASSERT((int)PRT_BLOB_OK == (int)PRT_OK, status_ok);
 PRT_STATIC_ASSERT((int)PRT_BLOB_INVALID_ARGUMENT == (int)PRT_ERROR_INVALID_ARGUMENT,

@@ -80,6 +80,7 @@ prt_result prt_internal_open_views(const prt_allocator* allocator,
 
 prt_result prt_technique_get_info(prt_technique technique, prt_technique_info* out) {
   const prt_technique_entry* t = prt_internal_technique(technique);
+  const prt_blob_kind* kind;
   prt_technique_info info;
   if (!out || !prt_internal_struct_size_ok(out, PRT_TECHNIQUE_INFO_SIZE_1_0))
     return PRT_ERROR_INVALID_ARGUMENT;
@@ -89,7 +90,8 @@ prt_result prt_technique_get_info(prt_technique technique, prt_technique_info* o
   info.technique = t->technique;
   info.name = t->name;
   info.section_tag = t->section_tag;
-  info.domain = t->domain;
+  kind = prt_blob_find_kind(t->section_tag, PRT_BLOB_LAYOUT_VERSION_1);
+  info.domain = kind ? (prt_element_domain)kind->domain : PRT_ELEMENT_DOMAIN_NONE;
   prt_internal_write_struct(out, &info, sizeof info);
   return PRT_OK;
 }

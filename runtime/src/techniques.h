@@ -9,10 +9,9 @@
 
 typedef struct prt_technique_entry {
   prt_technique technique;
-  const char* name;          /* folder, tool and document name */
-  uint32_t section_tag;      /* the technique's section kind */
-  prt_element_domain domain; /* what one element of that section is */
-  size_t view_size;          /* bytes of the view `open` fills, kept on the asset */
+  const char* name;     /* folder, tool and document name */
+  uint32_t section_tag; /* the technique's section kind (its domain: the formats kind table) */
+  size_t view_size;     /* bytes of the view `open` fills, kept on the asset */
   /* Decodes the section's header and checks it against the section's size and element count,
    * in O(1), so that every later read of the technique stays inside the section whatever the
    * validation level: fills *view (view_size bytes, pointing into section->data), or returns

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Comparing shaded per-vertex radiance with a reference (`prt-bake reference --vertex-out`):
 // reading the .npy and the error heat map. The error figure itself is the project's one
-// definition, prt::bake::relative_rmse (prt/baker/radiance_error.hpp).
+// definition, prt::io::relative_rmse (prt/io/radiance_error.hpp).
 #pragma once
 
 #include <string>

@@ -20,8 +20,8 @@ void check(prt_result result, const char* what) {
 
 }  // namespace
 
-std::uint32_t cube_face_size(const prt::bake::EnvMap& map) {
-  if (map.mapping() == prt::bake::EnvMapping::VerticalCross) {
+std::uint32_t cube_face_size(const prt::io::EnvMap& map) {
+  if (map.mapping() == prt::io::EnvMapping::VerticalCross) {
     return static_cast<std::uint32_t>(map.face_size());
   }
   return static_cast<std::uint32_t>(std::max(8, map.width() / 2));
@@ -31,23 +31,22 @@ namespace {
 
 // The map as the runtime's environment image: the lat-long pixels as they are, or six cube faces
 // resampled into *faces (back to back).
-prt_env_image environment_image(const prt::bake::EnvMap& map, const float* rotation,
+prt_env_image environment_image(const prt::io::EnvMap& map, const float* rotation,
                                 std::vector<float>* faces) {
-  if (map.mapping() == prt::bake::EnvMapping::LatLong)
+  if (map.mapping() == prt::io::EnvMapping::LatLong)
     return prt::latlong_env(static_cast<std::uint32_t>(map.width()),
                             static_cast<std::uint32_t>(map.height()), map.pixels().data(), 3,
                             rotation);
   const std::uint32_t face_size = cube_face_size(map);
   faces->clear();
-  for (const std::vector<float>& face :
-       prt::bake::resample_to_cube(map, static_cast<int>(face_size)))
+  for (const std::vector<float>& face : prt::io::resample_to_cube(map, static_cast<int>(face_size)))
     faces->insert(faces->end(), face.begin(), face.end());
   return prt::cube_env(face_size, faces->data(), 3, rotation);
 }
 
 }  // namespace
 
-std::vector<float> project_environment(const prt::bake::EnvMap& map, std::uint32_t order) {
+std::vector<float> project_environment(const prt::io::EnvMap& map, std::uint32_t order) {
   if (map.rotated()) throw ViewerError("project_environment: the map must not be rotated");
   std::vector<float> coefficients(3u * order * order), faces;
   const prt_env_image env = environment_image(map, nullptr, &faces);
@@ -55,13 +54,13 @@ std::vector<float> project_environment(const prt::bake::EnvMap& map, std::uint32
   return coefficients;
 }
 
-std::vector<float> wavelet_light(const prt::bake::EnvMap& map, const prt_asset* asset,
+std::vector<float> wavelet_light(const prt::io::EnvMap& map, const prt_asset* asset,
                                  const prt_wavelet_info& info, double degrees,
                                  std::uint32_t light_coefficients,
                                  std::vector<std::uint8_t>* zero_blocks) {
   if (map.rotated()) throw ViewerError("wavelet_light: the map must not be rotated");
   float rotation[9];
-  prt::bake::rotation_about_y_row_major(degrees, rotation);
+  prt::io::rotation_about_y_row_major(degrees, rotation);
   std::vector<float> light(4u * info.coefficient_count), faces;
   const prt_env_image env = environment_image(map, rotation, &faces);
   check(prt_wavelet_resample(info.param, info.size, &env, light.data()), "prt_wavelet_resample");
@@ -77,7 +76,7 @@ std::vector<float> wavelet_light(const prt::bake::EnvMap& map, const prt_asset* 
 
 void rotate_environment(std::vector<float>* coefficients, std::uint32_t order, double degrees) {
   float rotation[9];
-  prt::bake::rotation_about_y_row_major(degrees, rotation);
+  prt::io::rotation_about_y_row_major(degrees, rotation);
   check(prt_sh_rotate(order, rotation, coefficients->data(), coefficients->data(), 3),
         "prt_sh_rotate");
 }

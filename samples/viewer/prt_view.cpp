@@ -22,10 +22,9 @@
 #include "blob_scene.hpp"
 #include "compare.hpp"
 #include "env_light.hpp"
-#include "png_images.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/image_io.hpp"
-#include "prt/baker/radiance_error.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/image_io.hpp"
+#include "prt/io/radiance_error.hpp"
 #include "rasterizer.hpp"
 #include "vertex_shading.hpp"
 
@@ -72,14 +71,14 @@ RasterMesh raster_mesh(const BlobMesh& mesh) {
 
 // The comparison with --reference: prints the error and draws the heat map.
 void compare_with_reference(const Options& options, const std::vector<glm::vec3>& shaded,
-                            const prt::bake::Camera& camera, int width, int height,
+                            const prt::io::Camera& camera, int width, int height,
                             const RasterMesh& mesh) {
-  const std::vector<glm::vec3> reference = prt::bake::read_npy_vec3(options.reference);
+  const std::vector<glm::vec3> reference = prt::io::read_npy_vec3(options.reference);
   if (reference.size() != shaded.size()) {
     throw ViewerError(options.reference + ": " + std::to_string(reference.size()) +
                       " vertices, the blob has " + std::to_string(shaded.size()));
   }
-  const double error = prt::bake::relative_rmse(shaded, reference);
+  const double error = prt::io::relative_rmse(shaded, reference);
   std::printf("error vs %s: relative RMSE %.5f (%.2f %%)\n", options.reference.c_str(), error,
               100.0 * error);
   if (options.error_out.empty()) return;
@@ -89,10 +88,10 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
     colours[v] = heat_colour(vertex_error[v], options.error_scale);
   }
   const glm::vec3 backdrop(0.25f);  // mid grey: tells "no surface" from "no error" (black)
-  const prt::bake::LinearImage heat =
+  const prt::io::LinearImage heat =
       render_mesh(camera, width, height, options.supersample, mesh, colours.data(),
                   [&](const glm::vec3&) { return backdrop; });
-  write_display_png(options.error_out, heat);
+  prt::io::write_display_png(options.error_out, heat);
   std::printf(
       "wrote %s: per-vertex |x - ref| / mean |ref|, colour scale 0 (black) .. %.3g (white): "
       "black, blue, magenta, orange, yellow, white\n",
@@ -100,7 +99,7 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
 }
 
 // The `sh` light: the map projected by the runtime at the blob's order, then rotated.
-std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map,
+std::vector<float> sh_light(const BlobScene& scene, const prt::io::EnvMap& map,
                             const Options& options) {
   const double degrees = options.rotate_degrees;
   const prt_sh_info& transfer = scene.transfer();
@@ -112,9 +111,9 @@ std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map
   std::printf(
       "%s: %dx%d %s map, projected to order %u by the runtime (%s), rotated %g deg "
       "about +Y\n",
-      options.env.c_str(), map.width(), map.height(), prt::bake::env_mapping_name(map.mapping()),
+      options.env.c_str(), map.width(), map.height(), prt::io::env_mapping_name(map.mapping()),
       transfer.order,
-      map.mapping() == prt::bake::EnvMapping::LatLong
+      map.mapping() == prt::io::EnvMapping::LatLong
           ? "prt_sh_project, lat-long"
           : ("prt_sh_project, cube faces of " + std::to_string(cube_face_size(map))).c_str(),
       degrees);
@@ -123,7 +122,7 @@ std::vector<float> sh_light(const BlobScene& scene, const prt::bake::EnvMap& map
 
 // The `wavelet` light: the map resampled by the runtime onto the blob's parameterisation, turned,
 // transformed, selected and prepared.
-std::vector<float> wavelet_light(const BlobScene& scene, const prt::bake::EnvMap& map,
+std::vector<float> wavelet_light(const BlobScene& scene, const prt::io::EnvMap& map,
                                  const Options& options, std::vector<std::uint8_t>* zero_blocks) {
   const prt_wavelet_info& info = scene.wavelet();
   const std::uint32_t details = info.coefficient_count - info.faces;
@@ -141,14 +140,14 @@ std::vector<float> wavelet_light(const BlobScene& scene, const prt::bake::EnvMap
   std::printf(
       "%s: %dx%d %s map, resampled onto the blob's %u coefficients by the runtime, rotated %g deg "
       "about +Y, %u + %u light coefficients kept (area-weighted)\n",
-      options.env.c_str(), map.width(), map.height(), prt::bake::env_mapping_name(map.mapping()),
+      options.env.c_str(), map.width(), map.height(), prt::io::env_mapping_name(map.mapping()),
       info.coefficient_count, options.rotate_degrees, info.faces, kept);
   return light;
 }
 
 int run(const Options& options) {
   if (!options.montage.empty()) {
-    write_montage(options.montage, options.inputs, options.montage_columns, 4);
+    prt::io::write_montage(options.montage, options.inputs, options.montage_columns, 4);
     std::printf("wrote %s (%zu images, %d per row)\n", options.montage.c_str(),
                 options.inputs.size(), options.montage_columns);
     return 0;
@@ -157,12 +156,12 @@ int run(const Options& options) {
   const ViewBackend backend = parse_backend(options.backend);
 
   const BlobScene scene(options.inputs.front());
-  prt::bake::Context ctx;
-  ctx.log = [](prt::bake::LogLevel level, const std::string& text) {
-    if (level >= prt::bake::LogLevel::Warning) std::fprintf(stderr, "prt-view: %s\n", text.c_str());
+  const prt::io::MessageHook warnings = [](prt::io::MessageLevel level, const std::string& text) {
+    if (level == prt::io::MessageLevel::Warning)
+      std::fprintf(stderr, "prt-view: %s\n", text.c_str());
   };
-  prt::bake::EnvMap map =
-      prt::bake::load_envmap(options.env, prt::bake::parse_env_mapping(options.env_mapping), ctx);
+  prt::io::EnvMap map =
+      prt::io::load_envmap(options.env, prt::io::parse_env_mapping(options.env_mapping), warnings);
   std::vector<std::uint8_t> zero_blocks;  // `wavelet` only
   const std::vector<float> light = scene.technique() == Technique::Sh
                                        ? sh_light(scene, map, options)
@@ -173,28 +172,28 @@ int run(const Options& options) {
               scene.vertex_count());
   const std::vector<glm::vec3> shaded = as_vec3(run.radiance);
   if (!options.vertex_out.empty()) {
-    prt::bake::write_npy_vec3(options.vertex_out, shaded);
+    prt::io::write_npy_vec3(options.vertex_out, shaded);
     std::printf("wrote %s\n", options.vertex_out.c_str());
   }
 
   const RasterMesh mesh = raster_mesh(scene.mesh());
   glm::vec3 lo, hi;
   triangle_bounds(mesh, &lo, &hi);
-  const prt::bake::Camera camera =
-      prt::bake::Camera::auto_frame(lo, hi, static_cast<float>(width) / height);
+  const prt::io::Camera camera =
+      prt::io::Camera::auto_frame(lo, hi, static_cast<float>(width) / height);
   if (!options.reference.empty())
     compare_with_reference(options, shaded, camera, width, height, mesh);
 
   if (!options.out.empty()) {
     // The background is the environment as the reference renderer shows it (turned the same
     // way), so the two images differ only where the shading does.
-    map.set_rotation(prt::bake::rotation_about_y(options.rotate_degrees));
-    const prt::bake::LinearImage image =
+    map.set_rotation(prt::io::rotation_about_y(options.rotate_degrees));
+    const prt::io::LinearImage image =
         render_mesh(camera, width, height, options.supersample, mesh, shaded.data(),
                     [&](const glm::vec3& dir) { return map.radiance(dir); });
     const float ev =
-        options.exposure_given ? options.exposure_ev : prt::bake::auto_exposure_ev(image);
-    prt::bake::write_image(options.out, image, ev);
+        options.exposure_given ? options.exposure_ev : prt::io::auto_exposure_ev(image);
+    prt::io::write_image(options.out, image, ev);
     std::printf("wrote %s (%dx%d, exposure %+.2f EV)\n", options.out.c_str(), width, height, ev);
   }
   return 0;

@@ -37,7 +37,7 @@ void triangle_bounds(const RasterMesh& mesh, glm::vec3* lo, glm::vec3* hi) {
   if (!any) *lo = *hi = glm::vec3(0.0f);
 }
 
-Rasterizer::Rasterizer(const prt::bake::Camera& camera, int width, int height)
+Rasterizer::Rasterizer(const prt::io::Camera& camera, int width, int height)
     : camera_(camera), width_(width), height_(height) {
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   values_.assign(pixels, glm::vec3(0.0f));
@@ -125,14 +125,14 @@ void Rasterizer::fill(const ScreenVertex& a, const ScreenVertex& b, const Screen
   }
 }
 
-prt::bake::LinearImage render_mesh(const prt::bake::Camera& camera, int width, int height,
-                                   int supersample, const RasterMesh& mesh, const glm::vec3* values,
-                                   const std::function<glm::vec3(const glm::vec3&)>& background) {
+prt::io::LinearImage render_mesh(const prt::io::Camera& camera, int width, int height,
+                                 int supersample, const RasterMesh& mesh, const glm::vec3* values,
+                                 const std::function<glm::vec3(const glm::vec3&)>& background) {
   const int s = std::max(1, supersample);
   Rasterizer raster(camera, width * s, height * s);
   raster.draw(mesh, values);
 
-  prt::bake::LinearImage image;
+  prt::io::LinearImage image;
   image.width = width;
   image.height = height;
   image.pixels.assign(static_cast<std::size_t>(width) * height, glm::vec3(0.0f));

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A small CPU rasteriser for headless viewing: triangles of per-vertex values (Gouraud,
 // perspective-correct), z-buffered, both faces drawn, seen through the reference renderer's
-// pinhole camera (prt/baker/camera.hpp), so a pixel sees what the reference's primary ray
+// pinhole camera (prt/io/camera.hpp), so a pixel sees what the reference's primary ray
 // through the same image point sees.
 #pragma once
 
@@ -11,8 +11,8 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/camera.hpp"
-#include "prt/baker/image_io.hpp"
+#include "prt/io/camera.hpp"
+#include "prt/io/image_io.hpp"
 
 namespace prt::view {
 
@@ -29,7 +29,7 @@ void triangle_bounds(const RasterMesh& mesh, glm::vec3* lo, glm::vec3* hi);
 
 class Rasterizer {
  public:
-  Rasterizer(const prt::bake::Camera& camera, int width, int height);
+  Rasterizer(const prt::io::Camera& camera, int width, int height);
 
   // Draws every triangle with `values` (one per vertex) interpolated over it; the nearest
   // surface wins. Triangles are clipped against a near plane in front of the eye.
@@ -52,7 +52,7 @@ class Rasterizer {
     glm::vec3 value;
   };
 
-  prt::bake::Camera camera_;
+  prt::io::Camera camera_;
   int width_, height_;
   float near_;
   std::vector<glm::vec3> values_;
@@ -68,8 +68,8 @@ class Rasterizer {
 // filtered); a sample that misses the mesh takes background(direction of its camera ray).
 // LinearImage::coverage is the fraction of each pixel's samples that hit the mesh, as the
 // reference renderer's images report it (auto_exposure_ev meters on it).
-prt::bake::LinearImage render_mesh(const prt::bake::Camera& camera, int width, int height,
-                                   int supersample, const RasterMesh& mesh, const glm::vec3* values,
-                                   const std::function<glm::vec3(const glm::vec3&)>& background);
+prt::io::LinearImage render_mesh(const prt::io::Camera& camera, int width, int height,
+                                 int supersample, const RasterMesh& mesh, const glm::vec3* values,
+                                 const std::function<glm::vec3(const glm::vec3&)>& background);
 
 }  // namespace prt::view

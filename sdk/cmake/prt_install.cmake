@@ -1,8 +1,8 @@
 # Install rules and the exported CMake package `prtkit` (included by the top-level CMakeLists.txt
 # when PRT_INSTALL is ON):
-#   find_package(prtkit CONFIG) -> prtkit::runtime (always), prtkit::baker and prtkit::prt-bake
-#   (when the baker was built and installed, and its dependencies are found).
-# Also installs the headers and the pkg-config file prtkit.pc (the runtime only).
+#   find_package(prtkit CONFIG) -> prtkit::runtime (always), prtkit::io (when prt_io was built),
+#   prtkit::baker and prtkit::prt-bake (when the baker was built), each when its dependencies are
+#   found. Also installs the headers and the pkg-config file prtkit.pc (the runtime only).
 include(CMakePackageConfigHelpers)
 set(PRT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/prtkit)
 
@@ -19,6 +19,18 @@ install(FILES ${PROJECT_BINARY_DIR}/sdk/include/prt/prt_version.h
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/formats/include/prt/format
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/prt FILES_MATCHING PATTERN "*.h")
 install(EXPORT prtkitTargets NAMESPACE prtkit:: DESTINATION ${PRT_INSTALL_CMAKEDIR})
+
+# --- prt_io (when built): the C++ helpers for tools and samples, a static library on GLM and stb
+set(PRT_INSTALLED_IO OFF)
+if(TARGET prt_io)
+  set(PRT_INSTALLED_IO ON)
+  install(TARGETS prt_io EXPORT prtkitIoTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/io/include/prt/io
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/prt)
+  install(EXPORT prtkitIoTargets NAMESPACE prtkit:: DESTINATION ${PRT_INSTALL_CMAKEDIR})
+endif()
 
 # --- baker (optional) ---------------------------------------------------------------------------
 # The baker is a static library: its private link dependencies become link-only dependencies of
@@ -41,8 +53,8 @@ if(TARGET prt_baker)
     endif()
     get_target_property(imported ${item} IMPORTED)
     get_target_property(type ${item} TYPE)
-    if(imported OR item IN_LIST baker_targets OR item STREQUAL "prt_runtime"
-       OR item STREQUAL "prt_formats" OR NOT type MATCHES "STATIC_LIBRARY|INTERFACE_LIBRARY|OBJECT_LIBRARY")
+    if(imported OR item IN_LIST baker_targets OR item MATCHES "^prt_(runtime|formats|io)$"
+       OR NOT type MATCHES "STATIC_LIBRARY|INTERFACE_LIBRARY|OBJECT_LIBRARY")
       continue()
     endif()
     list(APPEND baker_targets ${item})
@@ -84,11 +96,14 @@ install(FILES ${PROJECT_BINARY_DIR}/prtkitConfig.cmake ${PROJECT_BINARY_DIR}/prt
 # --- pkg-config (runtime only) ----------------------------------------------------------------
 get_target_property(PRT_RUNTIME_TYPE prt_runtime TYPE)
 if(PRT_RUNTIME_TYPE STREQUAL "STATIC_LIBRARY")
-  # A static runtime needs the reader core and zstd at the consumer's link.
-  set(PRT_PC_LIBS "-L\${libdir} -lprt -lprt_formats")
+  # A static runtime needs the reader core, zstd and libm at the consumer's link, also without
+  # --static: `cc app.c $(pkg-config --cflags --libs prtkit)` must link.
+  set(PRT_PC_LIBS "-L\${libdir} -lprt -lprt_formats -lm")
+  set(PRT_PC_LIBS_PRIVATE "")
   set(PRT_PC_REQUIRES "Requires: libzstd")
 else()
   set(PRT_PC_LIBS "-L\${libdir} -lprt")
+  set(PRT_PC_LIBS_PRIVATE "Libs.private: -lm")
   set(PRT_PC_REQUIRES "Requires.private: libzstd")
 endif()
 configure_file(${CMAKE_CURRENT_LIST_DIR}/prtkit.pc.in ${PROJECT_BINARY_DIR}/prtkit.pc @ONLY)

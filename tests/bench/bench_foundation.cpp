@@ -218,9 +218,9 @@ void BM_ReferenceRendererVertices(benchmark::State& state) {
   const Workload& w = workload();
   const std::filesystem::path sun =
       std::filesystem::path(PRT_SHARED_DIR) / "assets/envmaps/spiaggia_di_mondello_1k.hdr";
-  const EnvMap env = std::filesystem::exists(sun)
-                         ? load_envmap(sun.string(), EnvMapping::Auto, Context{})
-                         : make_demo_sky(512);
+  const prt::io::EnvMap env = std::filesystem::exists(sun)
+                                  ? prt::io::load_envmap(sun.string(), prt::io::EnvMapping::Auto)
+                                  : make_demo_sky(512);
   ReferenceSettings settings;
   settings.bounces = static_cast<int>(state.range(0));
   settings.spp = 8;

@@ -3,8 +3,11 @@
 #         -DGENERATOR=<generator> -DC_COMPILER=... -DCXX_COMPILER=... -P run_consumer.cmake
 # package: configure prtkit (runtime only), build, install into WORK/prefix, then build
 #          consumer/package with find_package(prtkit) and, if pkg-config exists, compile the
-#          consumer once more with `pkg-config --cflags --libs prtkit`.
+#          consumer once more with `cc consumer.c $(pkg-config --cflags --libs prtkit)`, as the
+#          README says.
 # subdir:  build consumer/subdir, which add_subdirectory()s the prtkit source.
+# Every step must succeed and every run of the consumer must print what it loaded; the script
+# fails otherwise (CTest judges it by its exit code).
 cmake_minimum_required(VERSION 3.25)
 
 function(run)
@@ -13,6 +16,15 @@ function(run)
     message(FATAL_ERROR "failed (${rc}): ${ARGV}\n${out}\n${err}")
   endif()
   set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+
+# Runs the consumer on the golden blob and checks what it printed.
+function(run_consumer exe what)
+  run(${exe} ${golden})
+  if(NOT last_output MATCHES "consumer: prtkit [0-9.]+ loaded 4 sections; Y_10\\(up\\) = 0\\.48860")
+    message(FATAL_ERROR "${what}: unexpected output: ${last_output}")
+  endif()
+  message(STATUS "${what}: ${last_output}")
 endfunction()
 
 file(REMOVE_RECURSE ${WORK})
@@ -30,8 +42,7 @@ if(MODE STREQUAL "package")
   run(${CMAKE_COMMAND} -S ${SOURCE}/tests/consumer/package -B ${WORK}/consumer-build ${common}
       -DCMAKE_PREFIX_PATH=${WORK}/prefix)
   run(${CMAKE_COMMAND} --build ${WORK}/consumer-build)
-  run(${WORK}/consumer-build/consumer ${golden})
-  message(STATUS "${last_output}")
+  run_consumer(${WORK}/consumer-build/consumer "find_package")
 
   find_program(PKG_CONFIG pkg-config)
   if(PKG_CONFIG)
@@ -41,8 +52,9 @@ if(MODE STREQUAL "package")
     string(STRIP "${last_output}" flags)
     separate_arguments(flags UNIX_COMMAND "${flags}")
     run(${C_COMPILER} -std=c99 ${SOURCE}/tests/consumer/consumer.c -o ${WORK}/consumer-pc ${flags})
-    run(${WORK}/consumer-pc ${golden})
-    message(STATUS "pkg-config: ${last_output}")
+    run_consumer(${WORK}/consumer-pc "pkg-config")
+  else()
+    message(STATUS "pkg-config: not found, that step is skipped")
   endif()
 elseif(MODE STREQUAL "subdir")
   run(${CMAKE_COMMAND} -S ${SOURCE}/tests/consumer/subdir -B ${WORK}/consumer-build ${common}

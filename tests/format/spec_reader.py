@@ -2,15 +2,19 @@
 # SPDX-License-Identifier: MIT
 """A second, independent reader of prtkit blobs written from formats/SPEC.md alone (no code shared
 with the C reader), used as a cross-check: it validates a blob by the rules of SPEC.md §8 (quick
-checks, checksums, padding, contents of uncompressed known kinds; zstd frames are not decoded,
-the standard library has no zstd) and prints the section table.
+checks, checksums, padding, contents of uncompressed known kinds including the SHTR (§7.1) and
+WVLT (§7.2) layouts; zstd frames are not decoded, the standard library has no zstd) and prints the
+section table and the technique headers.
 
 usage: spec_reader.py FILE.prtk   -> exit 0 if valid, 1 with the failed rule otherwise
 """
 import struct
 import sys
 
-KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"TRIS", 1): 12}
+# (tag, layout version) -> element size; None = variable, the exact size is in the layout (§7).
+KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"TRIS", 1): 12,
+         (b"SHTR", 1): None, (b"WVLT", 1): None}
+PER_VERTEX = (b"VNRM", b"SHTR", b"WVLT")  # one element per VPOS vertex (§7 relations)
 
 
 def crc32c(data, crc=0):
@@ -34,6 +38,76 @@ class Invalid(Exception):
 def require(condition, rule):
     if not condition:
         raise Invalid(rule)
+
+
+def finite(f):
+    return f == f and f not in (float("inf"), float("-inf"))
+
+
+def padded4(n):
+    return (n + 3) & ~3
+
+
+def read_shtr(data, vertex_count):
+    """SHTR, SPEC.md §7.1: header fields, exact size, zero padding, finite offsets and scales >= 0."""
+    require(len(data) >= 32, "CORRUPT: SHTR header")
+    order, vertices, channels, bits, kind, bounces, r0, r1 = struct.unpack_from("<8I", data)
+    require(1 <= order <= 16, "CORRUPT: SHTR order")
+    require(channels in (1, 3), "CORRUPT: SHTR channels")
+    require(bits in (8, 16), "CORRUPT: SHTR bits")
+    require(r0 == 0 and r1 == 0, "CORRUPT: SHTR reserved")
+    require(vertices == vertex_count, "CORRUPT: SHTR vertex count")
+    coefficients = channels * order * order
+    payload = 32 + 8 * coefficients + vertices * coefficients * (bits // 8)
+    require(len(data) == padded4(payload), "CORRUPT: SHTR size")
+    require(data[payload:] == bytes(len(data) - payload), "CORRUPT: SHTR padding")
+    for j in range(coefficients):
+        offset, scale = struct.unpack_from("<2f", data, 32 + 8 * j)
+        require(finite(offset) and finite(scale), "NON_FINITE: SHTR offset or scale")
+        require(scale >= 0, "CORRUPT: SHTR scale < 0")
+    return dict(order=order, vertices=vertices, channels=channels, bits=bits, kind=kind,
+                bounces=bounces)
+
+
+def read_wvlt(data, vertex_count):
+    """WVLT, SPEC.md §7.2: header fields, exact size, padding, scales, rows, blocks and pairs."""
+    require(len(data) >= 32, "CORRUPT: WVLT header")
+    (param, size, vertices, quantizer, keep, bounces, pairs,
+     reserved) = struct.unpack_from("<8I", data)
+    require(param in (0, 1), "CORRUPT: WVLT param")
+    require(size in (16, 32, 64, 128), "CORRUPT: WVLT face size")
+    require(quantizer in (0, 1), "CORRUPT: WVLT quantizer")
+    require(reserved == 0, "CORRUPT: WVLT reserved")
+    require(vertices == vertex_count, "CORRUPT: WVLT vertex count")
+    faces = 6 if param == 0 else 2
+    bands = faces * ((size.bit_length() - 1) + 1)  # F (log2 S + 1)
+    blocks = faces * size * size // 256
+    vertex_scale = 32 + 4 * bands
+    row_start = vertex_scale + 12 * vertices
+    counts = row_start + 4 * (vertices + 1)
+    first_pair = counts + 2 * vertices * blocks
+    payload = first_pair + 2 * pairs
+    require(len(data) == padded4(payload), "CORRUPT: WVLT size")
+    require(data[payload:] == bytes(len(data) - payload), "CORRUPT: WVLT padding")
+    scales = struct.unpack_from(f"<{bands + 3 * vertices}f", data, 32)
+    require(all(finite(x) for x in scales), "NON_FINITE: WVLT scale")
+    require(all(x >= 0 for x in scales), "CORRUPT: WVLT scale < 0")
+    starts = struct.unpack_from(f"<{vertices + 1}I", data, row_start)
+    require(starts[0] == 0 and starts[vertices] == pairs, "CORRUPT: WVLT row starts")
+    at = 0
+    for v in range(vertices):
+        require(starts[v] == at, "CORRUPT: WVLT row start is not the running sum")
+        for n in struct.unpack_from(f"<{blocks}H", data, counts + 2 * v * blocks):
+            require(n <= 256 and at + n <= pairs, "CORRUPT: WVLT block count")
+            block = data[first_pair + 2 * at:first_pair + 2 * (at + n)]
+            indices, values = block[0::2], block[1::2]
+            require(all(a < b for a, b in zip(indices, indices[1:])),
+                    "CORRUPT: WVLT indices not increasing")
+            require(all(q not in (0, 0x80) for q in values), "CORRUPT: WVLT value 0 or -128")
+            at += n
+    require(starts[vertices] == at, "CORRUPT: WVLT row start is not the running sum")
+    return dict(param=param, size=size, vertices=vertices, quantizer=quantizer, keep=keep,
+                bounces=bounces, pairs=pairs)
 
 
 def read(blob):
@@ -69,7 +143,7 @@ def read(blob):
         require(offset + stored <= total, "CORRUPT: section past the end")
         require(codec != 0 or stored == raw, "CORRUPT: stored != raw")
         require(codec != 1 or (stored >= 9 and raw <= 32768 * stored), "CORRUPT: zstd sizes")
-        if known:
+        if known and KINDS[(tag, layout)] is not None:
             require(elements * KINDS[(tag, layout)] == raw, "CORRUPT: element_count")
         else:
             require(elements <= raw, "CORRUPT: element_count")
@@ -80,10 +154,12 @@ def read(blob):
         end = offset + stored
     require(total == align16(end), "CORRUPT: total_size is not the padded end")
     by_tag = {s["tag"]: s for s in sections if s["known"]}
-    for needy in (b"TRIS", b"VNRM"):
+    for needy in (b"TRIS",) + PER_VERTEX:
         require(needy not in by_tag or b"VPOS" in by_tag, "CORRUPT: needs VPOS")
-    if b"VNRM" in by_tag:
-        require(by_tag[b"VNRM"]["elements"] == by_tag[b"VPOS"]["elements"], "CORRUPT: normals")
+    for per_vertex in PER_VERTEX:
+        if per_vertex in by_tag:
+            require(by_tag[per_vertex]["elements"] == by_tag[b"VPOS"]["elements"],
+                    "CORRUPT: element count is not the vertex count")
 
     header = bytearray(blob[:header_size])
     header[36:40] = bytes(4)
@@ -109,6 +185,10 @@ def read(blob):
             vertices = by_tag[b"VPOS"]["elements"]
             for (index,) in struct.iter_unpack("<I", data):
                 require(index < vertices, "INDEX_OUT_OF_RANGE")
+        elif s["tag"] == b"SHTR":
+            s["header"] = read_shtr(data, s["elements"])
+        elif s["tag"] == b"WVLT":
+            s["header"] = read_wvlt(data, s["elements"])
     require(blob[end:total] == bytes(total - end), "CORRUPT: final padding")
     return (major, minor), sections
 
@@ -129,6 +209,8 @@ def main():
         print(f"  {s['tag'].decode()} v{s['layout']} flags={s['flags']} {codec} "
               f"offset={s['offset']} stored={s['stored']} raw={s['raw']} "
               f"elements={s['elements']}")
+        if "header" in s:
+            print("    " + " ".join(f"{k}={v}" for k, v in s["header"].items()))
     return 0
 
 

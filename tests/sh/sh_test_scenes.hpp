@@ -12,8 +12,8 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/envmap.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::test {
 
@@ -95,11 +95,12 @@ inline Mesh make_bowl(int rings, int segments) {
 
 // A lat-long environment whose texel centres hold radiance(direction), using the map's own
 // direction convention (EnvMap::texel).
-inline EnvMap make_function_map(int width, const std::function<glm::vec3(glm::vec3)>& radiance) {
+inline io::EnvMap make_function_map(int width,
+                                    const std::function<glm::vec3(glm::vec3)>& radiance) {
   const int height = width / 2;
-  const EnvMap layout(width, height,
-                      std::vector<float>(static_cast<std::size_t>(width) * height * 3, 0.0f),
-                      EnvMapping::LatLong, "layout");
+  const io::EnvMap layout(width, height,
+                          std::vector<float>(static_cast<std::size_t>(width) * height * 3, 0.0f),
+                          io::EnvMapping::LatLong, "layout");
   std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
@@ -113,7 +114,7 @@ inline EnvMap make_function_map(int width, const std::function<glm::vec3(glm::ve
       rgb[k + 2] = value.b;
     }
   }
-  return EnvMap(width, height, std::move(rgb), EnvMapping::LatLong, "function map");
+  return io::EnvMap(width, height, std::move(rgb), io::EnvMapping::LatLong, "function map");
 }
 
 // SH projection L_k = integral of f(w) y_k(w) dw of a function given analytically, by midpoint

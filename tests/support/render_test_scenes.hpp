@@ -11,8 +11,8 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/envmap.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::test {
 
@@ -112,7 +112,7 @@ inline Scene scene_of(std::vector<Mesh> meshes) {
 
 // A lat-long map, black but for a block of `size` x `size` texels of radiance `sun` whose
 // top-left texel is (x, y).
-inline EnvMap make_sun_map(int width, int x, int y, int size, glm::vec3 sun) {
+inline io::EnvMap make_sun_map(int width, int x, int y, int size, glm::vec3 sun) {
   const int height = width / 2;
   std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
   for (int j = y; j < y + size; ++j) {
@@ -123,7 +123,7 @@ inline EnvMap make_sun_map(int width, int x, int y, int size, glm::vec3 sun) {
       rgb[k + 2] = sun.b;
     }
   }
-  return EnvMap(width, height, std::move(rgb), EnvMapping::LatLong, "sun map");
+  return io::EnvMap(width, height, std::move(rgb), io::EnvMapping::LatLong, "sun map");
 }
 
 }  // namespace prt::bake::test

@@ -6,13 +6,13 @@ execute_process(COMMAND ${PRT_BAKE} demo-scene ${OUT} --sky-width 128 RESULT_VAR
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "prt-bake demo-scene failed (${status})")
 endif()
-execute_process(COMMAND ${PRT_BAKE} bake ${OUT}/demo_scene.glb --technique sh --order 4 --rays 64
+execute_process(COMMAND ${PRT_BAKE} bake sh ${OUT}/demo_scene.glb --order 4 --rays 64
                         -o ${OUT}/demo_sh4.prtk RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
-  message(FATAL_ERROR "prt-bake bake failed (${status})")
+  message(FATAL_ERROR "prt-bake bake sh failed (${status})")
 endif()
-execute_process(COMMAND ${PRT_BAKE} bake ${OUT}/demo_scene.glb --technique wavelet --cube 16
+execute_process(COMMAND ${PRT_BAKE} bake wavelet ${OUT}/demo_scene.glb --cube 16
                         --keep 200 -o ${OUT}/demo_wavelet16.prtk RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
-  message(FATAL_ERROR "prt-bake bake --technique wavelet failed (${status})")
+  message(FATAL_ERROR "prt-bake bake wavelet failed (${status})")
 endif()

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "prt/baker/sh/env_sh.hpp"
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace {
 
@@ -157,8 +157,7 @@ TEST(PrtView, CrossAndProbeMapsMatchTheBakersTexelProjection) {
     const ViewRun run = run_view(
         kBlob + " --env " + map + " --headless --backend cpu " + "--vertex-out " + out, name);
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    const prt::bake::EnvMap env =
-        prt::bake::load_envmap(map, prt::bake::EnvMapping::Auto, prt::bake::Context{});
+    const prt::io::EnvMap env = prt::io::load_envmap(map, prt::io::EnvMapping::Auto);
     const std::vector<float> light = prt::bake::project_env_sh(env, 4).to_float();
     const std::vector<float> expected = shade_independently(light, {}, 0, 0);
     const std::vector<float> shaded = read_npy(out);

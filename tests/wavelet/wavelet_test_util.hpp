@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::test {
 
@@ -86,7 +86,7 @@ struct RuntimeAsset {
 };
 
 // The runtime's per-frame light of a lat-long map: resample -> transform -> select(m).
-inline std::vector<float> runtime_light(const EnvMap& map, prt_wavelet_param param,
+inline std::vector<float> runtime_light(const io::EnvMap& map, prt_wavelet_param param,
                                         std::uint32_t size, std::uint32_t m = 0xFFFFFFFFu) {
   std::vector<float> light(std::size_t(prt_wavelet_coefficient_count(param, size)) * 4);
   const prt_env_image env = prt::latlong_env(map.width(), map.height(), map.pixels().data());

@@ -123,7 +123,7 @@ Scene make_demo_scene() {
   return scene;
 }
 
-EnvMap make_demo_sky(int width) {
+io::EnvMap make_demo_sky(int width) {
   const int height = width / 2;
   // Sun behind the camera's left shoulder, 35 degrees up, so shadows fall toward the back right.
   const glm::vec3 sun_dir = glm::normalize(glm::vec3(-0.55f, 0.7f, 0.75f));
@@ -148,7 +148,7 @@ EnvMap make_demo_sky(int width) {
       px[0] = radiance.r, px[1] = radiance.g, px[2] = radiance.b;
     }
   }
-  return EnvMap(width, height, std::move(rgb), EnvMapping::LatLong, "prtkit demo sky");
+  return io::EnvMap(width, height, std::move(rgb), io::EnvMapping::LatLong, "prtkit demo sky");
 }
 
 }  // namespace prt::bake

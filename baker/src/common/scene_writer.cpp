@@ -98,7 +98,7 @@ void write_glb(const Scene& scene, const std::string& path) {
     throw Error(path + ": cannot write the glTF file");
 }
 
-void write_envmap_hdr(const EnvMap& env, const std::string& path) {
+void write_envmap_hdr(const io::EnvMap& env, const std::string& path) {
   if (!stbi_write_hdr(path.c_str(), env.width(), env.height(), 3, env.pixels().data()))
     throw Error(path + ": cannot write the .hdr file");
 }

@@ -21,7 +21,7 @@ float power_heuristic(float a, float b) {
 
 }  // namespace
 
-PathEstimator::PathEstimator(const Scene& scene, const EmbreeScene& rays, const EnvMap& env,
+PathEstimator::PathEstimator(const Scene& scene, const EmbreeScene& rays, const io::EnvMap& env,
                              const EnvDistribution& env_distribution,
                              const std::vector<glm::vec3>& vertex_albedo, int bounces)
     : scene_(scene),
@@ -61,7 +61,7 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
       if (cos_w > 0.0f && env_pdf > 0.0f && leaves_surface(w)) {
         ++*rays;
         // Find the texels and start loading them now: the ray hides their memory latency.
-        const EnvMap::Footprint texels = env_.footprint(w);
+        const io::EnvMap::Footprint texels = env_.footprint(w);
         env_.prefetch(texels);
         if (!rays_.occluded(origin, w)) {
           const float weight = power_heuristic(env_pdf, cos_w * kInvPi);
@@ -78,7 +78,7 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
     if (!(cos_w > 0.0f) || !leaves_surface(w)) break;
     // Only an escaping ray needs the environment and its multiple-importance weight; their
     // memory is fetched while the ray is traced.
-    const EnvMap::Footprint texels = env_.footprint(w);
+    const io::EnvMap::Footprint texels = env_.footprint(w);
     env_.prefetch(texels);
     const std::size_t cell = env_distribution_.valid() ? env_distribution_.cell(w) : 0;
     if (env_distribution_.valid()) env_distribution_.prefetch_cell(cell);

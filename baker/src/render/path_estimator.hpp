@@ -8,9 +8,9 @@
 #include <glm/glm.hpp>
 
 #include "prt/baker/embree_scene.hpp"
-#include "prt/baker/envmap.hpp"
 #include "prt/baker/sampling.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake::render {
 
@@ -26,7 +26,7 @@ struct SurfacePoint {
 class PathEstimator {
  public:
   // All references must outlive the estimator. vertex_albedo holds one entry per scene vertex.
-  PathEstimator(const Scene& scene, const EmbreeScene& rays, const EnvMap& env,
+  PathEstimator(const Scene& scene, const EmbreeScene& rays, const io::EnvMap& env,
                 const EnvDistribution& env_distribution,
                 const std::vector<glm::vec3>& vertex_albedo, int bounces);
 
@@ -45,7 +45,7 @@ class PathEstimator {
  private:
   const Scene& scene_;
   const EmbreeScene& rays_;
-  const EnvMap& env_;
+  const io::EnvMap& env_;
   const EnvDistribution& env_distribution_;
   const std::vector<glm::vec3>& vertex_albedo_;
   int bounces_;

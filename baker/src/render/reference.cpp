@@ -40,14 +40,14 @@ void validate(const ReferenceSettings& settings) {
 
 struct ReferenceRenderer::Impl {
   const Scene& scene;
-  const EnvMap& env;
+  const io::EnvMap& env;
   ReferenceSettings settings;
   EmbreeScene rays;
   EnvDistribution env_distribution;
   std::vector<glm::vec3> vertex_albedo;
   render::PathEstimator estimator;
 
-  Impl(const Scene& scene_in, const EnvMap& env_in, const ReferenceSettings& settings_in,
+  Impl(const Scene& scene_in, const io::EnvMap& env_in, const ReferenceSettings& settings_in,
        const Context& ctx)
       : scene(scene_in),
         env(env_in),
@@ -70,7 +70,7 @@ struct ReferenceRenderer::Impl {
   }
 };
 
-ReferenceRenderer::ReferenceRenderer(const Scene& scene, const EnvMap& env,
+ReferenceRenderer::ReferenceRenderer(const Scene& scene, const io::EnvMap& env,
                                      const ReferenceSettings& settings, const Context& ctx) {
   validate(settings);
   tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
@@ -151,13 +151,13 @@ VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
   return result;
 }
 
-LinearImage ReferenceRenderer::render_image(const Camera& camera, int width, int height,
-                                            const Context& ctx, RenderStats* stats) const {
+io::LinearImage ReferenceRenderer::render_image(const io::Camera& camera, int width, int height,
+                                                const Context& ctx, RenderStats* stats) const {
   if (width <= 0 || height <= 0) throw Error("reference renderer: image size must be positive");
   const auto start = std::chrono::steady_clock::now();
   const render::PathEstimator& estimator = impl_->estimator;
   const ReferenceSettings& settings = impl_->settings;
-  LinearImage image;
+  io::LinearImage image;
   image.width = width;
   image.height = height;
   image.pixels.assign(static_cast<std::size_t>(width) * height, glm::vec3(0.0f));

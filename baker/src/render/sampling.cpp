@@ -176,7 +176,7 @@ void grid_cell(const glm::vec3& dir, int rows, int columns, int* row, int* colum
   const float len = glm::length(dir);
   const float y = len > 0.0f ? dir.y / len : 1.0f;
   const float theta = std::acos(std::clamp(y, -1.0f, 1.0f));
-  float phi = atan2_float(dir.z, dir.x);
+  float phi = io::atan2_float(dir.z, dir.x);
   if (phi < 0.0f) phi += static_cast<float>(2.0 * kPi);
   *row = std::clamp(static_cast<int>(theta * kInvPi * rows), 0, rows - 1);
   *column = std::clamp(static_cast<int>(phi * kInvTwoPi * columns), 0, columns - 1);
@@ -184,7 +184,7 @@ void grid_cell(const glm::vec3& dir, int rows, int columns, int* row, int* colum
 
 }  // namespace
 
-EnvDistribution::EnvDistribution(const EnvMap& env) {
+EnvDistribution::EnvDistribution(const io::EnvMap& env) {
   std::size_t valid_texels = 0;
   for (int y = 0; y < env.height(); ++y) {
     for (int x = 0; x < env.width(); ++x) valid_texels += env.texel(x, y, nullptr, nullptr);

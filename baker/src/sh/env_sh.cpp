@@ -14,7 +14,7 @@ std::vector<float> EnvSh::to_float() const {
   return std::vector<float>(rgb.begin(), rgb.end());
 }
 
-EnvSh project_env_sh(const EnvMap& map, std::uint32_t order) {
+EnvSh project_env_sh(const io::EnvMap& map, std::uint32_t order) {
   if (order == 0 || order > PRT_SH_MAX_ORDER) {
     throw Error("SH order " + std::to_string(order) + " is outside 1.." +
                 std::to_string(PRT_SH_MAX_ORDER));
@@ -40,10 +40,10 @@ EnvSh project_env_sh(const EnvMap& map, std::uint32_t order) {
   return sh;
 }
 
-std::string env_sh_json(const EnvMap& map, const EnvSh& sh) {
+std::string env_sh_json(const io::EnvMap& map, const EnvSh& sh) {
   nlohmann::ordered_json j;
   j["source"] = map.source();
-  j["mapping"] = env_mapping_name(map.mapping());
+  j["mapping"] = io::env_mapping_name(map.mapping());
   j["width"] = map.width();
   j["height"] = map.height();
   j["order"] = sh.order;

@@ -31,7 +31,8 @@ bool header_matches(const prt_wavelet_info& info, const QuantizedWavelet& q) {
          info.bounces == q.bounces && info.pair_count == q.pair_count();
 }
 
-// Up to 64 vertices spread over the mesh, and the one with the most pairs.
+// Every (V / 64)-th vertex (every vertex of a mesh below 128) and the one with the most pairs,
+// each once, ascending.
 std::vector<std::size_t> sample_vertices(const QuantizedWavelet& q) {
   std::vector<std::size_t> out;
   if (q.vertex_count == 0) return out;
@@ -42,7 +43,8 @@ std::vector<std::size_t> sample_vertices(const QuantizedWavelet& q) {
     if (q.row_start[v + 1] - q.row_start[v] > q.row_start[fullest + 1] - q.row_start[fullest])
       fullest = v;
   }
-  out.push_back(fullest);
+  const auto at = std::lower_bound(out.begin(), out.end(), fullest);
+  if (at == out.end() || *at != fullest) out.insert(at, fullest);
   return out;
 }
 

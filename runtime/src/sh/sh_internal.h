@@ -10,24 +10,9 @@
 
 #define PRT_SH_INFO_SIZE_1_0 PRT_SIZE_THROUGH(prt_sh_info, bounces)
 
-/* Where the parts of an SHTR section lie, from its header fields (SPEC.md, `sh` layout); offsets
- * in bytes from the section's first byte. Restated here from the SPEC because the formats layer
- * has no SHTR layout function yet: replace it with prt_blob_shtr_layout_of() when it has. */
-typedef struct prt_sh_layout {
-  uint32_t coefficients; /* channels * order^2 per vertex */
-  uint64_t params;       /* (offset, scale) f32 pairs, `coefficients` of them */
-  uint64_t values;       /* u8 or u16 [vertex_count][coefficients] */
-  uint64_t payload_end;
-  uint64_t raw_size; /* payload_end rounded up to a multiple of 4 */
-} prt_sh_layout;
-
-/* Fills *out and returns 1 for order 1..16, channels 1 or 3 and bits 8 or 16; 0 otherwise. With
- * vertices < 2^32 nothing overflows 64 bits. */
-int prt_sh_layout_of(uint32_t order, uint32_t channels, uint32_t bits, uint32_t vertices,
-                     prt_sh_layout* out);
-
-/* The SHTR section of a loaded asset, decoded and checked once at load (sh_section.c): reads at
- * the offsets below stay inside the section whatever the validation level. */
+/* The SHTR section of a loaded asset, decoded and checked once at load (sh_section.c, with the
+ * formats layer's prt_blob_shtr_layout_of): reads at the offsets below stay inside the section
+ * whatever the validation level. */
 typedef struct prt_sh_view {
   prt_sh_info info;
   uint32_t coefficients; /* channels * order^2 per vertex */

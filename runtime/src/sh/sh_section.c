@@ -11,19 +11,10 @@
 
 PRT_STATIC_ASSERT(PRT_SECTION_SHTR == PRT_BLOB_TAG_SHTR, tag_shtr);
 PRT_STATIC_ASSERT(PRT_SH_MAX_ORDER == PRT_BLOB_SHTR_MAX_ORDER, sh_max_order);
-
-int prt_sh_layout_of(uint32_t order, uint32_t channels, uint32_t bits, uint32_t vertices,
-                     prt_sh_layout* out) {
-  if (order < 1 || order > PRT_BLOB_SHTR_MAX_ORDER || (channels != 1 && channels != 3) ||
-      (bits != 8 && bits != 16))
-    return 0;
-  out->coefficients = channels * order * order;
-  out->params = PRT_BLOB_SHTR_HEADER_SIZE;
-  out->values = out->params + 8u * (uint64_t)out->coefficients;
-  out->payload_end = out->values + (uint64_t)vertices * out->coefficients * (bits / 8u);
-  out->raw_size = (out->payload_end + 3u) & ~(uint64_t)3u;
-  return 1;
-}
+PRT_STATIC_ASSERT(PRT_SH_TRANSFER_UNSHADOWED == PRT_BLOB_SHTR_KIND_UNSHADOWED, kind_unshadowed);
+PRT_STATIC_ASSERT(PRT_SH_TRANSFER_SHADOWED == PRT_BLOB_SHTR_KIND_SHADOWED, kind_shadowed);
+PRT_STATIC_ASSERT(PRT_SH_TRANSFER_INTERREFLECTED == PRT_BLOB_SHTR_KIND_INTERREFLECTED,
+                  kind_interreflected);
 
 static prt_result corrupt(char* msg, size_t capacity, const char* what) {
   snprintf(msg, capacity, "'SHTR': %s", what);
@@ -39,19 +30,21 @@ static prt_result open_shtr(const prt_asset_section* section, void* out, char* m
   const uint8_t* p = section->data;
   const uint64_t size = section->entry.raw_size;
   char what[160];
-  prt_sh_layout layout;
+  prt_blob_shtr_header header;
+  prt_blob_shtr_layout layout;
   if (!p || size < PRT_BLOB_SHTR_HEADER_SIZE) {
     snprintf(what, sizeof what, "%" PRIu64 " bytes cannot hold the 32-byte header", size);
     return corrupt(msg, capacity, what);
   }
   memset(view, 0, sizeof *view);
+  prt_blob_shtr_read_header(p, &header);
   info->struct_size = sizeof *info;
-  info->order = prt_le_load_u32(p);
-  info->vertex_count = prt_le_load_u32(p + 4);
-  info->channels = prt_le_load_u32(p + 8);
-  info->bits = prt_le_load_u32(p + 12);
-  info->kind = (prt_sh_transfer_kind)prt_le_load_u32(p + 16);
-  info->bounces = prt_le_load_u32(p + 20);
+  info->order = header.order;
+  info->vertex_count = header.vertices;
+  info->channels = header.channels;
+  info->bits = header.bits;
+  info->kind = (prt_sh_transfer_kind)header.kind;
+  info->bounces = header.bounces;
   if (info->order < 1 || info->order > PRT_BLOB_SHTR_MAX_ORDER) {
     snprintf(what, sizeof what, "order %" PRIu32 " is not in 1..16", info->order);
     return corrupt(msg, capacity, what);
@@ -64,14 +57,15 @@ static prt_result open_shtr(const prt_asset_section* section, void* out, char* m
     snprintf(what, sizeof what, "%" PRIu32 " bits (must be 8 or 16)", info->bits);
     return corrupt(msg, capacity, what);
   }
-  if (prt_le_load_u32(p + 24) != 0 || prt_le_load_u32(p + 28) != 0)
+  if (prt_le_load_u32(p + PRT_BLOB_SHTR_OFF_RESERVED) != 0 ||
+      prt_le_load_u32(p + PRT_BLOB_SHTR_OFF_RESERVED + 4u) != 0)
     return corrupt(msg, capacity, "reserved header fields are not zero");
   if ((uint64_t)info->vertex_count != section->entry.element_count) {
     snprintf(what, sizeof what, "header says %" PRIu32 " vertices, element count %" PRIu64,
              info->vertex_count, section->entry.element_count);
     return corrupt(msg, capacity, what);
   }
-  prt_sh_layout_of(info->order, info->channels, info->bits, info->vertex_count, &layout);
+  prt_blob_shtr_layout_of(info->order, info->vertex_count, info->channels, info->bits, &layout);
   if (layout.raw_size != size) {
     snprintf(what, sizeof what, "%" PRIu64 " raw bytes, the header implies %" PRIu64, size,
              layout.raw_size);
@@ -85,6 +79,5 @@ static prt_result open_shtr(const prt_asset_section* section, void* out, char* m
 }
 
 const prt_technique_entry prt_sh_technique_entry = {
-    PRT_TECHNIQUE_SH,    "sh",      PRT_BLOB_TAG_SHTR, PRT_ELEMENT_DOMAIN_VERTEX,
-    sizeof(prt_sh_view), open_shtr,
+    PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG_SHTR, sizeof(prt_sh_view), open_shtr,
 };

@@ -13,6 +13,8 @@ PRT_STATIC_ASSERT(PRT_SECTION_WVLT == PRT_BLOB_TAG_WVLT, tag_wvlt);
 PRT_STATIC_ASSERT(PRT_WAVELET_PARAM_CUBE == PRT_BLOB_WVLT_PARAM_CUBE, param_cube);
 PRT_STATIC_ASSERT(PRT_WAVELET_PARAM_DUAL_PARABOLOID == PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID,
                   param_dual_paraboloid);
+PRT_STATIC_ASSERT(PRT_WAVELET_QUANTIZER_VERTEX == PRT_BLOB_WVLT_QUANTIZER_VERTEX, quantizer_vertex);
+PRT_STATIC_ASSERT(PRT_WAVELET_QUANTIZER_BAND == PRT_BLOB_WVLT_QUANTIZER_BAND, quantizer_band);
 PRT_STATIC_ASSERT(PRT_WAVELET_MIN_SIZE == PRT_BLOB_WVLT_MIN_SIZE, wavelet_min_size);
 PRT_STATIC_ASSERT(PRT_WAVELET_MAX_SIZE == PRT_BLOB_WVLT_MAX_SIZE, wavelet_max_size);
 PRT_STATIC_ASSERT(PRT_WAVELET_MAX_BLOCKS ==
@@ -33,6 +35,7 @@ static prt_result open_wvlt(const prt_asset_section* section, void* out, char* m
   prt_blob_wvlt_layout* l = &view->layout;
   const uint8_t* p = section->data;
   const uint64_t size = section->entry.raw_size;
+  prt_blob_wvlt_header header;
   uint32_t param, quantizer;
   char what[160];
   if (!p || size < PRT_BLOB_WVLT_HEADER_SIZE) {
@@ -40,14 +43,15 @@ static prt_result open_wvlt(const prt_asset_section* section, void* out, char* m
     return corrupt(msg, capacity, what);
   }
   memset(info, 0, sizeof *info);
+  prt_blob_wvlt_read_header(p, &header);
   info->struct_size = sizeof *info;
-  param = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_PARAM);
-  info->size = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_SIZE);
-  info->vertex_count = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_VERTICES);
-  quantizer = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_QUANTIZER);
-  info->keep = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_KEEP);
-  info->bounces = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_BOUNCES);
-  info->pair_count = prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_PAIR_COUNT);
+  param = header.param;
+  info->size = header.size;
+  info->vertex_count = header.vertices;
+  quantizer = header.quantizer;
+  info->keep = header.keep;
+  info->bounces = header.bounces;
+  info->pair_count = header.pair_count;
   if (param != PRT_BLOB_WVLT_PARAM_CUBE && param != PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID) {
     snprintf(what, sizeof what, "param %" PRIu32 " is not 0 or 1", param);
     return corrupt(msg, capacity, what);
@@ -57,12 +61,11 @@ static prt_result open_wvlt(const prt_asset_section* section, void* out, char* m
              info->size);
     return corrupt(msg, capacity, what);
   }
-  if (quantizer > 1u) {
+  if (quantizer != PRT_BLOB_WVLT_QUANTIZER_VERTEX && quantizer != PRT_BLOB_WVLT_QUANTIZER_BAND) {
     snprintf(what, sizeof what, "quantizer %" PRIu32 " is not 0 or 1", quantizer);
     return corrupt(msg, capacity, what);
   }
-  if (prt_le_load_u32(p + PRT_BLOB_WVLT_OFF_RESERVED) != 0)
-    return corrupt(msg, capacity, "reserved header field is not zero");
+  if (header.reserved != 0) return corrupt(msg, capacity, "reserved header field is not zero");
   if ((uint64_t)info->vertex_count != section->entry.element_count) {
     snprintf(what, sizeof what, "header says %" PRIu32 " vertices, element count %" PRIu64,
              info->vertex_count, section->entry.element_count);
@@ -97,6 +100,5 @@ static prt_result open_wvlt(const prt_asset_section* section, void* out, char* m
 }
 
 const prt_technique_entry prt_wavelet_technique_entry = {
-    PRT_TECHNIQUE_WAVELET,    "wavelet", PRT_BLOB_TAG_WVLT, PRT_ELEMENT_DOMAIN_VERTEX,
-    sizeof(prt_wavelet_view), open_wvlt,
+    PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG_WVLT, sizeof(prt_wavelet_view), open_wvlt,
 };

@@ -38,7 +38,7 @@ TEST(DemoScene, MeshesAreWellFormed) {
 }
 
 TEST(DemoScene, SunHoldsMostOfTheSkyPower) {
-  EnvMap sky = make_demo_sky(256);
+  io::EnvMap sky = make_demo_sky(256);
   double total = 0.0, sun = 0.0, solid_angle = 0.0;
   for (int y = 0; y < sky.height(); ++y) {
     for (int x = 0; x < sky.width(); ++x) {
@@ -74,10 +74,10 @@ TEST(DemoScene, RoundTripsThroughGlbAndHdr) {
     EXPECT_EQ(loaded.vertex_albedo(b, 0), glm::vec3(scene.materials[a.material].base_color));
   }
 
-  EnvMap sky = make_demo_sky(128);
+  io::EnvMap sky = make_demo_sky(128);
   write_envmap_hdr(sky, (dir / "sky.hdr").string());
-  EnvMap read = load_envmap((dir / "sky.hdr").string(), EnvMapping::Auto, Context{});
-  ASSERT_EQ(read.mapping(), EnvMapping::LatLong);
+  io::EnvMap read = io::load_envmap((dir / "sky.hdr").string(), io::EnvMapping::Auto);
+  ASSERT_EQ(read.mapping(), io::EnvMapping::LatLong);
   ASSERT_EQ(read.width(), sky.width());
   ASSERT_EQ(read.height(), sky.height());
   // RGBE keeps 8 mantissa bits of the largest channel: relative error below 2^-7.

@@ -13,10 +13,13 @@
 #include <nlohmann/json.hpp>
 
 #include "prt/baker/scene.hpp"
-#include "test_files.hpp"
+#include "support/test_files.hpp"
 
 namespace prt::bake {
 namespace {
+
+using prt_test::read_bytes;
+using prt_test::shared_asset;
 
 Scene import_asset(const std::string& relative) {
   const std::string path = shared_asset(relative);

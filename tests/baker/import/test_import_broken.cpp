@@ -3,15 +3,17 @@
 // is written here, in a temp folder: from a small valid file built by the test, or a damaged
 // copy of a shared asset.
 #include <gtest/gtest.h>
-#include <stb_image_write.h>
 
 #include "gltf_builder.hpp"
-#include "prt/baker/envmap.hpp"
 #include "prt/baker/scene.hpp"
-#include "test_files.hpp"
+#include "support/test_files.hpp"
 
 namespace prt::bake {
 namespace {
+
+using prt_test::read_bytes;
+using prt_test::shared_asset;
+using prt_test::TempDir;
 
 // Imports path and expects an Error whose message contains the file path and every fragment.
 void expect_import_error(const std::string& path, const std::vector<std::string>& fragments) {
@@ -25,19 +27,6 @@ void expect_import_error(const std::string& path, const std::vector<std::string>
     for (const std::string& fragment : fragments) {
       EXPECT_NE(message.find(fragment), std::string::npos)
           << "message lacks '" << fragment << "': " << message;
-    }
-  }
-}
-
-void expect_envmap_error(const std::string& path, const std::vector<std::string>& fragments) {
-  try {
-    load_envmap(path, EnvMapping::Auto, Context{});
-    ADD_FAILURE() << path << " loaded without error";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(path), std::string::npos) << message;
-    for (const std::string& fragment : fragments) {
-      EXPECT_NE(message.find(fragment), std::string::npos) << message;
     }
   }
 }
@@ -203,45 +192,6 @@ TEST(ImportBroken, NodeCycle) {
   GltfBuilder b = triangle_builder();
   b.doc["nodes"] = nlohmann::json::array({{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}});
   expect_import_error(dir.write("cycle.glb", b.glb()), {"node"});
-}
-
-TEST(ImportBroken, NonImageHdr) {
-  const TempDir dir("broken_hdr");
-  expect_envmap_error(dir.write("text.hdr", "just some text\n"), {"not a Radiance .hdr image"});
-  // A real PNG with the wrong name: stb could decode it, but it is not HDR radiance.
-  const std::string png = dir.file("picture.hdr");
-  const unsigned char pixels[4 * 2 * 3] = {};
-  ASSERT_NE(stbi_write_png(png.c_str(), 4, 2, 3, pixels, 4 * 3), 0);
-  expect_envmap_error(png, {"not a Radiance .hdr image"});
-  expect_envmap_error(dir.file("absent.hdr"), {"cannot open"});
-}
-
-TEST(ImportBroken, TruncatedAndMisshapenHdr) {
-  const TempDir dir("broken_hdr_shape");
-  std::vector<float> rgb(10 * 7 * 3, 1.0f);
-  const std::string odd = dir.file("odd_shape.hdr");
-  ASSERT_NE(stbi_write_hdr(odd.c_str(), 10, 7, 3, rgb.data()), 0);
-  expect_envmap_error(odd, {"cannot tell the environment mapping", "10x7"});
-  // Only the start of the header of a valid file.
-  const std::string cut = dir.write("header_only.hdr", read_bytes(odd).substr(0, 40));
-  expect_envmap_error(cut, {"truncated .hdr", "header"});
-  // Run-length encoded pixel data cut short (stb alone would spin forever on it).
-  std::vector<float> wide(64 * 32 * 3);
-  for (std::size_t i = 0; i < wide.size(); ++i) wide[i] = float(i % 11) + 0.5f;
-  const std::string full = dir.file("full.hdr");
-  ASSERT_NE(stbi_write_hdr(full.c_str(), 64, 32, 3, wide.data()), 0);
-  const std::string bytes = read_bytes(full);
-  const std::string half = dir.write("half.hdr", bytes.substr(0, bytes.size() / 2));
-  expect_envmap_error(half, {"truncated .hdr", "scanline"});
-}
-
-TEST(ImportBroken, TruncatedCopyOfSharedProbe) {
-  const std::string source = shared_asset("envmaps/rnl_probe.hdr");
-  if (source.empty()) GTEST_SKIP() << "shared assets not found";
-  const TempDir dir("broken_probe");
-  const std::string bytes = read_bytes(source);
-  expect_envmap_error(dir.write("rnl_probe_cut.hdr", bytes.substr(0, bytes.size() - 1000)),
-                      {"truncated .hdr", "scanline"});
 }
 
 }  // namespace

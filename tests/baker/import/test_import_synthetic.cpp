@@ -11,10 +11,13 @@
 
 #include "gltf_builder.hpp"
 #include "prt/baker/scene.hpp"
-#include "test_files.hpp"
+#include "support/test_files.hpp"
 
 namespace prt::bake {
 namespace {
+
+using prt_test::shared_asset;
+using prt_test::TempDir;
 
 void expect_vec3(const glm::vec3& got, const glm::vec3& want, float tol = 1e-5f) {
   EXPECT_NEAR(got.x, want.x, tol);

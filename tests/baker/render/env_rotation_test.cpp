@@ -1,13 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Turning the environment (EnvMap::set_rotation, prt-bake reference --env-rotate) against an
-// independent construction: a lat-long map turned 90 degrees about +Y is the same map with its
-// columns shifted by a quarter of the width.
-//
-// The sign, derived from the conventions (not fitted): with R = [[c,0,s],[0,1,0],[-s,0,c]] at 90
-// degrees (c = 0, s = 1), light from d = (sin t sin p, cos t, -sin t cos p) (formats/SPEC.md §12)
-// comes from R d = (-sin t cos p, cos t, -sin t sin p), which is the direction of azimuth
-// p - 90 degrees. Since u = 0.5 + p / 2pi, light seen in column x of the original is seen in
-// column x - W/4 of the turned map: turned(x, y) = original((x + W/4) mod W, y).
+// Turning the environment through the runtime's SH rotation, the baker's projection, the
+// reference renderer and prt-bake reference --env-rotate, against an independent construction:
+// a lat-long map turned 90 degrees about +Y is the same map with its columns shifted by a quarter
+// of the width (io/turned_maps.hpp derives the sign; tests/io/env_rotation_test.cpp checks the
+// EnvMap itself).
 #include <gtest/gtest.h>
 
 #include <prt/prt.hpp>
@@ -20,111 +16,23 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <random>
 #include <string>
 
+#include "io/turned_maps.hpp"
 #include "prt/baker/demo_scene.hpp"
-#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/reference.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {
 
-constexpr int kWidth = 64, kHeight = 32;
-
-// An environment with no symmetry about +Y: a smooth colour pattern and a small bright patch.
-std::vector<float> asymmetric_pixels() {
-  std::vector<float> rgb(kWidth * kHeight * 3);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      float* t = &rgb[(y * kWidth + x) * 3];
-      const float u = (x + 0.5f) / kWidth, v = (y + 0.5f) / kHeight;
-      t[0] = 0.2f + 0.8f * u * (1.0f - v);
-      t[1] = 0.3f + 0.5f * std::sin(3.0f * u + 1.0f) * std::sin(3.14159f * v);
-      t[2] = 0.1f + 0.6f * v * v;
-      if (x >= 10 && x < 13 && y >= 8 && y < 10) t[0] += 40.0f, t[1] += 30.0f, t[2] += 20.0f;
-    }
-  }
-  return rgb;
-}
-
-std::vector<float> shifted_by_quarter(const std::vector<float>& rgb) {
-  std::vector<float> out(rgb.size());
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      const int from = (x + kWidth / 4) % kWidth;
-      for (int c = 0; c < 3; ++c) out[(y * kWidth + x) * 3 + c] = rgb[(y * kWidth + from) * 3 + c];
-    }
-  }
-  return out;
-}
-
-EnvMap turned_map(double degrees) {
-  EnvMap map(kWidth, kHeight, asymmetric_pixels(), EnvMapping::LatLong, "turned");
-  map.set_rotation(rotation_about_y(degrees));
-  return map;
-}
-
-EnvMap shifted_map() {
-  return EnvMap(kWidth, kHeight, shifted_by_quarter(asymmetric_pixels()), EnvMapping::LatLong,
-                "shifted");
-}
-
-TEST(EnvRotation, MatrixIsTheDocumentedOne) {
-  float r[9];
-  rotation_about_y_row_major(30.0, r);
-  const float c = std::cos(30.0f * 3.14159265f / 180.0f),
-              s = std::sin(30.0f * 3.14159265f / 180.0f);
-  const float expected[9] = {c, 0, s, 0, 1, 0, -s, 0, c};
-  for (int i = 0; i < 9; ++i) EXPECT_NEAR(r[i], expected[i], 1e-6f) << i;
-  // Light from +X (the map's three-quarter column) comes from R(+X) = (c, 0, -s) afterwards.
-  const glm::vec3 moved = rotation_about_y(30.0) * glm::vec3(1.0f, 0.0f, 0.0f);
-  EXPECT_NEAR(moved.x, c, 1e-6f);
-  EXPECT_NEAR(moved.z, -s, 1e-6f);
-}
-
-TEST(EnvRotation, QuarterTurnOfLatLongEqualsQuarterColumnShift) {
-  const EnvMap turned = turned_map(90.0), shifted = shifted_map();
-  std::mt19937 rng(7);
-  std::normal_distribution<float> normal;
-  for (int i = 0; i < 2000; ++i) {
-    const glm::vec3 d = glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng)));
-    const glm::vec3 a = turned.radiance(d), b = shifted.radiance(d);
-    for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[c], b[c], 1e-3f * (1.0f + b[c])) << i;
-    int ax = 0, ay = 0, bx = 0, by = 0;
-    turned.texel_of(d, &ax, &ay);
-    shifted.texel_of(d, &bx, &by);
-    // Nearest-texel lookups agree except on a texel border, where rounding may pick either side.
-    if (ax != (bx + kWidth / 4) % kWidth || ay != by) {
-      EXPECT_LT(glm::length(turned.texel_value(ax, ay) - shifted.texel_value(bx, by)) /
-                    (1.0f + glm::length(shifted.texel_value(bx, by))),
-                1.0f)
-          << i;
-    }
-  }
-  // Texel x of the turned map is seen where texel x - W/4 of the shifted map is.
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      glm::vec3 a, b;
-      float wa = 0.0f, wb = 0.0f;
-      ASSERT_TRUE(turned.texel(x, y, &a, &wa));
-      ASSERT_TRUE(shifted.texel((x - kWidth / 4 + kWidth) % kWidth, y, &b, &wb));
-      EXPECT_NEAR(glm::length(a - b), 0.0f, 1e-5f) << x << "," << y;
-      EXPECT_FLOAT_EQ(wa, wb);
-    }
-  }
-}
-
-TEST(EnvRotation, FullTurnIsIdentityAndRejectsNonRotations) {
-  const EnvMap turned = turned_map(360.0);
-  EXPECT_FALSE(turned.rotated());
-  EnvMap map = shifted_map();
-  glm::mat3 mirror(1.0f);
-  mirror[0][0] = -1.0f;
-  EXPECT_THROW(map.set_rotation(mirror), Error);
-  EXPECT_THROW(map.set_rotation(glm::mat3(2.0f)), Error);
-}
+using io::test::asymmetric_pixels;
+using io::test::kHeight;
+using io::test::kWidth;
+using io::test::shifted_by_quarter;
+using io::test::shifted_map;
+using io::test::turned_map;
 
 // The runtime's SH rotation of the original map's projection equals the projection of the
 // shifted map: ties prt_sh_rotate's convention to the renderer's.
@@ -137,7 +45,7 @@ TEST(EnvRotation, RuntimeShRotationMatchesShiftedProjection) {
   ASSERT_EQ(prt_sh_project(kOrder, &original_env, turned.data()), PRT_OK);
   ASSERT_EQ(prt_sh_project(kOrder, &shifted_env, expected.data()), PRT_OK);
   float r[9];
-  rotation_about_y_row_major(90.0, r);
+  io::rotation_about_y_row_major(90.0, r);
   ASSERT_EQ(prt_sh_rotate(kOrder, r, turned.data(), turned.data(), 3), PRT_OK);
   float largest = 0.0f;
   for (const float v : expected) largest = std::max(largest, std::abs(v));
@@ -161,7 +69,7 @@ TEST(EnvRotation, ReferenceRadianceUnderTurnedMapMatchesShiftedMap) {
   settings.bounces = 1;
   settings.override_albedo = true;
   settings.albedo = glm::vec3(0.6f);
-  const EnvMap turned = turned_map(90.0), shifted = shifted_map(), unturned = turned_map(0.0);
+  const io::EnvMap turned = turned_map(90.0), shifted = shifted_map(), unturned = turned_map(0.0);
   const VertexRadiance a =
       ReferenceRenderer(scene, turned, settings, Context{}).render_vertices({});
   settings.seed = 1;  // independent samples

@@ -72,7 +72,7 @@ TEST(ReferenceCommand, WhiteFurnaceThroughTheCommandLine) {
   const fs::path dir = output_dir();
   const Mesh sphere = test::make_icosphere(2, 1.5f);
   write_obj(sphere, dir / "sphere.obj");
-  write_envmap_hdr(constant_envmap(glm::vec3(1.0f)), (dir / "white.hdr").string());
+  write_envmap_hdr(io::constant_envmap(glm::vec3(1.0f)), (dir / "white.hdr").string());
 
   for (const int bounces : {0, 2}) {
     const fs::path npy = dir / ("sphere_" + std::to_string(bounces) + ".npy");

@@ -75,10 +75,10 @@ TEST(Sampling, FrameIsOrthonormal) {
 }
 
 TEST(EnvDistribution, SampledDensityMatchesEvaluatedDensityAndIntegratesToOne) {
-  const EnvMap sun = test::make_sun_map(128, 40, 10, 3, glm::vec3(5000.0f, 4000.0f, 3000.0f));
+  const io::EnvMap sun = test::make_sun_map(128, 40, 10, 3, glm::vec3(5000.0f, 4000.0f, 3000.0f));
   std::vector<float> rgb = sun.pixels();
   for (float& v : rgb) v += 0.5f;  // a dim sky so every direction has some density
-  const EnvMap env(128, 64, rgb, EnvMapping::LatLong, "sky");
+  const io::EnvMap env(128, 64, rgb, io::EnvMapping::LatLong, "sky");
   const EnvDistribution dist(env);
   ASSERT_TRUE(dist.valid());
 
@@ -118,10 +118,10 @@ TEST(EnvDistribution, PutsTheSunsShareOfPowerOnTheSun) {
   // Sun texels 1e4 against a sky of 1: the fraction of samples landing in the sun's texels is
   // (close to) the sun's share of the map's luminance x solid angle.
   const int width = 64;
-  const EnvMap sun = test::make_sun_map(width, 20, 8, 2, glm::vec3(1e4f));
+  const io::EnvMap sun = test::make_sun_map(width, 20, 8, 2, glm::vec3(1e4f));
   std::vector<float> rgb = sun.pixels();
   for (float& v : rgb) v = std::max(v, 1.0f);
-  const EnvMap env(width, width / 2, rgb, EnvMapping::LatLong, "sky");
+  const io::EnvMap env(width, width / 2, rgb, io::EnvMapping::LatLong, "sky");
   double sun_power = 0.0, total_power = 0.0;
   for (int y = 0; y < env.height(); ++y) {
     for (int x = 0; x < env.width(); ++x) {
@@ -150,7 +150,7 @@ TEST(EnvDistribution, PutsTheSunsShareOfPowerOnTheSun) {
 }
 
 TEST(EnvDistribution, BlackMapIsNotSampleable) {
-  const EnvDistribution dist(constant_envmap(glm::vec3(0.0f)));
+  const EnvDistribution dist(io::constant_envmap(glm::vec3(0.0f)));
   EXPECT_FALSE(dist.valid());
   EXPECT_EQ(dist.pdf(glm::vec3(0, 1, 0)), 0.0f);
 }

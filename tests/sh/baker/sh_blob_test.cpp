@@ -1,28 +1,22 @@
 // SPDX-License-Identifier: MIT
 // Quantisation and the `sh` blob (technique sh): quantised values against the layout's formulas
 // on hand-picked fractions of each column's range, the 8-bit error bound, the SHTR bytes decoded
-// by hand, the self-check, determinism over thread counts, and `prt-bake bake` end to end.
+// by hand, the self-check, and determinism over thread counts (`prt-bake bake sh` end to end is
+// sh_cli_test.cpp).
 #include <gtest/gtest.h>
 
 #include <prt/prt.hpp>
 
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-#include <nlohmann/json.hpp>
-
-#include "support/render_test_scenes.hpp"
-#include "prt/baker/demo_scene.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "sh/sh_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {
@@ -283,87 +277,6 @@ TEST(ShBlob, ByteIdenticalForOneAndTwoThreads) {
   }
   ASSERT_FALSE(blobs[0].empty());
   EXPECT_EQ(blobs[0], blobs[1]);
-}
-
-// ---- prt-bake bake end to end -----------------------------------------------------------------
-
-// One folder per test and process, so parallel runs (ctest -j, two build trees) never share files.
-std::filesystem::path temp_dir() {
-  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) /
-      ("prt_sh_blob_test_" + std::to_string(::getpid()) + "_" + test->name());
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-int run_bake(const std::string& arguments) {
-  const std::string command = std::string("\"") + PRT_BAKE_EXE + "\" --quiet bake " + arguments;
-  const int status = std::system(command.c_str());
-  return status;
-}
-
-std::filesystem::path demo_scene_file() {
-  const std::filesystem::path path = temp_dir() / "demo.glb";
-  if (!std::filesystem::exists(path)) write_glb(make_demo_scene(), path.string());
-  return path;
-}
-
-TEST(ShBakeCommand, DemoSceneBlobLoadsAndReportParses) {
-  const std::filesystem::path scene = demo_scene_file();
-  const std::filesystem::path blob = temp_dir() / "demo_sh.prtk";
-  const std::filesystem::path report = temp_dir() / "demo_sh.json";
-  std::filesystem::remove(blob);
-  std::filesystem::remove(report);
-  ASSERT_EQ(run_bake("\"" + scene.string() + "\" --technique sh --order 3 --rays 16 --bits 8 " +
-                     "--transfer interreflected --bounces 1 --seed 3 -o \"" + blob.string() +
-                     "\" --report \"" + report.string() + "\""),
-            0);
-  AssetHandle h;
-  ASSERT_EQ(prt_context_create(nullptr, &h.context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(h.context, blob.string().c_str(), PRT_VALIDATE_FULL, &h.asset),
-            PRT_OK)
-      << prt_context_last_message(h.context);
-  prt_sh_info info = prt::sized<prt_sh_info>();
-  ASSERT_EQ(prt_sh_get_info(h.asset, &info), PRT_OK);
-  EXPECT_EQ(info.order, 3u);
-  EXPECT_EQ(info.bits, 8u);
-  EXPECT_EQ(info.channels, 3u);
-  EXPECT_EQ(info.kind, 2u);
-  EXPECT_EQ(info.bounces, 1u);
-
-  std::ifstream file(report);
-  const nlohmann::json json = nlohmann::json::parse(file);
-  EXPECT_EQ(json.at("technique"), "sh");
-  EXPECT_EQ(json.at("settings").at("order"), 3);
-  EXPECT_EQ(json.at("settings").at("transfer"), "interreflected");
-  EXPECT_EQ(json.at("settings").at("rays"), 16);
-  EXPECT_EQ(json.at("scene").at("vertices"), info.vertex_count);
-  EXPECT_EQ(json.at("blob").at("bytes"), std::filesystem::file_size(blob));
-  // At least one shadow ray per direction per vertex; a bounce pass adds closest-hit rays.
-  EXPECT_GE(json.at("bake").at("rays").get<double>(), 16.0 * info.vertex_count);
-  EXPECT_GT(json.at("bake").at("seconds").get<double>(), 0.0);
-  EXPECT_GT(json.at("bake").at("rays_per_second").get<double>(), 0.0);
-  EXPECT_EQ(json.at("quantization").at("bits"), 8);
-  EXPECT_GE(json.at("quantization").at("max_abs_error").get<double>(),
-            json.at("quantization").at("rms_abs_error").get<double>());
-  EXPECT_TRUE(json.at("self_check").at("passed").get<bool>());
-  std::filesystem::remove_all(temp_dir());
-}
-
-TEST(ShBakeCommand, BadArgumentsFail) {
-  const std::string scene = "\"" + demo_scene_file().string() + "\"";
-  const std::filesystem::path blob = temp_dir() / "bad.prtk";
-  const std::string out = " -o \"" + blob.string() + "\" 2>/dev/null";
-  for (const std::string& bad : {std::string("--order 0"), std::string("--order 17"),
-                                 std::string("--bits 12"), std::string("--technique wavelet"),
-                                 std::string("--transfer glossy"), std::string("--rays 0")}) {
-    std::filesystem::remove(blob);
-    EXPECT_NE(run_bake(scene + " --rays 4 " + bad + out), 0) << bad;
-    EXPECT_FALSE(std::filesystem::exists(blob)) << bad;
-  }
-  EXPECT_NE(run_bake("\"" + (temp_dir() / "missing.glb").string() + "\"" + out), 0);
-  std::filesystem::remove_all(temp_dir());
 }
 
 }  // namespace

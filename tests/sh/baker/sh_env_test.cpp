@@ -19,8 +19,8 @@
 
 namespace {
 
-using prt::bake::EnvMap;
-using prt::bake::EnvMapping;
+using prt::io::EnvMap;
+using prt::io::EnvMapping;
 using prt_sh_test::kPi;
 
 const std::array<float, 3> kRadiance = {0.25f, 1.0f, 3.0f};
@@ -44,10 +44,10 @@ void ExpectConstantProjection(const EnvMap& map) {
   const auto sh = prt::bake::project_env_sh(map, 6);
   for (int c = 0; c < 3; ++c) {
     const double dc = std::sqrt(4.0 * kPi) * kRadiance[c];
-    EXPECT_NEAR(sh.at(0, c), dc, 5e-3 * dc) << prt::bake::env_mapping_name(map.mapping());
+    EXPECT_NEAR(sh.at(0, c), dc, 5e-3 * dc) << prt::io::env_mapping_name(map.mapping());
     for (uint32_t i = 1; i < 36; ++i)
       EXPECT_NEAR(sh.at(i, c), 0.0, 5e-3 * dc)
-          << prt::bake::env_mapping_name(map.mapping()) << " coefficient " << i;
+          << prt::io::env_mapping_name(map.mapping()) << " coefficient " << i;
   }
 }
 
@@ -141,7 +141,7 @@ TEST(EnvSh, ProbeReproducesPublishedEucalyptusGroveCoefficients) {
   for (auto& rgb : table)
     for (auto& v : rgb) v *= 10.0;
   const auto expected = TableInOurFrame(table);
-  const EnvMap map = prt::bake::load_envmap(probe.string(), EnvMapping::Auto, prt::bake::Context{});
+  const EnvMap map = prt::io::load_envmap(probe.string(), EnvMapping::Auto);
   const auto sh = prt::bake::project_env_sh(map, 3);
   double largest = 0.0;
   for (double v : expected) largest = std::max(largest, std::abs(v));
@@ -197,7 +197,7 @@ TEST(EnvShCli, PrintsJsonMatchingTheLibrary) {
   EXPECT_TRUE(j.contains("convention"));
   const auto& coeffs = j.at("coefficients");
   ASSERT_EQ(coeffs.size(), 16u);
-  const EnvMap map = prt::bake::load_envmap(map_path.string(), EnvMapping::Auto, {});
+  const EnvMap map = prt::io::load_envmap(map_path.string(), EnvMapping::Auto);
   const auto sh = prt::bake::project_env_sh(map, 4);
   for (uint32_t i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(coeffs[i][c].get<double>(), sh.at(i, c));

@@ -25,11 +25,11 @@
 #include <memory>
 #include <vector>
 
-#include "support/render_test_scenes.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/io/radiance_error.hpp"
 #include "sh/sh_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {
@@ -91,7 +91,7 @@ Baked bake(const Scene& scene, ShTransferKind kind, std::uint32_t order, std::ui
 }
 
 // The runtime's SH projection of a lat-long map.
-std::vector<float> project(const EnvMap& map, std::uint32_t order) {
+std::vector<float> project(const io::EnvMap& map, std::uint32_t order) {
   std::vector<float> light(std::size_t(order) * order * 3);
   const prt_env_image env = prt::latlong_env(map.width(), map.height(), map.pixels().data());
   EXPECT_EQ(prt_sh_project(order, &env, light.data()), PRT_OK);
@@ -196,7 +196,7 @@ TEST(ShExtremes, TinySunOfTenToTheFiveOverTheSkyShadesToTheBandLimitedIrradiance
       for (int c = 0; c < 3; ++c) rgb[(std::size_t(j) * width + i) * 3 + c] = 1e5f;
     }
   }
-  const EnvMap map(width, height, std::move(rgb), EnvMapping::LatLong, "sun");
+  const io::EnvMap map(width, height, std::move(rgb), io::EnvMapping::LatLong, "sun");
   const Scene scene = test::scene_of({test::make_icosphere(2, 1.0f)});
   const Mesh& sphere = scene.meshes[0];
   const float rho = 0.8f;
@@ -213,8 +213,8 @@ TEST(ShExtremes, TinySunOfTenToTheFiveOverTheSkyShadesToTheBandLimitedIrradiance
     }
     // Two seeds differ by sqrt(2) times one estimate's noise; allow 3 sigma of it, and 1e-4 for
     // the quantisation and float sums.
-    const double noise = relative_rmse(shaded, other_seed) / std::sqrt(2.0);
-    const double error = relative_rmse(shaded, expected);
+    const double noise = io::relative_rmse(shaded, other_seed) / std::sqrt(2.0);
+    const double error = io::relative_rmse(shaded, expected);
     RecordProperty("order" + std::to_string(order) + "_error", std::to_string(error));
     EXPECT_LT(error, 3.0 * noise + 1e-4) << "order " << order << ", noise " << noise;
   }
@@ -223,7 +223,8 @@ TEST(ShExtremes, TinySunOfTenToTheFiveOverTheSkyShadesToTheBandLimitedIrradiance
 TEST(ShExtremes, AllBlackMapShadesToExactlyZero) {
   const Scene scene = test::scene_of(test::make_fine_open_box(1.0f, 6, 3));
   const Baked b = bake(scene, ShTransferKind::Shadowed, 4, 64, 0.8f);
-  const EnvMap black(64, 32, std::vector<float>(64 * 32 * 3, 0.0f), EnvMapping::LatLong, "black");
+  const io::EnvMap black(64, 32, std::vector<float>(64 * 32 * 3, 0.0f), io::EnvMapping::LatLong,
+                         "black");
   const std::vector<float> light = project(black, 4);
   for (float l : light) ASSERT_EQ(l, 0.0f);
   for (const glm::vec3& radiance : RuntimeBlob(b.blob).shade(light)) {
@@ -233,7 +234,7 @@ TEST(ShExtremes, AllBlackMapShadesToExactlyZero) {
 
 TEST(ShExtremes, NaNInfiniteAndNegativeTexelsActAsZero) {
   const auto sky = [](glm::vec3 w) { return glm::vec3(1.0f, 0.7f, 0.5f) + 0.4f * w; };
-  const EnvMap clean_source = test::make_function_map(128, sky);
+  const io::EnvMap clean_source = test::make_function_map(128, sky);
   std::vector<float> bad = clean_source.pixels(), zeroed = clean_source.pixels();
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
@@ -244,8 +245,8 @@ TEST(ShExtremes, NaNInfiniteAndNegativeTexelsActAsZero) {
     zeroed[texels[i] * 3 + 1] = 0.0f;
   }
   std::vector<float> raw_bad = bad;
-  const EnvMap sanitised(128, 64, std::move(bad), EnvMapping::LatLong, "bad");
-  const EnvMap reference(128, 64, std::move(zeroed), EnvMapping::LatLong, "zeroed");
+  const io::EnvMap sanitised(128, 64, std::move(bad), io::EnvMapping::LatLong, "bad");
+  const io::EnvMap reference(128, 64, std::move(zeroed), io::EnvMapping::LatLong, "zeroed");
   EXPECT_EQ(sanitised.sanitized_texels(), 4u);
   EXPECT_EQ(sanitised.pixels(), reference.pixels());
 

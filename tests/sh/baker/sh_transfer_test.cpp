@@ -10,10 +10,10 @@
 #include <cstring>
 #include <tuple>
 
-#include "support/render_test_scenes.hpp"
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
 #include "sh/sh_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {
@@ -181,7 +181,7 @@ struct Comparison {
 Comparison compare_with_reference(const Scene& scene, ShTransferKind kind, int bounces,
                                   glm::vec3 rho) {
   const std::uint32_t order = 3;
-  const EnvMap env = test::make_function_map(512, band_limited_sky);
+  const io::EnvMap env = test::make_function_map(512, band_limited_sky);
   const std::vector<glm::vec3> light = test::project_function(order, band_limited_sky);
 
   ReferenceSettings ref_settings;

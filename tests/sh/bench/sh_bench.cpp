@@ -2,7 +2,7 @@
 // Technique `sh` benchmarks, all in one run so that their figures compare; printed, never
 // asserted:
 //  - the memory-bandwidth roofline: STREAM triad on 1 and 2 threads;
-//  - CPU shading (prt_sh_shade_on) of the bunny's transfer, baked here (unshadowed: quick, and the
+//  - CPU shading (prt_sh_shade) of the bunny's transfer, baked here (unshadowed: quick, and the
 //    SHTR layout is the same for every kind), at orders 2/4/6/8 and 8/16 bits on cpu, simd with
 //    SSE4.1 and simd with AVX2, on 1 thread and on 2 threads over split vertex ranges: vertices/s
 //    and the share of the triad (on as many threads) that the quantised data read amounts to.

@@ -31,12 +31,12 @@
 #include <string>
 #include <vector>
 
-#include "prt/baker/sh/env_sh.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/reference.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/radiance_error.hpp"
 
 namespace prt::bake {
 namespace {
@@ -112,7 +112,7 @@ TEST(ShAccuracy, BunnyUnderRnlProbeAtOrder6MatchesTheReference) {
   }
   const Context ctx;
   const Scene scene = import_scene(kBunny, ctx);
-  const EnvMap env = load_envmap(kProbe, EnvMapping::Auto, ctx);
+  const io::EnvMap env = io::load_envmap(kProbe, io::EnvMapping::Auto, ctx.io_messages());
 
   ReferenceSettings ref_settings;
   ref_settings.bounces = 0;
@@ -137,7 +137,7 @@ TEST(ShAccuracy, BunnyUnderRnlProbeAtOrder6MatchesTheReference) {
   ASSERT_EQ(shaded.size(), reference.radiance.size());
   for (const glm::vec3& l : shaded) ASSERT_TRUE(std::isfinite(l.r + l.g + l.b));
 
-  const double error = relative_rmse(shaded, reference.radiance);
+  const double error = io::relative_rmse(shaded, reference.radiance);
   RecordProperty("relative_rmse", std::to_string(error));
   RecordProperty("reference_noise", std::to_string(reference.relative_rmse));
   // The reference's noise is independent of the SH error, so their squares add: taking it out

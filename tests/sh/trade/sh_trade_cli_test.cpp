@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// prt-bake trade end to end on the generated demo scene with tiny settings: the rows the sweep
+// prt-bake trade sh end to end on the generated demo scene with tiny settings: the rows the sweep
 // design calls for, the reference cache, determinism of everything but the timings, and clear
 // errors for bad input.
 #include <gtest/gtest.h>
@@ -59,12 +59,12 @@ Table read_csv(const fs::path& path) {
   return rows;
 }
 
-class TradeCli : public ::testing::Test {
+class ShTradeCli : public ::testing::Test {
  protected:
   void SetUp() override {
     // One folder per test: ctest may run the tests of this fixture at the same time.
     dir_ = fs::path(::testing::TempDir()) /
-           (std::string("prt_trade_cli_") +
+           (std::string("prt_sh_trade_cli_") +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
@@ -74,7 +74,7 @@ class TradeCli : public ::testing::Test {
     sky_ = (dir_ / "demo_sky.hdr").string();
   }
   std::string trade_arguments(const std::string& out, int threads) const {
-    return "--threads " + std::to_string(threads) + " trade \"" + scene_ + "\" --env \"" + sky_ +
+    return "--threads " + std::to_string(threads) + " trade sh \"" + scene_ + "\" --env \"" + sky_ +
            "\" --out-dir \"" + out + "\" --cache-dir \"" + (dir_ / "cache").string() +
            "\" --orders 1,3 --rays 16,32 --bounces 0,1 --base-rays 16 --base-order 3"
            " --ref-spp 16 --frames 2 --albedo 0.8,0.8,0.8";
@@ -83,7 +83,7 @@ class TradeCli : public ::testing::Test {
   std::string scene_, sky_;
 };
 
-TEST_F(TradeCli, SweepsCachesAndRepeatsItself) {
+TEST_F(ShTradeCli, SweepsCachesAndRepeatsItself) {
   const CommandResult first = run_bake(trade_arguments((dir_ / "a").string(), 2), dir_ / "a.log");
   ASSERT_EQ(first.status, 0) << first.output;
   EXPECT_NE(first.output.find("rendering"), std::string::npos) << first.output;
@@ -123,18 +123,38 @@ TEST_F(TradeCli, SweepsCachesAndRepeatsItself) {
   }
 }
 
-TEST_F(TradeCli, BadInputGivesAClearError) {
+TEST_F(ShTradeCli, BadInputGivesAClearError) {
   const CommandResult missing_map = run_bake(
-      "trade \"" + scene_ + "\" --env nothere.hdr --out-dir \"" + (dir_ / "x").string() + "\"",
+      "trade sh \"" + scene_ + "\" --env nothere.hdr --out-dir \"" + (dir_ / "x").string() + "\"",
       dir_ / "x.log");
   EXPECT_NE(missing_map.status, 0);
   EXPECT_NE(missing_map.output.find("nothere.hdr"), std::string::npos) << missing_map.output;
   const CommandResult bad_order =
-      run_bake("trade \"" + scene_ + "\" --env \"" + sky_ + "\" --out-dir \"" +
+      run_bake("trade sh \"" + scene_ + "\" --env \"" + sky_ + "\" --out-dir \"" +
                    (dir_ / "y").string() + "\" --orders 2,17",
                dir_ / "y.log");
   EXPECT_NE(bad_order.status, 0);
   EXPECT_NE(bad_order.output.find("--orders: 17"), std::string::npos) << bad_order.output;
+  const CommandResult foreign =
+      run_bake("trade sh \"" + scene_ + "\" --env \"" + sky_ + "\" --out-dir \"" +
+                   (dir_ / "z").string() + "\" --sizes 16",
+               dir_ / "z.log");
+  EXPECT_NE(foreign.status, 0);
+  EXPECT_NE(foreign.output.find("--sizes"), std::string::npos) << foreign.output;
+  EXPECT_FALSE(fs::exists(dir_ / "z" / "trade.csv"));
+}
+
+// --help lists the sweep's flags and the shared ones with sh's defaults (4096 reference
+// samples, 20 frames), not wavelet's flags.
+TEST_F(ShTradeCli, HelpListsShSweepFlagsOnly) {
+  const CommandResult help = run_bake("trade sh --help", dir_ / "help.log");
+  ASSERT_EQ(help.status, 0) << help.output;
+  for (const char* flag :
+       {"--orders", "--rays", "--bounces", "--base-rays", "--base-order", "--bits", "--env",
+        "--out-dir", "--cache-dir", "1073741824]=4096", "--frames INT=20", "--albedo", "--seed"})
+    EXPECT_NE(help.output.find(flag), std::string::npos) << flag << "\n" << help.output;
+  for (const char* flag : {"--sizes", "--keeps", "--light-terms", "--sh-orders", "--quantizer"})
+    EXPECT_EQ(help.output.find(flag), std::string::npos) << flag << "\n" << help.output;
 }
 
 }  // namespace

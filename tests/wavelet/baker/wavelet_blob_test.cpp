@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "prt/baker/wavelet/wavelet_blob.hpp"
@@ -54,8 +55,8 @@ Scene triangle_scene(std::size_t vertices) {
 }
 
 // The band numbering itself is the runtime's prt_wavelet_band (tested by hand in
-// tests/wavelet/runtime/wavelet_domain_test.cpp); here only the band count the quantiser sizes its table
-// by.
+// tests/wavelet/runtime/wavelet_domain_test.cpp); here only the band count the quantiser sizes its
+// table by.
 TEST(WaveletQuantizer, BandCountFollowsTheSpec) {
   EXPECT_EQ(wavelet_band_count(PRT_WAVELET_PARAM_CUBE, 16), 30u);  // 6 faces x (log2 16 + 1)
   EXPECT_EQ(wavelet_band_count(PRT_WAVELET_PARAM_DUAL_PARABOLOID, 128), 16u);  // 2 x 8
@@ -80,8 +81,7 @@ TEST(WaveletQuantizer, VertexScaleIsTheRowMaxOver127) {
 }
 
 TEST(WaveletQuantizer, BandScaleIsTheBandMaxOver127) {
-  const QuantizedWavelet q =
-      quantize_wavelet_transfer(hand_transfer(), WaveletQuantizer::Band, 9);
+  const QuantizedWavelet q = quantize_wavelet_transfer(hand_transfer(), WaveletQuantizer::Band, 9);
   ASSERT_EQ(q.band_scale.size(), 30u);
   std::vector<float> expected(30, 0.0f);
   expected[0] = 127 * kUnit / 127.0f;
@@ -218,9 +218,48 @@ TEST(WaveletBlob, SelfCheckFailsOnABlobThatDoesNotMatch) {
   EXPECT_THROW(build_wavelet_blob(triangle_scene(6), q, ""), Error);
 }
 
+// 130 vertices with one pair each, but `fullest` with two.
+WaveletTransfer one_pair_rows(std::uint32_t fullest) {
+  WaveletTransfer t = hand_transfer();
+  t.vertex_count = 130;
+  t.index.clear();
+  t.value.clear();
+  t.row_start.assign(1, 0);
+  for (std::uint32_t v = 0; v < 130; ++v) {
+    t.index.push_back(v);
+    t.value.push_back(1.0f);
+    if (v == fullest) {
+      t.index.push_back(v + 1);
+      t.value.push_back(0.5f);
+    }
+    t.row_start.push_back(t.index.size());
+  }
+  t.albedo.assign(130, glm::vec3(0.8f));
+  t.baked.assign(130, 1);
+  return t;
+}
+
+std::size_t rows_checked(const WaveletTransfer& t) {
+  const QuantizedWavelet q = quantize_wavelet_transfer(t, WaveletQuantizer::Band, 9);
+  const WaveletBlobCheck check =
+      check_wavelet_blob(build_wavelet_blob(triangle_scene(t.vertex_count), q, ""), t, q);
+  EXPECT_TRUE(check.passed) << check.message;
+  EXPECT_EQ(check.message.rfind(std::to_string(check.rows_checked) + " decoded rows", 0), 0u)
+      << check.message;
+  return check.rows_checked;
+}
+
+// The self-check decodes every (V / 64)-th row and the fullest, each once: all three rows of the
+// hand transfer (the fullest, vertex 0, among them); of 130 vertices the 65 even ones, plus the
+// fullest when it is odd.
+TEST(WaveletBlob, SelfCheckDecodesEachSampledRowOnce) {
+  EXPECT_EQ(rows_checked(hand_transfer()), 3u);
+  EXPECT_EQ(rows_checked(one_pair_rows(128)), 65u);
+  EXPECT_EQ(rows_checked(one_pair_rows(129)), 66u);
+}
+
 TEST(WaveletBlob, SameBytesTwice) {
-  const QuantizedWavelet q =
-      quantize_wavelet_transfer(hand_transfer(), WaveletQuantizer::Band, 9);
+  const QuantizedWavelet q = quantize_wavelet_transfer(hand_transfer(), WaveletQuantizer::Band, 9);
   EXPECT_EQ(build_wavelet_blob(triangle_scene(3), q, "x"),
             build_wavelet_blob(triangle_scene(3), q, "x"));
 }

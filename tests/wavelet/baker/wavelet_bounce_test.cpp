@@ -9,11 +9,11 @@
 #include <cmath>
 #include <vector>
 
-#include "support/render_test_scenes.hpp"
-#include "sh/sh_test_scenes.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/reference.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "prt/io/radiance_error.hpp"
+#include "sh/sh_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 #include "wavelet/wavelet_test_util.hpp"
 
 namespace prt::bake {
@@ -31,11 +31,11 @@ std::vector<glm::vec3> wavelet_radiance(const Scene& scene, int bounces) {
   const WaveletTransfer t = compute_wavelet_transfer(scene, nullptr, s, ctx);
   // Radiance 1 everywhere, through the runtime's light pipeline (texel powers, SPEC §14).
   const std::vector<float> light =
-      test::runtime_light(constant_envmap(glm::vec3(1.0f)), PRT_WAVELET_PARAM_CUBE, 16);
+      test::runtime_light(io::constant_envmap(glm::vec3(1.0f)), PRT_WAVELET_PARAM_CUBE, 16);
   return shade_wavelet_transfer(t, light);
 }
 
-std::vector<glm::vec3> reference_radiance(const Scene& scene, const EnvMap& env, int bounces,
+std::vector<glm::vec3> reference_radiance(const Scene& scene, const io::EnvMap& env, int bounces,
                                           double* noise) {
   ReferenceSettings r;
   r.bounces = bounces;
@@ -67,14 +67,14 @@ TEST(WaveletBounce, BowlUnderAConstantSkyFollowsTheSphereCavityLaw) {
 
 TEST(WaveletBounce, OneBounceMatchesThePathTracer) {
   const Scene scene = test::scene_of({test::make_bowl(16, 48)});
-  const EnvMap sky = constant_envmap(glm::vec3(1.0f));
+  const io::EnvMap sky = io::constant_envmap(glm::vec3(1.0f));
   double noise = 0.0;
   const std::vector<glm::vec3> reference = reference_radiance(scene, sky, 1, &noise);
   const std::vector<glm::vec3> direct = wavelet_radiance(scene, 0);
   const std::vector<glm::vec3> bounced = wavelet_radiance(scene, 1);
-  const double error = relative_rmse(bounced, reference);
+  const double error = io::relative_rmse(bounced, reference);
   EXPECT_LT(error, 0.02 + 3.0 * noise) << "noise " << noise;
-  EXPECT_GT(relative_rmse(direct, reference), 5.0 * error);  // the bounce is needed
+  EXPECT_GT(io::relative_rmse(direct, reference), 5.0 * error);  // the bounce is needed
 }
 
 }  // namespace

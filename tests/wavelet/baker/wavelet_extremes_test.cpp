@@ -19,10 +19,10 @@
 #include <cmath>
 #include <vector>
 
-#include "support/render_test_scenes.hpp"
-#include "sh/sh_test_scenes.hpp"
 #include "prt/baker/wavelet/wavelet_blob.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "sh/sh_test_scenes.hpp"
+#include "support/render_test_scenes.hpp"
 #include "wavelet/wavelet_test_util.hpp"
 
 namespace prt::bake {
@@ -150,7 +150,7 @@ TEST(WaveletExtremes, FaceSize128) {
 constexpr float kSun = 1e5f, kSunRadius = 1.5f * float(kPi) / 180.0f;
 const glm::vec3 kSunDir(0.5f, 0.8660254f, 0.0f);
 
-EnvMap sun_map() {
+io::EnvMap sun_map() {
   return test::make_function_map(1024, [](glm::vec3 d) {
     return glm::dot(d, kSunDir) >= std::cos(kSunRadius) ? glm::vec3(kSun) : glm::vec3(1.0f);
   });
@@ -158,7 +158,7 @@ EnvMap sun_map() {
 
 // rho/pi * sum over the map's sun texels of L dw max(0, n.w), visible ones only (none when the
 // blocker hides the sun), plus rho L_sky (1 - blocker form factor).
-double expected_radiance(const EnvMap& map, const std::vector<glm::dvec3>& blocker_from_vertex,
+double expected_radiance(const io::EnvMap& map, const std::vector<glm::dvec3>& blocker_from_vertex,
                          bool sun_visible) {
   double sun = 0.0;
   for (int y = 0; y < map.height() && sun_visible; ++y) {
@@ -197,7 +197,7 @@ TEST(WaveletExtremes, SunOfTenToTheFiveCastsASharpShadow) {
   const Baked b = bake(scene, s);
   test::RuntimeAsset a;
   ASSERT_EQ(a.load(b.blob), PRT_OK) << a.message();
-  const EnvMap map = sun_map();
+  const io::EnvMap map = sun_map();
   const std::vector<glm::vec3> shaded =
       test::runtime_shade(a, test::runtime_light(map, PRT_WAVELET_PARAM_CUBE, 64));
   auto relative_to = [&](const glm::vec3& p) {

@@ -35,12 +35,12 @@
 #include <utility>
 #include <vector>
 
+#include "prt/baker/context.hpp"
+#include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "prt/io/envmap.hpp"
 #include "support/bench_embree.hpp"
 #include "support/bench_triad.hpp"
 #include "wavelet/wavelet_bench_asset.hpp"
-#include "prt/baker/context.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/wavelet/wavelet_transfer.hpp"
 
 namespace {
 
@@ -283,8 +283,8 @@ const LatLong& environment() {
         std::filesystem::path(PRT_SHARED_DIR) / "assets/envmaps/spiaggia_di_mondello_1k.hdr";
     try {
       if (std::filesystem::exists(path)) {
-        const prt::bake::EnvMap map =
-            prt::bake::load_envmap(path.string(), prt::bake::EnvMapping::LatLong, {});
+        const prt::io::EnvMap map =
+            prt::io::load_envmap(path.string(), prt::io::EnvMapping::LatLong);
         e.rgb = map.pixels();
         e.width = uint32_t(map.width()), e.height = uint32_t(map.height());
         g_figures.env_name = path.filename().string();

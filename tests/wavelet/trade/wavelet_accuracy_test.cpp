@@ -32,14 +32,14 @@
 #include <string>
 #include <vector>
 
-#include "prt/baker/sh/env_sh.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/radiance_error.hpp"
 #include "prt/baker/reference.hpp"
+#include "prt/baker/sh/env_sh.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
 #include "prt/baker/wavelet/wavelet_blob.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/radiance_error.hpp"
 
 namespace prt::bake {
 namespace {
@@ -84,7 +84,7 @@ double without_noise(double error, double noise) {
 
 // The wavelet side: bake, quantise, blob, runtime light pipeline and scalar shading.
 std::vector<glm::vec3> wavelet_radiance(const Scene& scene, const EmbreeScene& rays,
-                                        const EnvMap& env, const Context& ctx) {
+                                        const io::EnvMap& env, const Context& ctx) {
   WaveletTransferSettings settings;
   settings.param = PRT_WAVELET_PARAM_CUBE;
   settings.size = kSize;
@@ -116,8 +116,8 @@ std::vector<glm::vec3> wavelet_radiance(const Scene& scene, const EmbreeScene& r
 }
 
 // The sh side at one order: bake every vertex, 16-bit blob, runtime scalar shading.
-std::vector<glm::vec3> sh_radiance(const Scene& scene, const EmbreeScene& rays, const EnvMap& env,
-                                   std::uint32_t order, const Context& ctx) {
+std::vector<glm::vec3> sh_radiance(const Scene& scene, const EmbreeScene& rays,
+                                   const io::EnvMap& env, std::uint32_t order, const Context& ctx) {
   ShTransferSettings settings;
   settings.order = order;
   settings.kind = ShTransferKind::Shadowed;
@@ -143,8 +143,8 @@ TEST(WaveletAccuracy, BunnyUnderTheSunAtN64Keep1000BeatsShAndTheMark) {
   }
   const Context ctx;
   const Scene scene = import_scene(kBunny, ctx);
-  const EnvMap env = load_envmap(kSun, EnvMapping::Auto, ctx);
-  ASSERT_EQ(env.mapping(), EnvMapping::LatLong);
+  const io::EnvMap env = io::load_envmap(kSun, io::EnvMapping::Auto, ctx.io_messages());
+  ASSERT_EQ(env.mapping(), io::EnvMapping::LatLong);
 
   ReferenceSettings ref_settings;
   ref_settings.bounces = 0;
@@ -160,7 +160,7 @@ TEST(WaveletAccuracy, BunnyUnderTheSunAtN64Keep1000BeatsShAndTheMark) {
   const std::vector<glm::vec3> wavelet = wavelet_radiance(scene, renderer.embree_scene(), env, ctx);
   ASSERT_EQ(wavelet.size(), reference.radiance.size());
   for (const glm::vec3& l : wavelet) ASSERT_TRUE(std::isfinite(l.r + l.g + l.b));
-  const double wavelet_error = relative_rmse(subset(wavelet), ref);
+  const double wavelet_error = io::relative_rmse(subset(wavelet), ref);
   const double wavelet_clean = without_noise(wavelet_error, noise);
   std::printf(
       "bunny / spiaggia, wavelet cube %u, K %u, band quantiser, every %u-th vertex: relative "
@@ -172,7 +172,7 @@ TEST(WaveletAccuracy, BunnyUnderTheSunAtN64Keep1000BeatsShAndTheMark) {
   for (const std::uint32_t order : {6u, 16u}) {
     const std::vector<glm::vec3> sh = sh_radiance(scene, renderer.embree_scene(), env, order, ctx);
     ASSERT_EQ(sh.size(), reference.radiance.size());
-    const double sh_error = relative_rmse(subset(sh), ref);
+    const double sh_error = io::relative_rmse(subset(sh), ref);
     const double sh_clean = without_noise(sh_error, noise);
     std::printf(
         "sh order %u, %u rays, 16 bits: relative RMSE %.3f %%, %.3f %% noise removed; "

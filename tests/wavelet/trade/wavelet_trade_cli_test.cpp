@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
-// prt-bake trade-wavelet end to end on a tiny scene (a box on a grid, the demo sky) with tiny
-// settings: the rows the
-// sweep design calls for, the reference cache, determinism of everything but the timings, the
-// float/quantised relation, and clear errors for bad input.
+// prt-bake trade wavelet end to end on a tiny scene (a box on a grid, the demo sky) with tiny
+// settings: the rows the sweep design calls for, the reference cache, determinism of everything
+// but the timings, the float/quantised relation, and clear errors for bad input.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -104,7 +103,7 @@ class WaveletTradeCli : public ::testing::Test {
     }
   }
   std::string trade_arguments(const std::string& out, int threads) const {
-    return "--threads " + std::to_string(threads) + " trade-wavelet \"" + scene_ + "\" --env \"" +
+    return "--threads " + std::to_string(threads) + " trade wavelet \"" + scene_ + "\" --env \"" +
            sky_ + "\" --out-dir \"" + out + "\" --cache-dir \"" + (dir_ / "cache").string() +
            "\" --sizes 16 --base-size 16 --keeps 20,64 --base-keep 64 --light-terms 0,all"
            " --paraboloid-sizes 16 --sh-orders 2,3 --sh-bits 8,16 --sh-rays 16 --ref-spp 16"
@@ -188,7 +187,7 @@ TEST_F(WaveletTradeCli, SweepsCachesAndRepeatsItself) {
 
 TEST_F(WaveletTradeCli, BadInputGivesAClearError) {
   const std::string base =
-      "trade-wavelet \"" + scene_ + "\" --out-dir \"" + (dir_ / "x").string() + "\" ";
+      "trade wavelet \"" + scene_ + "\" --out-dir \"" + (dir_ / "x").string() + "\" ";
   const CommandResult missing_map = run_bake(base + "--env nothere.hdr", dir_ / "x.log");
   EXPECT_NE(missing_map.status, 0);
   EXPECT_NE(missing_map.output.find("nothere.hdr"), std::string::npos) << missing_map.output;
@@ -200,6 +199,31 @@ TEST_F(WaveletTradeCli, BadInputGivesAClearError) {
       run_bake(base + "--env \"" + sky_ + "\" --light-terms 10,most", dir_ / "z.log");
   EXPECT_NE(bad_terms.status, 0);
   EXPECT_NE(bad_terms.output.find("'most'"), std::string::npos) << bad_terms.output;
+  const CommandResult foreign =
+      run_bake(base + "--env \"" + sky_ + "\" --orders 2,3", dir_ / "w.log");
+  EXPECT_NE(foreign.status, 0);
+  EXPECT_NE(foreign.output.find("--orders"), std::string::npos) << foreign.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x" / "trade.csv"));
+}
+
+// --help lists the sweep's flags and the shared ones with wavelet's defaults (2048 reference
+// samples, 10 frames), not sh's own trade flags.
+TEST_F(WaveletTradeCli, HelpListsWaveletSweepFlagsOnly) {
+  const CommandResult help = run_bake("trade wavelet --help", dir_ / "help.log");
+  ASSERT_EQ(help.status, 0) << help.output;
+  for (const char* flag : {"--sizes",          "--base-size",
+                           "--keeps",          "--base-keep",
+                           "--light-terms",    "--paraboloid-sizes",
+                           "--no-paraboloid",  "--quantizer",
+                           "--samples",        "--sh-orders",
+                           "--sh-rays",        "--sh-bits",
+                           "--vertex-stride",  "--env",
+                           "--out-dir",        "--cache-dir",
+                           "1073741824]=2048", "--frames INT=10",
+                           "--albedo",         "--seed"})
+    EXPECT_NE(help.output.find(flag), std::string::npos) << flag << "\n" << help.output;
+  for (const char* flag : {"--orders", "--base-order", "--base-rays", "--bits "})
+    EXPECT_EQ(help.output.find(flag), std::string::npos) << flag << "\n" << help.output;
 }
 
 }  // namespace

@@ -6,19 +6,18 @@
 
 #include <cstdint>
 #include <functional>
-#include <stdexcept>
 #include <string>
+
+#include "prt/io/error.hpp"
 
 namespace prt::bake {
 
 enum class LogLevel { Debug, Info, Warning, Error };
 
 // Every failure the baker reports is an Error whose message names the file (where there is one)
-// and what is wrong with it, e.g. "bunny.glb: accessor 3 reads past the end of buffer 0".
-class Error : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// and what is wrong with it, e.g. "bunny.glb: accessor 3 reads past the end of buffer 0". It is
+// prt_io's error type, so one catch takes the failures of both (an unreadable .hdr included).
+using Error = io::Error;
 
 struct Context {
   // Receives every diagnostic. Empty: diagnostics are dropped.
@@ -34,6 +33,9 @@ struct Context {
   }
   void info(const std::string& text) const { message(LogLevel::Info, text); }
   void warn(const std::string& text) const { message(LogLevel::Warning, text); }
+  // The hook prt_io's readers (io::load_envmap) report through: their messages go to log at the
+  // same level.
+  io::MessageHook io_messages() const;
   // Resolved thread count (>= 1).
   unsigned thread_count() const;
 };

@@ -20,12 +20,12 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/camera.hpp"
 #include "prt/baker/context.hpp"
 #include "prt/baker/embree_scene.hpp"
-#include "prt/baker/envmap.hpp"
-#include "prt/baker/image_io.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/io/camera.hpp"
+#include "prt/io/envmap.hpp"
+#include "prt/io/image_io.hpp"
 
 namespace prt::bake {
 
@@ -61,7 +61,7 @@ class ReferenceRenderer {
   // Builds the ray-tracing scene and the environment's importance distribution. `scene` and
   // `env` must outlive the renderer. Throws Error on invalid settings (spp < 2, image_spp < 1,
   // bounces < 0, albedo outside [0,1]).
-  ReferenceRenderer(const Scene& scene, const EnvMap& env, const ReferenceSettings& settings,
+  ReferenceRenderer(const Scene& scene, const io::EnvMap& env, const ReferenceSettings& settings,
                     const Context& ctx);
   ~ReferenceRenderer();
   ReferenceRenderer(const ReferenceRenderer&) = delete;
@@ -72,8 +72,8 @@ class ReferenceRenderer {
   VertexRadiance render_vertices(const Context& ctx) const;
   // A camera image: primary rays jittered in each pixel; a hit is shaded by the same estimator as
   // the vertices (at the hit, with its interpolated normal and albedo), a miss shows the map.
-  LinearImage render_image(const Camera& camera, int width, int height, const Context& ctx,
-                           RenderStats* stats = nullptr) const;
+  io::LinearImage render_image(const io::Camera& camera, int width, int height, const Context& ctx,
+                               RenderStats* stats = nullptr) const;
 
   const EmbreeScene& embree_scene() const;
   const ReferenceSettings& settings() const;

@@ -15,7 +15,7 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/baker/envmap.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake {
 
@@ -65,7 +65,7 @@ glm::vec3 cosine_hemisphere(const glm::vec2& u);
 class EnvDistribution {
  public:
   // Builds the distribution; runs in parallel on the calling thread's TBB arena.
-  explicit EnvDistribution(const EnvMap& env);
+  explicit EnvDistribution(const io::EnvMap& env);
 
   // False when the map is black everywhere: then it cannot be sampled.
   bool valid() const { return total_ > 0.0; }

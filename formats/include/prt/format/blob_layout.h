@@ -1,5 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* prtkit blob container, format 1.x: the byte layout shared by the writer and the reader.
+/* prtkit blob container, format 1.x: the byte layout shared by the writer and the reader
+ * (header, section table, codecs, tags, byte order, checksum). The layout of each section kind's
+ * payload has its own header (mesh_layout.h, sh_layout.h, wavelet_layout.h).
  *
  * Normative description: formats/SPEC.md. Everything is little-endian and read or written byte
  * by byte through the helpers below, so parsing never depends on host alignment or endianness.
@@ -76,39 +78,13 @@ extern "C" {
 /* Smallest possible zstd frame: 4-byte magic, 2-byte frame header, 3-byte empty last block. */
 #define PRT_BLOB_ZSTD_MIN_FRAME 9u
 
-/* ---- Section kinds of format 1.0 ------------------------------------------------------------ */
+/* ---- Section tags ------------------------------------------------------------------------- */
 
 /* A tag is the four ASCII characters in file order, read as a little-endian u32. */
 #define PRT_BLOB_TAG(a, b, c, d)                                                             \
   ((uint32_t)(uint8_t)(a) | ((uint32_t)(uint8_t)(b) << 8) | ((uint32_t)(uint8_t)(c) << 16) | \
    ((uint32_t)(uint8_t)(d) << 24))
 
-#define PRT_BLOB_TAG_INFO PRT_BLOB_TAG('I', 'N', 'F', 'O') /* UTF-8 text, element = byte */
-#define PRT_BLOB_TAG_VPOS PRT_BLOB_TAG('V', 'P', 'O', 'S') /* f32 x,y,z per vertex */
-#define PRT_BLOB_TAG_VNRM PRT_BLOB_TAG('V', 'N', 'R', 'M') /* f32 x,y,z per vertex */
-#define PRT_BLOB_TAG_TRIS PRT_BLOB_TAG('T', 'R', 'I', 'S') /* u32 i0,i1,i2 per triangle */
-/* `sh` transfer: 32-byte header, offset/scale pairs, quantised values (SPEC.md, `sh` layout);
- * element = vertex, raw size given by the header (element size 0 in the kind table). */
-#define PRT_BLOB_TAG_SHTR PRT_BLOB_TAG('S', 'H', 'T', 'R')
-#define PRT_BLOB_SHTR_HEADER_SIZE 32u
-#define PRT_BLOB_SHTR_MAX_ORDER 16u
-/* `wavelet` transfer: 32-byte header, band and vertex scales, row starts, u16 block counts,
- * (u8 index, i8 value) pairs (SPEC.md §7.2); element = vertex, raw size given by the header. */
-#define PRT_BLOB_TAG_WVLT PRT_BLOB_TAG('W', 'V', 'L', 'T')
-#define PRT_BLOB_WVLT_HEADER_SIZE 32u
-#define PRT_BLOB_WVLT_BLOCK 256u        /* coefficients per block; also the most non-zeros in one */
-#define PRT_BLOB_WVLT_OFF_PARAM 0u      /* u32: 0 cube, 1 dual paraboloid */
-#define PRT_BLOB_WVLT_OFF_SIZE 4u       /* u32: face size S, power of two 16..128 */
-#define PRT_BLOB_WVLT_OFF_VERTICES 8u   /* u32: V = VPOS element count */
-#define PRT_BLOB_WVLT_OFF_QUANTIZER 12u /* u32: 0 per vertex, 1 per face and level */
-#define PRT_BLOB_WVLT_OFF_KEEP 16u      /* u32, informational */
-#define PRT_BLOB_WVLT_OFF_BOUNCES 20u   /* u32, informational */
-#define PRT_BLOB_WVLT_OFF_PAIR_COUNT 24u /* u32: P, total stored non-zeros */
-#define PRT_BLOB_WVLT_OFF_RESERVED 28u   /* u32, zero */
-#define PRT_BLOB_WVLT_PARAM_CUBE 0u
-#define PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID 1u
-#define PRT_BLOB_WVLT_MIN_SIZE 16u
-#define PRT_BLOB_WVLT_MAX_SIZE 128u
 #define PRT_BLOB_LAYOUT_VERSION_1 1u /* the layout version of every 1.0 kind */
 
 /* ---- Little-endian load/store, byte by byte ------------------------------------------------- */
@@ -137,48 +113,6 @@ static inline void prt_le_store_u64(uint8_t* p, uint64_t v) {
   prt_le_store_u32(p + 4, (uint32_t)(v >> 32));
 }
 
-/* ---- WVLT layout (SPEC.md §7.2) ---------------------------------------------------------------
- */
-
-/* Where the parts of a WVLT section lie, from its header fields; all offsets in bytes from the
- * section's first byte. With V < 2^32, P < 2^32 and at most 384 blocks nothing overflows 64 bits.
- */
-typedef struct prt_blob_wvlt_layout {
-  uint32_t faces;        /* F: 6 cube, 2 dual paraboloid */
-  uint32_t bands;        /* F * (log2 S + 1) band scales */
-  uint32_t coefficients; /* F * S^2 per row */
-  uint32_t blocks;       /* B = coefficients / 256 per row */
-  uint64_t band_scale;   /* f32[bands] */
-  uint64_t vertex_scale; /* f32[V][3] */
-  uint64_t row_start;    /* u32[V + 1] */
-  uint64_t counts;       /* u16[V][B] */
-  uint64_t pairs;        /* u8[P][2] */
-  uint64_t payload_end;  /* pairs + 2 P */
-  uint64_t raw_size;     /* payload_end rounded up to a multiple of 4 */
-} prt_blob_wvlt_layout;
-
-/* Fills *out for valid param and size and returns 1; returns 0 (out untouched) otherwise. */
-static inline int prt_blob_wvlt_layout_of(uint32_t param, uint32_t size, uint32_t vertices,
-                                          uint32_t pair_count, prt_blob_wvlt_layout* out) {
-  uint32_t log2_size = 0;
-  if (param != PRT_BLOB_WVLT_PARAM_CUBE && param != PRT_BLOB_WVLT_PARAM_DUAL_PARABOLOID) return 0;
-  if (size < PRT_BLOB_WVLT_MIN_SIZE || size > PRT_BLOB_WVLT_MAX_SIZE || (size & (size - 1u)) != 0)
-    return 0;
-  while ((1u << log2_size) < size) ++log2_size;
-  out->faces = param == PRT_BLOB_WVLT_PARAM_CUBE ? 6u : 2u;
-  out->bands = out->faces * (log2_size + 1u);
-  out->coefficients = out->faces * size * size;
-  out->blocks = out->coefficients / PRT_BLOB_WVLT_BLOCK;
-  out->band_scale = PRT_BLOB_WVLT_HEADER_SIZE;
-  out->vertex_scale = out->band_scale + 4u * (uint64_t)out->bands;
-  out->row_start = out->vertex_scale + 12u * (uint64_t)vertices;
-  out->counts = out->row_start + 4u * ((uint64_t)vertices + 1u);
-  out->pairs = out->counts + 2u * (uint64_t)vertices * out->blocks;
-  out->payload_end = out->pairs + 2u * (uint64_t)pair_count;
-  out->raw_size = (out->payload_end + 3u) & ~(uint64_t)3u;
-  return 1;
-}
-
 /* ---- CRC-32C (Castagnoli) ------------------------------------------------------------------- */
 
 /* CRC-32C: reflected polynomial 0x82F63B78, initial value 0xFFFFFFFF, final xor 0xFFFFFFFF
@@ -189,5 +123,12 @@ uint32_t prt_crc32c(uint32_t crc, const void* data, size_t size);
 #ifdef __cplusplus
 }
 #endif
+
+/* The layouts of the 1.0 section kinds, one header per kind family (section_kinds.h lists the
+ * kinds). Included here so that code including only this header keeps finding them; a new kind's
+ * header is included by name where it is used. */
+#include <prt/format/mesh_layout.h>
+#include <prt/format/sh_layout.h>
+#include <prt/format/wavelet_layout.h>
 
 #endif /* PRT_FORMAT_BLOB_LAYOUT_H */

@@ -59,23 +59,19 @@ typedef struct prt_blob_section {
   uint64_t element_count;
 } prt_blob_section;
 
-/* A section kind this reader knows (tag + layout version), SPEC.md §Section kinds. */
-typedef struct prt_blob_kind {
-  uint32_t tag;
-  uint8_t layout_version;
-  uint32_t element_size; /* bytes per element in the raw (decoded) bytes; 0 = variable size
-                          * (element_count <= raw_size, exact size checked by content) */
-  const char* name;
-} prt_blob_kind;
+/* A section kind this reader knows (tag + layout version): one row of the kind table,
+ * section_kinds.h. */
+typedef struct prt_blob_kind prt_blob_kind;
 
 /* The known kind for (tag, layout_version), or NULL when this reader does not know it. */
 const prt_blob_kind* prt_blob_find_kind(uint32_t tag, uint8_t layout_version);
 
 /* Quick validation: size, magic, version, header fields, section table and every entry (bounds,
  * alignment, canonical placement, codec, sizes, element counts, flags, unknown required tags,
- * duplicate tags, dependencies between kinds). O(section_count^2) in the worst case with at most
- * PRT_BLOB_MAX_SECTIONS sections. On PRT_BLOB_OK, *header (may be NULL) holds the header.
- * On failure, msg (may be NULL) receives a NUL-terminated explanation, cut to msg_capacity. */
+ * duplicate tags, the dependencies and element counts the kind table states). O(section_count^2) in
+ * the worst case with at most PRT_BLOB_MAX_SECTIONS sections. On PRT_BLOB_OK, *header (may be NULL)
+ * holds the header. On failure, msg (may be NULL) receives a NUL-terminated explanation, cut to
+ * msg_capacity. */
 prt_blob_status prt_blob_validate_structure(const void* data, size_t size, prt_blob_header* header,
                                             char* msg, size_t msg_capacity);
 
@@ -90,8 +86,9 @@ prt_blob_status prt_blob_verify_checksums(const void* data, const prt_blob_heade
                                           char* msg, size_t msg_capacity);
 
 /* Full validation, part 2: checks the decoded bytes of one known section (`raw` holds
- * section->raw_size bytes): finite floats, indices below vertex_count (the VPOS element count,
- * 0 when absent), well-formed UTF-8. Unknown kinds pass. */
+ * section->raw_size bytes) with its kind's check function (section_kinds.h): finite floats,
+ * indices below vertex_count (the VPOS element count, 0 when absent), well-formed UTF-8, each
+ * technique's own rules. Unknown kinds pass. */
 prt_blob_status prt_blob_check_content(const prt_blob_section* section, const void* raw,
                                        uint64_t vertex_count, char* msg, size_t msg_capacity);
 
@@ -101,5 +98,8 @@ void prt_blob_tag_string(uint32_t tag, char out[5]);
 #ifdef __cplusplus
 }
 #endif
+
+/* The kind table, which describes what the checks above check. */
+#include <prt/format/section_kinds.h>
 
 #endif /* PRT_FORMAT_BLOB_READER_H */

@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "prt/baker/envmap.hpp"
+#include "prt/baker/context.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake {
 
@@ -24,10 +25,10 @@ struct EnvSh {
 };
 
 // Throws Error when order is 0 or above PRT_SH_MAX_ORDER.
-EnvSh project_env_sh(const EnvMap& map, std::uint32_t order);
+EnvSh project_env_sh(const io::EnvMap& map, std::uint32_t order);
 
 // The projection as JSON text: source, mapping, size, order, frame, convention and
 // "coefficients": [[r, g, b], ...] in index order (what `prt-bake env-sh` prints).
-std::string env_sh_json(const EnvMap& map, const EnvSh& sh);
+std::string env_sh_json(const io::EnvMap& map, const EnvSh& sh);
 
 }  // namespace prt::bake

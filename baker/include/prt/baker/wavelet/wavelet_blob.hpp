@@ -8,8 +8,8 @@
 //          with m_v the vertex's largest kept |coefficient|;
 //   band   (1): band scale m_b/127 with m_b the largest kept |coefficient| of band b (face x
 //          wavelet level) over all vertices, vertex scale rho_c.
-// Measured on the bunny under spiaggia (N = 64, K = 1000, docs/wavelet/trade.md): band 2.20 %,
-// vertex 3.27 % relative RMSE (float rows 2.14 %), so band is the command's default.
+// Band is the command's default because it measures the smaller error (docs/wavelet/trade.md
+// compares the two).
 // `band_percentile` < 1 (measurement only) puts m_b at that quantile of |coefficient| in the band
 // instead of its maximum, clamping larger values to +-127: that breaks the SPEC's writers' rule
 // (m_b = the maximum), so the prt-bake command does not offer it.

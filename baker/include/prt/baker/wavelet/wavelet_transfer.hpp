@@ -57,8 +57,8 @@ std::uint32_t default_wavelet_keep(std::uint32_t param, std::uint32_t size);
 struct WaveletTransferSettings {
   std::uint32_t param = 0;    // PRT_WAVELET_PARAM_CUBE or _DUAL_PARABOLOID
   std::uint32_t size = 64;    // face size S: power of two, 16..128
-  std::uint32_t samples = 1;  // rays per texel, a square k*k: 1 by measurement (bunny under
-  // spiaggia, N = 64, K = 1000, band, every 8th vertex: 1.78 % with 1 ray and with 4)
+  std::uint32_t samples = 1;  // rays per texel, a square k*k: 1, since more rays measure no
+                              // smaller error (docs/wavelet/trade.md)
   std::uint32_t keep = 1000;  // most coefficients kept per vertex; 0 = all (no truncation)
   double keep_energy = 0.0;   // in (0, 1]: keep by energy instead of `keep`; 0 = use keep
   int bounces = 0;            // interreflection passes, 0..8 (0 = direct light with shadows)

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+// A baker technique: what `prt-bake bake <name>` and `prt-bake trade <name>` run. Each technique
+// implements it in its own folder (baker/src/<name>/) and is listed once in techniques(); the
+// command builds one subcommand per technique from that list, with the technique's own options
+// and the shared ones (SCENE, --albedo, --seed, -o, --report; for trade SCENE, --env, --out-dir,
+// --cache-dir, --ref-spp, --frames, --albedo, --seed).
+//
+// A bake runs the steps of TechniqueBake in order (run_bake): import the scene, bake (the
+// transfer), quantise, write the blob, check it through the runtime, report. A trade runs
+// TechniqueTrade (run_trade): check the options, import the scene, prepare (lights and cached
+// references), build one Embree scene, sweep (bake, load, shade and measure each setting;
+// trade.csv and trade.md).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "prt/baker/context.hpp"
+#include "prt/baker/embree_scene.hpp"
+#include "prt/baker/options.hpp"
+#include "prt/baker/scene.hpp"
+
+namespace prt::bake {
+
+// The flags every bake takes.
+struct BakeInput {
+  std::string scene;   // SCENE (.gltf, .glb, .obj)
+  std::string albedo;  // --albedo "r,g,b" for every surface; empty: from the materials
+  std::uint32_t seed = 0;
+  std::string output;  // -o: the blob
+  std::string report;  // --report: the JSON report; empty: none
+};
+
+// What every bake report states besides the technique's own settings and results.
+struct BakeFacts {
+  std::size_t vertices = 0, triangles = 0;
+  unsigned threads = 1;
+  std::size_t blob_bytes = 0;
+};
+
+struct SelfCheck {
+  bool passed = false;
+  std::string message;  // what failed, or a summary of what was checked
+};
+
+// One bake: the settings its options fill, then the steps run_bake calls once each, in order.
+class TechniqueBake {
+ public:
+  virtual ~TechniqueBake() = default;
+  // The technique's own options, bound to this bake's settings (they point into it: keep the
+  // bake alive while they are used).
+  virtual OptionList options() = 0;
+  // Computes the transfer of every vertex of `scene`.
+  virtual void bake(const Scene& scene, const BakeInput& input, const Context& ctx) = 0;
+  // Quantises the transfer as the blob stores it.
+  virtual void quantize() = 0;
+  // The blob; the same scene and settings give the same bytes.
+  virtual std::vector<std::uint8_t> write(const Scene& scene, const BakeInput& input) const = 0;
+  // The line the command prints once the blob is written.
+  virtual std::string summary(const Scene& scene, const BakeInput& input,
+                              std::size_t blob_bytes) const = 0;
+  // Loads the blob through the runtime at full validation and checks it against the bake.
+  virtual SelfCheck self_check(const std::vector<std::uint8_t>& blob) = 0;
+  // Writes the JSON report (settings, bake, blob, quantisation, self-check); Error on failure.
+  virtual void write_report(const std::string& path, const BakeInput& input,
+                            const BakeFacts& facts) const = 0;
+};
+
+// The flags every trade takes; a technique gives their defaults (TechniqueTrade::defaults).
+struct TradeInput {
+  std::string scene, out_dir, cache_dir;  // cache_dir empty: OUT_DIR/cache
+  std::string albedo;                     // "r,g,b" or empty (from the materials)
+  std::vector<std::string> envs;          // environment maps, at least one
+  std::uint32_t ref_spp = 2048, seed = 0;
+  int frames = 10;  // timed frames per measurement (median)
+};
+
+// One speed/accuracy sweep of a technique against the reference renderer.
+class TechniqueTrade {
+ public:
+  virtual ~TechniqueTrade() = default;
+  // The shared flags with this sweep's defaults.
+  virtual TradeInput defaults() const = 0;
+  // The technique's own options, bound to this trade's settings (they point into it).
+  virtual OptionList options() = 0;
+  // Throws Error naming the flag when an option value cannot be swept; before any work.
+  virtual void check(const TradeInput& input) const = 0;
+  // Loads the maps as the technique's runtime takes them, and their cached references.
+  virtual void prepare(const Scene& scene, const TradeInput& input, const Context& ctx) = 0;
+  // Bakes, loads, shades and measures every setting; writes OUT_DIR/trade.csv and trade.md.
+  virtual void sweep(const Scene& scene, const EmbreeScene& rays, const TradeInput& input,
+                     const Context& ctx) = 0;
+};
+
+class Technique {
+ public:
+  virtual ~Technique() = default;
+  // The technique's name, the folder name in every layer: "sh", "wavelet".
+  virtual const char* name() const = 0;
+  // One line each: what its bake makes, what its trade measures.
+  virtual const char* summary() const = 0;
+  virtual const char* trade_summary() const = 0;
+  virtual std::unique_ptr<TechniqueBake> make_bake() const = 0;
+  virtual std::unique_ptr<TechniqueTrade> make_trade() const = 0;
+};
+
+// Every technique of the baker, in the order the command lists them (baker/src/techniques.cpp).
+const std::vector<const Technique*>& techniques();
+// The technique of that name, or null.
+const Technique* find_technique(const std::string& name);
+
+// Imports input.scene, runs every step of `bake` and writes the blob (and the report); throws
+// Error when a step or the self-check fails, after writing what it could.
+void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx);
+
+// Checks the shared flags and the technique's, then runs the sweep (see the top of this file).
+void run_trade(TechniqueTrade& trade, TradeInput input, const Context& ctx);
+
+// Parses "r,g,b" (the --albedo flag); throws Error on anything else.
+glm::vec3 parse_albedo(const std::string& text);
+
+}  // namespace prt::bake

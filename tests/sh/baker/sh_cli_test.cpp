@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: MIT
+// `prt-bake bake sh` end to end: the blob loads at full validation with the settings asked for,
+// the JSON report carries what it promises, bad or foreign options fail without writing a blob,
+// --help lists sh's flags and no other technique's, and a mesh of degenerate triangles is named.
+#include <gtest/gtest.h>
+
+#include <prt/prt_sh_asset.h>
+#include <prt/prt.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include "prt/baker/demo_scene.hpp"
+#include "prt/baker/technique.hpp"
+
+namespace prt::bake {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One folder per test and process, so parallel runs (ctest -j, two build trees) never share files.
+fs::path temp_dir() {
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       ("prt_sh_cli_test_" + std::to_string(::getpid()) + "_" + test->name());
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct CommandResult {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+// prt-bake with `arguments`, its output captured.
+CommandResult run_bake(const std::string& arguments) {
+  const fs::path log = temp_dir() / "command.log";
+  const std::string command =
+      std::string("\"") + PRT_BAKE_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
+  CommandResult r;
+  r.status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  r.output = text.str();
+  return r;
+}
+
+std::string quoted(const fs::path& path) {
+  return "\"" + path.string() + "\"";
+}
+
+fs::path demo_scene_file() {
+  const fs::path path = temp_dir() / "demo.glb";
+  if (!fs::exists(path)) write_glb(make_demo_scene(), path.string());
+  return path;
+}
+
+struct AssetHandle {
+  prt_context* context = nullptr;
+  prt_asset* asset = nullptr;
+  ~AssetHandle() {
+    prt_asset_destroy(asset);
+    prt_context_destroy(context);
+  }
+};
+
+TEST(ShBakeCommand, DemoSceneBlobLoadsAndReportParses) {
+  const fs::path blob = temp_dir() / "demo_sh.prtk", report = temp_dir() / "demo_sh.json";
+  const CommandResult bake =
+      run_bake("--quiet bake sh " + quoted(demo_scene_file()) + " --order 3 --rays 16 --bits 8 " +
+               "--transfer interreflected --bounces 1 --seed 3 -o " + quoted(blob) + " --report " +
+               quoted(report));
+  ASSERT_EQ(bake.status, 0) << bake.output;
+  AssetHandle h;
+  ASSERT_EQ(prt_context_create(nullptr, &h.context), PRT_OK);
+  ASSERT_EQ(prt_asset_load_file(h.context, blob.string().c_str(), PRT_VALIDATE_FULL, &h.asset),
+            PRT_OK)
+      << prt_context_last_message(h.context);
+  prt_sh_info info = prt::sized<prt_sh_info>();
+  ASSERT_EQ(prt_sh_get_info(h.asset, &info), PRT_OK);
+  EXPECT_EQ(info.order, 3u);
+  EXPECT_EQ(info.bits, 8u);
+  EXPECT_EQ(info.channels, 3u);
+  EXPECT_EQ(info.kind, 2u);
+  EXPECT_EQ(info.bounces, 1u);
+
+  std::ifstream file(report);
+  const nlohmann::json json = nlohmann::json::parse(file);
+  EXPECT_EQ(json.at("technique"), "sh");
+  EXPECT_EQ(json.at("settings").at("order"), 3);
+  EXPECT_EQ(json.at("settings").at("transfer"), "interreflected");
+  EXPECT_EQ(json.at("settings").at("rays"), 16);
+  EXPECT_EQ(json.at("scene").at("vertices"), info.vertex_count);
+  EXPECT_EQ(json.at("blob").at("bytes"), fs::file_size(blob));
+  // At least one shadow ray per direction per vertex; a bounce pass adds closest-hit rays.
+  EXPECT_GE(json.at("bake").at("rays").get<double>(), 16.0 * info.vertex_count);
+  EXPECT_GT(json.at("bake").at("seconds").get<double>(), 0.0);
+  EXPECT_GT(json.at("bake").at("rays_per_second").get<double>(), 0.0);
+  EXPECT_EQ(json.at("quantization").at("bits"), 8);
+  EXPECT_GE(json.at("quantization").at("max_abs_error").get<double>(),
+            json.at("quantization").at("rms_abs_error").get<double>());
+  EXPECT_TRUE(json.at("self_check").at("passed").get<bool>());
+  fs::remove_all(temp_dir());
+}
+
+TEST(ShBakeCommand, BadAndForeignOptionsFail) {
+  const std::string scene = quoted(demo_scene_file());
+  const fs::path blob = temp_dir() / "bad.prtk";
+  for (const std::string& bad :
+       {std::string("--order 0"), std::string("--order 17"), std::string("--bits 12"),
+        std::string("--transfer glossy"), std::string("--rays 0"), std::string("--bounces 65"),
+        std::string("--albedo 0.5,0.5"), std::string("--technique sh"), std::string("--cube 16"),
+        std::string("--keep 10"), std::string("--quantizer band")}) {
+    fs::remove(blob);
+    const CommandResult r =
+        run_bake("--quiet bake sh " + scene + " --rays 4 " + bad + " -o " + quoted(blob));
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_FALSE(fs::exists(blob)) << bad;
+  }
+  const CommandResult missing =
+      run_bake("--quiet bake sh " + quoted(temp_dir() / "missing.glb") + " -o " + quoted(blob));
+  EXPECT_NE(missing.status, 0);
+  EXPECT_NE(missing.output.find("missing.glb"), std::string::npos) << missing.output;
+  EXPECT_NE(run_bake("--quiet bake sh " + scene).status, 0);  // no -o
+  fs::remove_all(temp_dir());
+}
+
+// Each flag's name as --help prints it: the long name, once (as "--name " or "--name=").
+bool lists_flag(const std::string& help, const std::string& name) {
+  const std::string flag = name.substr(name.rfind(',') + 1);
+  for (std::size_t at = help.find(flag); at != std::string::npos; at = help.find(flag, at + 1)) {
+    const char next = at + flag.size() < help.size() ? help[at + flag.size()] : ' ';
+    if (next == ' ' || next == '=' || next == '\n') return true;
+  }
+  return false;
+}
+
+TEST(ShBakeCommand, HelpListsShFlagsOnly) {
+  const CommandResult help = run_bake("bake sh --help");
+  ASSERT_EQ(help.status, 0) << help.output;
+  std::set<std::string> own;
+  const std::unique_ptr<TechniqueBake> bake = find_technique("sh")->make_bake();
+  const OptionList options = bake->options();  // holds pointers into `bake`
+  for (const OptionSpec& spec : options.specs()) {
+    own.insert(spec.name);
+    EXPECT_TRUE(lists_flag(help.output, spec.name)) << spec.name << "\n" << help.output;
+  }
+  EXPECT_TRUE(own.count("--order") && own.count("--transfer") && own.count("--bits"));
+  for (const char* shared : {"--albedo", "--seed", "--output", "--report", "SCENE"})
+    EXPECT_NE(help.output.find(shared), std::string::npos) << shared;
+  std::size_t foreign = 0;
+  for (const Technique* other : techniques()) {
+    if (std::string(other->name()) == "sh") continue;
+    const std::unique_ptr<TechniqueBake> other_bake = other->make_bake();
+    const OptionList other_options = other_bake->options();
+    for (const OptionSpec& spec : other_options.specs()) {
+      if (own.count(spec.name)) continue;
+      ++foreign;
+      EXPECT_FALSE(lists_flag(help.output, spec.name)) << spec.name << "\n" << help.output;
+    }
+  }
+  EXPECT_GT(foreign, 0u);  // wavelet's --cube, --keep, ...
+  EXPECT_FALSE(lists_flag(help.output, "--technique"));
+}
+
+// Four vertices on a line with normals: both triangles have zero area. Unshadowed sh builds no
+// ray-tracing scene, so only the bake's own check can say so.
+TEST(ShBakeCommand, AllDegenerateMeshIsNamed) {
+  const fs::path obj = temp_dir() / "flat.obj", blob = temp_dir() / "flat.prtk";
+  std::ofstream(obj) << "o flat\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nvn 0 1 0\n"
+                        "f 1//1 2//1 3//1\nf 2//1 3//1 4//1\n";
+  for (const char* transfer : {"unshadowed", "shadowed"}) {
+    const CommandResult r = run_bake("bake sh " + quoted(obj) + " --transfer " + transfer +
+                                     " --rays 16 -o " + quoted(blob));
+    EXPECT_EQ(r.status, 0) << r.output;  // a warning, not an error: the blob is valid
+    EXPECT_NE(r.output.find("warning: " + obj.string() +
+                            ": every triangle is degenerate (a repeated or out-of-range index, "
+                            "a non-finite position or zero area): nothing casts shadows"),
+              std::string::npos)
+        << transfer << "\n"
+        << r.output;
+    EXPECT_TRUE(fs::exists(blob));
+  }
+  // One good mesh beside the flat one: the flat one is named, the scene is not.
+  std::ofstream(obj, std::ios::app) << "o good\nv 0 0 1\nv 1 0 1\nv 0 1 1\nvn 0 0 1\n"
+                                       "f 5//2 6//2 7//2\n";
+  const CommandResult mixed = run_bake("bake sh " + quoted(obj) + " --rays 16 -o " + quoted(blob));
+  EXPECT_EQ(mixed.status, 0) << mixed.output;
+  EXPECT_NE(mixed.output.find("every triangle of mesh 0 ('flat') is degenerate"), std::string::npos)
+      << mixed.output;
+  EXPECT_EQ(mixed.output.find("every triangle is degenerate"), std::string::npos) << mixed.output;
+  fs::remove_all(temp_dir());
+}
+
+}  // namespace
+}  // namespace prt::bake
