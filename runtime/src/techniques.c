@@ -40,12 +40,15 @@ void prt_internal_free_views(const prt_allocator* allocator,
   }
 }
 
-/* The section with the technique's tag (tags are unique after structure validation). */
+/* The section with the technique's tag (tags are unique after structure validation), if this
+ * reader knows its layout version: an optional section of an unknown version passes validation
+ * unchecked, so the technique treats it as absent rather than read it. */
 static const prt_asset_section* find_section(const prt_asset_section* sections, uint32_t count,
                                              uint32_t tag) {
   uint32_t i;
   for (i = 0; i < count; ++i)
-    if (sections[i].entry.tag == tag) return &sections[i];
+    if (sections[i].entry.tag == tag)
+      return prt_blob_find_kind(tag, sections[i].entry.layout_version) ? &sections[i] : NULL;
   return NULL;
 }
 

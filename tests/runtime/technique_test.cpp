@@ -106,6 +106,34 @@ TEST(Technique, AssetTechniquesAreTheSectionsItHolds) {
   }
 }
 
+// A technique section of a layout version this runtime does not know, marked optional, passes
+// validation unchecked; the technique then counts as absent instead of reading it.
+TEST(Technique, SectionOfAnUnknownLayoutVersionIsAbsent) {
+  const uint32_t vertices = 6;
+  const Transfer sh = random_transfer(2, vertices, 3, 8, 7);
+  const Bytes shtr = encode(sh);
+  std::vector<float> positions(3 * size_t(vertices), 0.25f);
+  prt::format::BlobWriter w;
+  prt::format::SectionOptions required, unknown;
+  required.required = true;
+  unknown.layout_version = 2;
+  w.add_section(kVPOS, positions.data(), positions.size() * 4, vertices, required);
+  w.add_section(kSHTR, shtr.data(), shtr.size(), vertices, unknown);
+  Context ctx;
+  for (prt_validation level : {PRT_VALIDATE_QUICK, PRT_VALIDATE_FULL}) {
+    LoadedAsset asset(ctx.ctx, w.finish(), level);
+    ASSERT_EQ(asset.result, PRT_OK) << prt_context_last_message(ctx.ctx);
+    EXPECT_EQ(prt_asset_techniques(asset.asset), 0u);
+    prt_sh_info info = prt::sized<prt_sh_info>();
+    EXPECT_EQ(prt_sh_get_info(asset.asset, &info), PRT_ERROR_NOT_FOUND);
+    float light[12] = {1.0f}, out[3];
+    EXPECT_EQ(prt_sh_shade(asset.asset, PRT_BACKEND_CPU, light, 0, 1, out), PRT_ERROR_NOT_FOUND);
+    prt_section_info section = prt::sized<prt_section_info>();
+    ASSERT_EQ(prt_asset_get_section_info(asset.asset, 1, &section), PRT_OK);
+    EXPECT_EQ(section.technique, PRT_TECHNIQUE_NONE);
+  }
+}
+
 TEST(Technique, SectionInfoSaysDomainAndTechnique) {
   Context ctx;
   LoadedAsset both(ctx.ctx, both_techniques_blob(4));
