@@ -203,8 +203,10 @@ TEST(EnvMap, RadianceAtTexelCentreIsTheTexel) {
         glm::vec3 d;
         if (!map.texel(x, y, &d, nullptr)) continue;
         const glm::vec3 want = map.texel_value(x, y), got = map.radiance(d);
-        EXPECT_NEAR(got.r, want.r, 2e-3f) << env_mapping_name(map.mapping()) << x << "," << y;
-        EXPECT_NEAR(got.b, want.b, 2e-3f);
+        // The direction -> texel round trip is exact but for float rounding, a few millionths
+        // of a texel, times neighbour differences of up to 4.
+        EXPECT_NEAR(got.r, want.r, 2e-4f) << env_mapping_name(map.mapping()) << x << "," << y;
+        EXPECT_NEAR(got.b, want.b, 2e-4f);
       }
     }
   }
@@ -356,8 +358,9 @@ TEST(EnvMapAssets, ProbeAndCrossOfTheSameSceneAgree) {
   const Sh9 probe = project_sh9(load_envmap(probe_path, EnvMapping::Auto));
   const Sh9 cross = project_sh9(load_envmap(cross_path, EnvMapping::Auto));
   const glm::dvec3 exposure = probe[0] / cross[0];  // the files may differ in exposure
-  // Measured agreement is ~0.003 % of the largest coefficient; 0.2 % leaves room.
-  const double tol = 0.002 * largest(probe);
+  // Two resamplings of one scene agree to a few times 1e-5 of the largest coefficient; turning
+  // either mapping by half a texel moves them apart by over ten times that.
+  const double tol = 1e-4 * largest(probe);
   for (int k = 0; k < 9; ++k) {
     const glm::dvec3 scaled = cross[k] * exposure;
     for (int c = 0; c < 3; ++c) {
@@ -433,7 +436,7 @@ TEST(EnvMapAssets, MondelloSunHoldsHalfThePower) {
     power += lum * w;
     area += w;
   }
-  EXPECT_NEAR(area, 7.5e-4, 1.5e-4);
+  EXPECT_NEAR(area, 7.5e-4, 0.05e-4);  // MANIFEST's figure, to its two digits
 }
 
 }  // namespace
