@@ -11,6 +11,7 @@
 
 #include "command.hpp"
 #include "prt/baker/reference.hpp"
+#include "prt/baker/text.hpp"
 
 namespace prt::bake::cli {
 namespace {
@@ -32,12 +33,6 @@ void parse_image_size(const std::string& text, int* width, int* height) {
       *height < 1 || *width > 16384 || *height > 16384) {
     throw Error("--image-size: expected WxH (e.g. 640x480), got '" + text + "'");
   }
-}
-
-std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, a, b, c);
-  return buffer;
 }
 
 std::string join(const std::vector<std::string>& paths) {

@@ -21,12 +21,6 @@ namespace prt::bake::trade {
 
 namespace fs = std::filesystem;
 
-std::string format(const char* fmt, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, fmt, value);
-  return buffer;
-}
-
 std::string stem(const std::string& path) {
   return fs::path(path).stem().string();
 }

@@ -18,11 +18,11 @@
 #include "prt/baker/context.hpp"
 #include "prt/baker/scene.hpp"
 #include "prt/baker/technique.hpp"
+#include "prt/baker/text.hpp"
 #include "prt/io/envmap.hpp"
 
 namespace prt::bake::trade {
 
-std::string format(const char* fmt, double value);
 // Empty for a negative value (not measured), else the value in `fmt`.
 std::string optional_number(double value, const char* fmt);
 // "n/a" for a negative time (backend not available), else milliseconds to 3 decimals.

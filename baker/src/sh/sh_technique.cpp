@@ -11,17 +11,12 @@
 
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/baker/text.hpp"
 
 #include "sh_technique.hpp"
 
 namespace prt::bake {
 namespace {
-
-std::string format(const char* fmt, double a, double b = 0.0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, a, b);
-  return buffer;
-}
 
 class ShBake final : public TechniqueBake {
  public:

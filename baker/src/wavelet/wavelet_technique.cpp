@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/baker/text.hpp"
 #include "prt/baker/wavelet/wavelet_blob.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
 
@@ -15,12 +16,6 @@
 
 namespace prt::bake {
 namespace {
-
-std::string format(const char* fmt, double a, double b = 0.0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, a, b);
-  return buffer;
-}
 
 class WaveletBake final : public TechniqueBake {
  public:
