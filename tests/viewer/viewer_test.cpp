@@ -147,8 +147,8 @@ TEST(PrtView, VertexOutMatchesDotProductsOfDecodedTransfer) {
 
 // Cross and probe maps go through a cube resampling and prt_sh_project; the baker projects
 // the same file texel by texel with each texel's exact solid angle (another method): the shaded
-// radiance agrees to the resampling error (measured: 2e-5 for the probe, below 1e-5 for the
-// cross).
+// radiance agrees to a few times the resampling error (the probe's, the larger); a resampling
+// turned by half a probe texel differs by far more.
 TEST(PrtView, CrossAndProbeMapsMatchTheBakersTexelProjection) {
   for (const char* name : {"rnl_cross.hdr", "rnl_probe.hdr"}) {
     const std::string map = std::string(PRT_SHARED_DIR) + "/assets/envmaps/" + name;
@@ -164,7 +164,7 @@ TEST(PrtView, CrossAndProbeMapsMatchTheBakersTexelProjection) {
     ASSERT_EQ(shaded.size(), expected.size());
     const double difference = relative_difference(shaded, expected);
     std::printf("%s: relative RMS difference %.5f\n", name, difference);
-    EXPECT_LT(difference, 1e-3) << name;
+    EXPECT_LT(difference, 1e-4) << name;
   }
 }
 
@@ -200,7 +200,8 @@ TEST(PrtView, QuarterTurnEqualsQuarterColumnShiftOfTheMap) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::vector<float> expected = read_npy(out);
   ASSERT_EQ(turned.size(), expected.size());
-  EXPECT_LT(relative_difference(turned, expected), 1e-4);
+  // The SH of a turned light vary smoothly with the turn: rounding only, as for the full turn.
+  EXPECT_LT(relative_difference(turned, expected), 1e-5);
   const std::vector<float> unturned = read_npy(vertex_run("turn0b", "--backend cpu"));
   EXPECT_GT(relative_difference(unturned, expected), 1e-2);  // the turn does something
 }

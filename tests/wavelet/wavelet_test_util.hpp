@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "prt/baker/scene.hpp"
 #include "prt/io/envmap.hpp"
 
 namespace prt::bake::test {
@@ -61,6 +62,24 @@ inline double clamped_cosine_integral(std::vector<glm::dvec3> poly, const glm::d
     sum += std::atan2(len, glm::dot(a, b)) * glm::dot(n, c / len);
   }
   return std::abs(0.5 * sum);
+}
+
+// Integral of max(0, n.w) over the directions in which a closed convex mesh is seen from the
+// point p outside it: the faces turned towards p tile exactly that solid angle (a ray from p
+// enters a convex body once, through such a face), each a spherical triangle seen from p.
+inline double convex_mesh_clamped_cosine_integral(const Mesh& mesh, const glm::dvec3& p,
+                                                  const glm::dvec3& n) {
+  glm::dvec3 inside(0.0);
+  for (const glm::vec3& v : mesh.positions) inside += glm::dvec3(v) / double(mesh.positions.size());
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const glm::dvec3 a(mesh.positions[mesh.indices[i]]), b(mesh.positions[mesh.indices[i + 1]]),
+        c(mesh.positions[mesh.indices[i + 2]]);
+    glm::dvec3 outward = glm::cross(b - a, c - a);
+    if (glm::dot(outward, a - inside) < 0.0) outward = -outward;
+    if (glm::dot(outward, p - a) > 0.0) sum += clamped_cosine_integral({a - p, b - p, c - p}, n);
+  }
+  return sum;
 }
 
 // The corners of cube texel (face, x, y) of an S x S face, in order around it.

@@ -314,8 +314,10 @@ TEST(ImportGltf, GeneratedTangentsAgreeWithTheFilesMikkTSpaceTangents) {
     agree += glm::dot(glm::vec3(mesh.tangents[i]), glm::vec3(from_file[i])) > 0.9f ? 1 : 0;
     same_handedness += mesh.tangents[i].w == from_file[i].w ? 1 : 0;
   }
-  EXPECT_GT(agree, from_file.size() * 95 / 100);
-  EXPECT_GT(same_handedness, from_file.size() * 99 / 100);
+  // Every vertex of this cloth agrees; a thousandth is left for the seams and degenerate
+  // corners where MikkTSpace's choices may legitimately differ from the area-weighted sum.
+  EXPECT_GE(agree, from_file.size() * 999 / 1000);
+  EXPECT_GE(same_handedness, from_file.size() * 999 / 1000);
 }
 
 // ---- OBJ ---------------------------------------------------------------------------------------

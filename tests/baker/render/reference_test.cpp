@@ -100,7 +100,10 @@ TEST(ReferenceRenderer, ImportanceSamplingOfAFewBrightTexelsGivesTheirIrradiance
   for (std::size_t v = 0; v < result.radiance.size(); ++v) {
     for (int c = 0; c < 3; ++c) {
       const double expected = rho[c] / kPi * irradiance[c];
-      ASSERT_NEAR(result.radiance[v][c], expected, 0.01 * expected) << "vertex " << v << " c " << c;
+      // 4096 samples, a share importance-sampled towards the four texels: a few times the
+      // largest error over seeds.
+      ASSERT_NEAR(result.radiance[v][c], expected, 0.005 * expected)
+          << "vertex " << v << " c " << c;
     }
   }
 }
@@ -182,7 +185,9 @@ TEST(ReferenceRenderer, SameSeedGivesIdenticalResultsOnOneAndTwoThreads) {
 
 TEST(ReferenceRenderer, StatedNoiseMatchesTheDifferenceBetweenSeeds) {
   // Two independent runs differ by sqrt(2) x the RMSE of one: the estimate from the two halves
-  // of each run must agree with that within a generous band.
+  // of each run must agree with that. Both are RMS over every vertex and channel of the demo
+  // scene, so their ratio stays within a few percent of 1 over seeds: a noise figure off by
+  // sqrt(2) fails.
   const Scene scene = make_demo_scene();
   const io::EnvMap sky = make_demo_sky(128);
   for (const int bounces : {0, 1}) {
@@ -205,9 +210,9 @@ TEST(ReferenceRenderer, StatedNoiseMatchesTheDifferenceBetweenSeeds) {
     const double measured = std::sqrt(diff_sq / 2.0 / radiance_sq);
     const double stated = 0.5 * (a.relative_rmse + b.relative_rmse);
     EXPECT_GT(stated, 0.0);
-    EXPECT_GT(measured / stated, 0.5)
+    EXPECT_GT(measured / stated, 0.9)
         << "bounces " << bounces << " measured " << measured << " stated " << stated;
-    EXPECT_LT(measured / stated, 2.0)
+    EXPECT_LT(measured / stated, 1.1)
         << "bounces " << bounces << " measured " << measured << " stated " << stated;
   }
 }
@@ -228,7 +233,7 @@ TEST(ReferenceRenderer, ImageShowsTheEnvironmentWhereRaysMissAndTheObjectWhereTh
   for (int y = 12; y < 20; ++y) {
     for (int x = 12; x < 20; ++x) centre += image.pixels[y * 32 + x].g / 64.0;
   }
-  EXPECT_NEAR(centre, 0.5, 0.5 * 0.02);
+  EXPECT_NEAR(centre, 0.5, 0.5 * 0.005);  // 64 x 64 samples: a few times their spread over seeds
   EXPECT_GT(stats.rays, 32u * 32u * 64u);
 }
 

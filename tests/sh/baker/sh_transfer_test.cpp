@@ -119,9 +119,10 @@ TEST(ShTransfer, UnshadowedIsTheClampedCosineProjection) {
           const int k = l * (l + 1) + m;
           const double expected = rho[c] / kPi * clamped_cosine_factor(l) * y[k];
           worst = std::max(worst, std::abs(t[k] - expected));
-          // 4096 scrambled Sobol points of a smooth integrand bounded by |y| <= ~1: the error is
-          // far below the plain Monte Carlo sigma (~1/64); 2e-3 is a loose QMC bound.
-          ASSERT_NEAR(t[k], expected, 2e-3) << "vertex " << v << " l " << l << " m " << m;
+          // 4096 scrambled Sobol points of an integrand bounded by |y| <= ~1 with a kink at the
+          // horizon: far below the plain Monte Carlo sigma (~1/64); a few times the largest
+          // error over seeds (in the highest band), so a band's factor A_l 10 % off fails.
+          ASSERT_NEAR(t[k], expected, 1e-3) << "vertex " << v << " l " << l << " m " << m;
         }
       }
     }
@@ -216,21 +217,24 @@ TEST(ShTransfer, ShadowedMatchesTheReferenceUnderABandLimitedSky) {
       compare_with_reference(scene, ShTransferKind::Shadowed, 0, glm::vec3(0.8f, 0.6f, 0.4f));
   RecordProperty("relative_difference", std::to_string(c.difference));
   RecordProperty("noise", std::to_string(c.noise));
-  // Both are unbiased estimates of the same integral: they differ by noise alone (3 sigma).
-  EXPECT_LT(c.difference, 3.0 * c.noise) << "noise " << c.noise;
+  // Both are unbiased estimates of the same integral: they differ by noise alone. Over the
+  // scene's thousands of vertices the RMS difference is within a few percent of the combined
+  // noise, so 1.25 noise leaves room for that spread and fails a bias of 0.75 noise.
+  EXPECT_LT(c.difference, 1.25 * c.noise) << "noise " << c.noise;
 }
 
 TEST(ShTransfer, OneBounceMatchesTheReferenceInABowl) {
   // Interreflection gathers the previous pass's transfer interpolated linearly across the hit
   // triangle, where the reference evaluates the hit point exactly. The bowl is smooth and has no
-  // seams, so that interpolation error is small; stated tolerance: 1 % relative RMS on top of
-  // 3 sigma of the two estimates' noise (measured: difference 1.2 %, noise 1.1 %).
+  // seams, so that interpolation error is small: the RMS difference is the two estimates' noise
+  // (within 1.25 of it, as for the shadowed transfer) and 0.6 % of interpolation and facets
+  // (what the cavity-law test finds of them, with room), added in quadrature.
   const Scene scene = test::scene_of({test::make_bowl(16, 48)});
   const Comparison c =
       compare_with_reference(scene, ShTransferKind::Interreflected, 1, glm::vec3(0.8f));
   RecordProperty("relative_difference", std::to_string(c.difference));
   RecordProperty("noise", std::to_string(c.noise));
-  EXPECT_LT(c.difference, 0.01 + 3.0 * c.noise) << "noise " << c.noise;
+  EXPECT_LT(c.difference, std::hypot(1.25 * c.noise, 0.006)) << "noise " << c.noise;
 }
 
 TEST(ShTransfer, BowlUnderAConstantSkyFollowsTheSphereCavityLaw) {

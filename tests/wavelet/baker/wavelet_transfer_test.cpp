@@ -2,9 +2,10 @@
 // The wavelet transfer against independent values: each cube texel of an unoccluded vertex
 // (the mean of cos/pi over it, SPEC §14) against the exact clamped-cosine integral over the
 // texel (Lambert's polygon formula) over its solid angle, within the texel's own bound (the
-// cosine's variation over it); their solid-angle-weighted sum against integral cos/pi = 1; the Haar rows against the texels (the face's scaling coefficient is
-// sum/size, Parseval); the horizon rule's ray count against the cube's geometry; truncation by
-// count and by energy on hand-made rows; determinism over thread counts.
+// cosine's variation over it); their solid-angle-weighted sum against integral cos/pi = 1; the Haar
+// rows against the texels (the face's scaling coefficient is sum/size, Parseval); the horizon
+// rule's ray count against the cube's geometry; truncation by count and by energy on hand-made
+// rows; determinism over thread counts.
 #include <gtest/gtest.h>
 
 #include <prt/prt_wavelet.h>
@@ -14,8 +15,8 @@
 #include <numeric>
 #include <vector>
 
-#include "support/render_test_scenes.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
+#include "support/render_test_scenes.hpp"
 #include "wavelet/wavelet_test_util.hpp"
 
 namespace prt::bake {
@@ -79,7 +80,8 @@ TEST(WaveletTransfer, ParaboloidUnoccludedSumsToOne) {
         unoccluded_wavelet_texels(PRT_WAVELET_PARAM_DUAL_PARABOLOID, size, 4, {0, 1, 0}, 3);
     // The texel means weighted by their solid angles integrate cos/pi. The SPEC's texel solid
     // angle (Jacobian at the centre, rim texels whole or nothing) is a midpoint rule: its total
-    // differs from 4 pi by the rim; the transfer inherits that.
+    // differs from 4 pi by the rim's share, and the transfer's sum from 1 by less (the rim is
+    // the horizon of the normal +Y, where the cosine vanishes).
     double total = 0.0, sum = 0.0;
     for (std::uint32_t f = 0; f < 2; ++f)
       for (std::uint32_t y = 0; y < size; ++y)
@@ -90,7 +92,7 @@ TEST(WaveletTransfer, ParaboloidUnoccludedSumsToOne) {
           sum += omega * texels[(std::size_t(f) * size + y) * size + x];
         }
     const double rim = std::abs(total - 4.0 * kPi) / (4.0 * kPi);
-    EXPECT_NEAR(sum, 1.0, 2.0 * rim + 4.0 / size) << size;
+    EXPECT_NEAR(sum, 1.0, rim) << size;
     // Nothing below the horizon: face 1 (y < 0) gets nothing for the normal +Y.
     for (std::size_t j = std::size_t(size) * size; j < texels.size(); ++j)
       ASSERT_EQ(texels[j], 0.0f);
@@ -126,14 +128,16 @@ TEST(WaveletTransfer, UnoccludedVertexRowsAndRayCount) {
   for (std::uint32_t f = 0; f < 6; ++f)
     for (std::uint32_t y = 0; y < 16; ++y)
       for (std::uint32_t x = 0; x < 16; ++x) {
-        const double e =
-            test::clamped_cosine_integral(test::cube_texel(16, f, x, y), {0, 1, 0}) / kPi /
-            prt_wavelet_texel_solid_angle(PRT_WAVELET_PARAM_CUBE, 16, f, x, y);
+        const double e = test::clamped_cosine_integral(test::cube_texel(16, f, x, y), {0, 1, 0}) /
+                         kPi / prt_wavelet_texel_solid_angle(PRT_WAVELET_PARAM_CUBE, 16, f, x, y);
         exact_energy += e * e;
         exact_sum += e;
       }
-  EXPECT_NEAR(scaling * 16.0, exact_sum, 0.02 * exact_sum);
-  EXPECT_NEAR(energy, exact_energy, 0.05 * exact_energy);
+  // The 2 x 2 jittered rays estimate each texel's mean to within a fraction of the cosine's
+  // variation over it, and those errors largely cancel over the 768 texels above the horizon:
+  // a few times their spread over seeds (the energy's relative error is about twice the sum's).
+  EXPECT_NEAR(scaling * 16.0, exact_sum, 0.003 * exact_sum);
+  EXPECT_NEAR(energy, exact_energy, 0.005 * exact_energy);
 }
 
 TEST(WaveletTransfer, ParsevalAndScalingAgainstTheSameTexels) {
@@ -200,9 +204,7 @@ TEST(WaveletTransfer, RejectsBadSettings) {
   Scene scene;
   scene.meshes.push_back(test::make_plane(1.0f, 1));
   Context ctx;
-  auto bake = [&](WaveletTransferSettings s) {
-    compute_wavelet_transfer(scene, nullptr, s, ctx);
-  };
+  auto bake = [&](WaveletTransferSettings s) { compute_wavelet_transfer(scene, nullptr, s, ctx); };
   WaveletTransferSettings s;
   s.size = 24;
   EXPECT_THROW(bake(s), Error);
