@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // prt-view: draws a blob lit by an environment map with vertex colours shaded by the runtime,
-// through the technique the blob holds (view_techniques.hpp; `sh` and `wavelet` today).
+// through the technique the blob holds (view_techniques.hpp; the table is techniques.cpp).
 // Headless for now (a small CPU rasteriser writes the image; the windowed GLFW viewer comes
 // later). Exit status: 0 ok, 1 failure (the message names the file and the problem), 2 bad
 // arguments.
@@ -157,7 +157,7 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--rotate", o.rotate_degrees,
                  "Turn the light about world +Y by DEG degrees (light from d comes from R d, "
-                 "R = [[c,0,s],[0,1,0],[-s,0,c]], as prt_sh_rotate and prt-bake reference "
+                 "R = [[c,0,s],[0,1,0],[-s,0,c]], formats/SPEC.md; as prt-bake reference "
                  "--env-rotate)")
       ->check(CLI::Range(-1e6, 1e6))
       ->capture_default_str();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// What prt-view needs from a technique: one implementation per technique folder (sh/, wavelet/),
+// What prt-view needs from a technique: one implementation per technique folder (<t>/),
 // all listed in techniques.cpp. The shared viewer code (loading, maps, backends, GL context,
 // drawing, comparing) goes through this interface only and names no technique.
 //
@@ -22,7 +22,7 @@ class App;
 namespace prt::view {
 
 // The light the shared options ask for: the map as read (no rotation of its own), its file name
-// for messages, and the turn about world +Y (prt_sh_rotate's convention, formats/SPEC.md).
+// for messages, and the turn about world +Y (formats/SPEC.md, Turning the environment).
 struct LightRequest {
   const prt::io::EnvMap* map = nullptr;
   std::string map_path;
