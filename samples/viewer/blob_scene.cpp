@@ -16,7 +16,6 @@ BlobScene::BlobScene(const std::string& path) : path_(path) {
     throw ViewerError(path + ": " + message);
   }
   try {
-    read_technique();
     read_mesh();
   } catch (...) {
     prt_asset_destroy(asset_);
@@ -32,22 +31,6 @@ BlobScene::~BlobScene() {
 
 void BlobScene::fail(const std::string& what) const {
   throw ViewerError(path_ + ": " + what);
-}
-
-void BlobScene::read_technique() {
-  prt_result result = prt_sh_get_info(asset_, &transfer_);
-  if (result == PRT_OK) {
-    technique_ = Technique::Sh;
-    return;
-  }
-  if (result != PRT_ERROR_NOT_FOUND)
-    fail(std::string("cannot read the SHTR header: ") + prt_result_string(result));
-  result = prt_wavelet_get_info(asset_, &wavelet_);
-  if (result == PRT_ERROR_NOT_FOUND)
-    fail("neither an SHTR nor a WVLT section (not an `sh` or `wavelet` bake)");
-  if (result != PRT_OK)
-    fail(std::string("cannot read the WVLT header: ") + prt_result_string(result));
-  technique_ = Technique::Wavelet;
 }
 
 void BlobScene::read_mesh() {
@@ -67,16 +50,18 @@ void BlobScene::read_mesh() {
   mesh_.vertex_count = static_cast<std::uint32_t>(position_bytes / (3 * sizeof(float)));
   mesh_.indices = static_cast<const std::uint32_t*>(indices);
   mesh_.triangle_count = static_cast<std::uint32_t>(index_bytes / (3 * sizeof(std::uint32_t)));
-  const bool sh = technique_ == Technique::Sh;
-  const std::uint32_t transfer_vertices = sh ? transfer_.vertex_count : wavelet_.vertex_count;
-  if (mesh_.vertex_count != transfer_vertices) {
-    fail("VPOS has " + std::to_string(mesh_.vertex_count) + " vertices but " +
-         (sh ? "SHTR " : "WVLT ") + std::to_string(transfer_vertices));
-  }
   // Full validation checks index ranges already; the rasteriser relies on it, so say so here.
   for (std::size_t i = 0; i < 3u * mesh_.triangle_count; ++i) {
     if (mesh_.indices[i] >= mesh_.vertex_count) fail("TRIS index out of range");
   }
+}
+
+void BlobScene::check_shaded_vertices(std::uint32_t section_tag, std::uint32_t shaded) const {
+  if (mesh_.vertex_count == shaded) return;
+  std::string tag;
+  for (int i = 0; i < 4; ++i) tag += static_cast<char>((section_tag >> (8 * i)) & 0xFFu);
+  fail("VPOS has " + std::to_string(mesh_.vertex_count) + " vertices but " + tag + " " +
+       std::to_string(shaded));
 }
 
 }  // namespace prt::view

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The viewer's side of the runtime: a context, a blob loaded at full validation, its mesh
-// (VPOS/VNRM/TRIS sections) and its technique's header (`sh` SHTR or `wavelet` WVLT). Failures
+// The viewer's side of the runtime: a context, a blob loaded at full validation and its mesh
+// (VPOS/TRIS sections). Which technique draws it is view_techniques.hpp's business. Failures
 // throw ViewerError with the runtime's own message.
 #pragma once
 
@@ -26,15 +26,12 @@ struct BlobMesh {
   std::uint32_t triangle_count = 0;
 };
 
-// The techniques the viewer shades.
-enum class Technique { Sh, Wavelet };
-
 class BlobScene {
  public:
   // Creates a context (messages recorded, not printed; backend limits from the PRT_BACKEND /
   // PRT_SIMD_ISA environment variables as for any prtkit program) and loads `path` with full
   // validation. Throws ViewerError naming the file and quoting the runtime on failure, or when
-  // the blob has neither an SHTR nor a WVLT section or its mesh does not match the transfer.
+  // the blob has no usable mesh.
   explicit BlobScene(const std::string& path);
   ~BlobScene();
   BlobScene(const BlobScene&) = delete;
@@ -43,25 +40,23 @@ class BlobScene {
   prt_context* context() const { return context_; }
   const prt_asset* asset() const { return asset_; }
   const BlobMesh& mesh() const { return mesh_; }
-  Technique technique() const { return technique_; }
   std::uint32_t vertex_count() const { return mesh_.vertex_count; }
-  const prt_sh_info& transfer() const { return transfer_; }           // Technique::Sh
-  const prt_wavelet_info& wavelet() const { return wavelet_; }        // Technique::Wavelet
   const std::string& path() const { return path_; }
+
+  // Throws ViewerError unless the technique's section (`section_tag`, a PRT_TAG) shades as many
+  // vertices as VPOS holds.
+  void check_shaded_vertices(std::uint32_t section_tag, std::uint32_t shaded) const;
+
+  // Throws ViewerError "<path>: <what>".
+  [[noreturn]] void fail(const std::string& what) const;
 
  private:
   std::string path_;
   prt_context* context_ = nullptr;
   prt_asset* asset_ = nullptr;
   BlobMesh mesh_;
-  Technique technique_ = Technique::Sh;
-  prt_sh_info transfer_ = prt::sized<prt_sh_info>();
-  prt_wavelet_info wavelet_ = prt::sized<prt_wavelet_info>();
-
-  void read_technique();
 
   void read_mesh();
-  [[noreturn]] void fail(const std::string& what) const;
 };
 
 }  // namespace prt::view

@@ -4,7 +4,7 @@
 
 namespace prt::view {
 
-ShadingRun shade_vertices_gl(const BlobScene&, const std::vector<float>&, int) {
+ShadingRun shade_vertices_gl(const BlobScene&, const ViewTechnique&, int) {
   throw ViewerError(
       "backend gl: this prt-view was built without GL (PRT_ENABLE_GL=OFF or no headless EGL "
       "helper); use --backend auto, cpu or simd");

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
-// prt-view: draws an `sh` or `wavelet` blob lit by an environment map with runtime-shaded
-// vertex colours.
+// prt-view: draws a blob lit by an environment map with vertex colours shaded by the runtime,
+// through the technique the blob holds (view_techniques.hpp; the table is techniques.cpp).
 // Headless for now (a small CPU rasteriser writes the image; the windowed GLFW viewer comes
 // later). Exit status: 0 ok, 1 failure (the message names the file and the problem), 2 bad
 // arguments.
 //
 //   prt-view BLOB --env MAP --headless --out IMG.png [--rotate DEG] [--backend auto|cpu|simd|gl]
 //            [--vertex-out V.npy] [--reference REF.npy --error-out HEAT.png] [--frames N]
-//            [--light-coefficients M] ...
+//            [--technique NAME] [technique options, e.g. --light-coefficients M] ...
 //   prt-view --montage OUT.png --montage-columns N IMG.png...   (tiles PNGs, for the demo)
 #include <prt/prt.h>
 #include <CLI/CLI.hpp>
@@ -21,12 +21,13 @@
 
 #include "blob_scene.hpp"
 #include "compare.hpp"
-#include "env_light.hpp"
+#include "env_image.hpp"
 #include "prt/io/envmap.hpp"
 #include "prt/io/image_io.hpp"
 #include "prt/io/radiance_error.hpp"
 #include "rasterizer.hpp"
 #include "vertex_shading.hpp"
+#include "view_techniques.hpp"
 
 namespace prt::view {
 namespace {
@@ -39,8 +40,7 @@ struct Options {
   bool headless = false, exposure_given = false;
   float exposure_ev = 0.0f, error_scale = 0.25f;
   int frames = 1, supersample = 2, montage_columns = 3;
-  std::uint32_t light_coefficients = 0xFFFFFFFFu;  // wavelet: detail coefficients kept (all)
-  int width = 0, height = 0;                       // from --size
+  int width = 0, height = 0;  // from --size
 };
 
 void parse_size(const std::string& text, int* width, int* height) {
@@ -58,11 +58,6 @@ std::vector<glm::vec3> as_vec3(const std::vector<float>& rgb) {
     values[v] = {rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2]};
   }
   return values;
-}
-
-const char* transfer_kind(std::uint32_t kind) {
-  static const char* const kKinds[] = {"unshadowed", "shadowed", "interreflected"};
-  return kind < 3 ? kKinds[kind] : "unknown kind";
 }
 
 RasterMesh raster_mesh(const BlobMesh& mesh) {
@@ -98,54 +93,7 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
       options.error_out.c_str(), options.error_scale);
 }
 
-// The `sh` light: the map projected by the runtime at the blob's order, then rotated.
-std::vector<float> sh_light(const BlobScene& scene, const prt::io::EnvMap& map,
-                            const Options& options) {
-  const double degrees = options.rotate_degrees;
-  const prt_sh_info& transfer = scene.transfer();
-  std::printf("%s: %u vertices, %u triangles, sh order %u, %s transfer, %u channel(s)\n",
-              scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
-              transfer.order, transfer_kind(transfer.kind), transfer.channels);
-  std::vector<float> light = project_environment(map, transfer.order);
-  rotate_environment(&light, transfer.order, degrees);
-  std::printf(
-      "%s: %dx%d %s map, projected to order %u by the runtime (%s), rotated %g deg "
-      "about +Y\n",
-      options.env.c_str(), map.width(), map.height(), prt::io::env_mapping_name(map.mapping()),
-      transfer.order,
-      map.mapping() == prt::io::EnvMapping::LatLong
-          ? "prt_sh_project, lat-long"
-          : ("prt_sh_project, cube faces of " + std::to_string(cube_face_size(map))).c_str(),
-      degrees);
-  return light;
-}
-
-// The `wavelet` light: the map resampled by the runtime onto the blob's parameterisation, turned,
-// transformed, selected and prepared.
-std::vector<float> wavelet_light(const BlobScene& scene, const prt::io::EnvMap& map,
-                                 const Options& options, std::vector<std::uint8_t>* zero_blocks) {
-  const prt_wavelet_info& info = scene.wavelet();
-  const std::uint32_t details = info.coefficient_count - info.faces;
-  const std::uint32_t kept = std::min(options.light_coefficients, details);
-  std::printf(
-      "%s: %u vertices, %u triangles, wavelet %s %u, %.1f non-zeros per vertex (%.0f bytes), "
-      "%s quantiser\n",
-      scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
-      info.param == PRT_WAVELET_PARAM_CUBE ? "cube" : "dual paraboloid", info.size,
-      static_cast<double>(info.pair_count) / std::max(1u, info.vertex_count),
-      2.0 * info.pair_count / std::max(1u, info.vertex_count),
-      info.quantizer == 0 ? "per-vertex" : "per face and level");
-  std::vector<float> light =
-      prt::view::wavelet_light(map, scene.asset(), info, options.rotate_degrees, kept, zero_blocks);
-  std::printf(
-      "%s: %dx%d %s map, resampled onto the blob's %u coefficients by the runtime, rotated %g deg "
-      "about +Y, %u + %u light coefficients kept (area-weighted)\n",
-      options.env.c_str(), map.width(), map.height(), prt::io::env_mapping_name(map.mapping()),
-      info.coefficient_count, options.rotate_degrees, info.faces, kept);
-  return light;
-}
-
-int run(const Options& options) {
+int run(const Options& options, const ViewTechniques& techniques, const CLI::App& app) {
   if (!options.montage.empty()) {
     prt::io::write_montage(options.montage, options.inputs, options.montage_columns, 4);
     std::printf("wrote %s (%zu images, %d per row)\n", options.montage.c_str(),
@@ -156,17 +104,18 @@ int run(const Options& options) {
   const ViewBackend backend = parse_backend(options.backend);
 
   const BlobScene scene(options.inputs.front());
+  ViewTechnique& technique = techniques.choose(scene);
+  techniques.warn_unused_options(app, technique);
+  scene.check_shaded_vertices(technique.section_tag(), technique.open(scene));
   const prt::io::MessageHook warnings = [](prt::io::MessageLevel level, const std::string& text) {
     if (level == prt::io::MessageLevel::Warning)
       std::fprintf(stderr, "prt-view: %s\n", text.c_str());
   };
   prt::io::EnvMap map =
       prt::io::load_envmap(options.env, prt::io::parse_env_mapping(options.env_mapping), warnings);
-  std::vector<std::uint8_t> zero_blocks;  // `wavelet` only
-  const std::vector<float> light = scene.technique() == Technique::Sh
-                                       ? sh_light(scene, map, options)
-                                       : wavelet_light(scene, map, options, &zero_blocks);
-  const ShadingRun run = shade_vertices(scene, light, zero_blocks, backend, options.frames);
+  technique.describe(scene);
+  technique.prepare_light(scene, {&map, options.env, options.rotate_degrees});
+  const ShadingRun run = shade_vertices(scene, technique, backend, options.frames);
   std::printf("shading: backend %s (%s), %zu frame(s), median %.4f ms per frame (%u vertices)\n",
               run.backend.c_str(), run.isa.c_str(), run.frame_ms.size(), run.median_ms,
               scene.vertex_count());
@@ -200,8 +149,7 @@ int run(const Options& options) {
 }
 
 void add_options(CLI::App& app, Options& o) {
-  app.add_option("INPUT", o.inputs,
-                 "The baked `sh` or `wavelet` blob (.prtk); with --montage, the PNGs to tile")
+  app.add_option("INPUT", o.inputs, "The baked blob (.prtk); with --montage, the PNGs to tile")
       ->required();
   app.add_option("--env", o.env, "Environment map (.hdr): lat-long, vertical cross or probe");
   app.add_option("--env-mapping", o.env_mapping, "auto|latlong|cross|probe")
@@ -209,7 +157,7 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--rotate", o.rotate_degrees,
                  "Turn the light about world +Y by DEG degrees (light from d comes from R d, "
-                 "R = [[c,0,s],[0,1,0],[-s,0,c]], as prt_sh_rotate and prt-bake reference "
+                 "R = [[c,0,s],[0,1,0],[-s,0,c]], formats/SPEC.md; as prt-bake reference "
                  "--env-rotate)")
       ->check(CLI::Range(-1e6, 1e6))
       ->capture_default_str();
@@ -238,9 +186,6 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--frames", o.frames, "Shade N times and print the median time per frame")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  app.add_option("--light-coefficients", o.light_coefficients,
-                 "wavelet: light detail coefficients kept per frame by area-weighted selection "
-                 "(default: all); the faces' scaling coefficients are always kept");
   app.add_option("--montage", o.montage, "Tile the INPUT PNGs into this PNG and exit");
   app.add_option("--montage-columns", o.montage_columns, "Tiles per row of --montage")
       ->check(CLI::Range(1, 64))
@@ -272,19 +217,24 @@ void check_combination(Options& o) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "prt-view: an `sh` or `wavelet` blob shaded by the prtkit runtime under an environment map "
+      "prt-view: a blob shaded by the prtkit runtime under an environment map "
       "(prtkit " PRT_VERSION_STRING ")"};
   prt::view::Options options;
   prt::view::add_options(app, options);
   try {
-    app.parse(argc, argv);
-    prt::view::check_combination(options);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
-  try {
-    return prt::view::run(options);
+    prt::view::ViewTechniques techniques;
+    app.footer("Techniques: " + techniques.names() +
+               ". A blob holding several is drawn with the first of them unless --technique "
+               "picks another; each technique's own options are listed under its name.");
+    techniques.add_options(app);
+    try {
+      app.parse(argc, argv);
+      prt::view::check_combination(options);
+    } catch (const CLI::ParseError& e) {
+      const int code = app.exit(e);
+      return code == 0 ? 0 : 2;
+    }
+    return prt::view::run(options, techniques, app);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "prt-view: %s\n", e.what());
     return 1;

@@ -55,15 +55,13 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& light,
-                          const std::vector<std::uint8_t>& zero_blocks, ViewBackend backend,
-                          int frames) {
-  if (backend == ViewBackend::Gl) return shade_vertices_gl(scene, light, frames);
+ShadingRun shade_vertices(const BlobScene& scene, const ViewTechnique& technique,
+                          ViewBackend backend, int frames) {
+  if (backend == ViewBackend::Gl) return shade_vertices_gl(scene, technique, frames);
   const prt_backend requested = to_runtime(backend);
   const prt_backend used =
       requested == PRT_BACKEND_AUTO ? prt_context_backend(scene.context()) : requested;
   const std::uint32_t vertices = scene.vertex_count();
-  const bool sh = scene.technique() == Technique::Sh;
 
   ShadingRun run;
   run.radiance.assign(3u * vertices, 0.0f);
@@ -77,15 +75,10 @@ ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& ligh
   }
   for (int frame = 0; frame < std::max(frames, 1); ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    const prt_result result =
-        sh ? prt_sh_shade(scene.asset(), requested, light.data(), 0, vertices, run.radiance.data())
-           : prt_wavelet_shade(scene.asset(), requested, light.data(),
-                               zero_blocks.empty() ? nullptr : zero_blocks.data(), 0, vertices,
-                               run.radiance.data());
+    const prt_result result = technique.shade(scene, requested, 0, vertices, run.radiance.data());
     const auto stop = std::chrono::steady_clock::now();
     if (result != PRT_OK) {
-      throw ViewerError(backend_failure(scene.context(), sh ? "prt_sh_shade" : "prt_wavelet_shade",
-                                        used, result));
+      throw ViewerError(backend_failure(scene.context(), technique.shade_function(), used, result));
     }
     run.frame_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "blob_scene.hpp"
+#include "view_technique.hpp"
 
 namespace prt::view {
 
@@ -23,19 +24,17 @@ struct ShadingRun {
   double median_ms = 0.0;
 };
 
-// Shades all vertices `frames` (>= 1) times under `light` (`sh`: order² RGB coefficients;
-// `wavelet`: the prepared RGBA light, with its zero-block mask or an empty one) and keeps the
-// last result. CPU-side backends go through prt_sh_shade / prt_wavelet_shade (auto = the
-// context's best); gl through prt_gl_sh_* / prt_gl_wavelet_* on a headless EGL context. A frame's
-// time covers shading every vertex (for gl: the dispatch and a glFinish, not the read-back). Throws
-// ViewerError with the runtime's reason when the backend cannot be used.
-ShadingRun shade_vertices(const BlobScene& scene, const std::vector<float>& light,
-                          const std::vector<std::uint8_t>& zero_blocks, ViewBackend backend,
-                          int frames);
+// Shades all vertices `frames` (>= 1) times under the light `technique` prepared and keeps the
+// last result. CPU-side backends go through ViewTechnique::shade (auto = the context's best); gl
+// through the technique's GL shader on a headless EGL context. A frame's time covers shading
+// every vertex (for gl: the dispatch and a glFinish, not the read-back). Throws ViewerError with
+// the runtime's reason when the backend cannot be used.
+ShadingRun shade_vertices(const BlobScene& scene, const ViewTechnique& technique,
+                          ViewBackend backend, int frames);
 
 // The GL path: gl_shading.cpp, or gl_shading_unavailable.cpp (an error naming the build option)
 // when prt-view is built without GL.
-ShadingRun shade_vertices_gl(const BlobScene& scene, const std::vector<float>& light, int frames);
+ShadingRun shade_vertices_gl(const BlobScene& scene, const ViewTechnique& technique, int frames);
 
 // Median of the frame times (sorted copy).
 double median(std::vector<double> values);

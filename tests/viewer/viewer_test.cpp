@@ -1,95 +1,52 @@
 // SPDX-License-Identifier: MIT
-// prt-view end to end on the demo scene baked by the viewer_bake_demo_blob fixture. Expected
-// values come from elsewhere: per-vertex radiance recomputed here from the decoded transfer and
-// the runtime's projection (dot products written out, not prt_sh_shade), image sizes from the
-// request, and properties (a full turn is no turn, backends agree, a reference of itself has no
-// error, a quarter turn equals a quarter shift of the map's columns).
+// prt-view on `sh` blobs (the frozen golden bake, and blobs built here) under maps written here,
+// and the options and failures every blob shares. Expected values come from elsewhere:
+// per-vertex radiance recomputed here from the decoded transfer (dot products written out, not
+// prt_sh_shade) with the runtime's projection of the map as stored, or with the SH coefficients
+// of a linear sky worked out by hand; image sizes from the request; and properties (a full turn
+// is no turn, backends agree, a reference of itself has no error, a quarter turn equals a
+// quarter shift of the map's columns).
 #include <gtest/gtest.h>
-#include <prt/prt.hpp>
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <prt/prt.hpp>
 
-#include <sys/wait.h>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
-#include "prt/baker/sh/env_sh.hpp"
-#include "prt/io/envmap.hpp"
+#include "sh/sh_blob_test_util.hpp"
+#include "viewer/viewer_test_util.hpp"
 
 namespace {
 
-const std::string kDir = PRT_VIEW_TEST_DIR;
-const std::string kBlob = kDir + "/demo_sh4.prtk";
-const std::string kSky = kDir + "/demo_sky.hdr";
+using namespace prt_view_test;
 
-struct ViewRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+const std::string kBlob = golden("sh_quad.prtk");  // order 3, 8 vertices, 4 triangles
 
-// Runs prt-view with `arguments` (after `environment`, e.g. "PRT_BACKEND=cpu", for the shell).
-ViewRun run_view(const std::string& arguments, const std::string& name,
-                 const std::string& environment = "") {
-  const std::string log = kDir + "/" + name + ".log";
-  const std::string command =
-      environment + " \"" + PRT_VIEW_EXE + "\" " + arguments + " > \"" + log + "\" 2>&1";
-  const int status = std::system(command.c_str());
-  ViewRun run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return run;
-}
-
-// float32 [N,3] .npy as prt-bake reference writes it (read here without the viewer's code).
-std::vector<float> read_npy(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                         std::istreambuf_iterator<char>());
-  if (bytes.size() < 10 || bytes[6] != 1) return {};
-  const std::size_t header = bytes[8] | (bytes[9] << 8);
-  const std::string text(bytes.begin() + 10, bytes.begin() + 10 + static_cast<long>(header));
-  if (text.find("'descr': '<f4'") == std::string::npos || text.find(", 3)") == std::string::npos)
-    return {};
-  std::vector<float> values((bytes.size() - 10 - header) / 4);
-  std::memcpy(values.data(), bytes.data() + 10 + header, values.size() * 4);
-  return values;
-}
-
-double relative_difference(const std::vector<float>& a, const std::vector<float>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    diff += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
-    norm += double(b[i]) * b[i];
-  }
-  return std::sqrt(diff / norm);
-}
-
-// Per-vertex radiance computed here: decoded transfer . light (order² RGB coefficients, or
-// empty: the runtime's projection of the lat-long `pixels`).
-std::vector<float> shade_independently(std::vector<float> light, const std::vector<float>& pixels,
-                                       int width, int height) {
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  EXPECT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-  EXPECT_EQ(prt_asset_load_file(context, kBlob.c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK);
+// Decoded transfer . light per vertex and channel, summed in double. `light`: order² RGB
+// coefficients, or empty for the runtime's projection of the lat-long file `map` as stored.
+std::vector<float> shade_independently(const std::string& blob, std::vector<float> light,
+                                       const std::string& map = "") {
+  auto [context, made] = prt::create_context();
+  EXPECT_EQ(made, PRT_OK);
+  auto [asset, loaded] = prt::load_asset_file(context.get(), blob.c_str(), PRT_VALIDATE_FULL);
+  EXPECT_EQ(loaded, PRT_OK) << blob;
+  if (!asset) return {};
   prt_sh_info info = prt::sized<prt_sh_info>();
-  EXPECT_EQ(prt_sh_get_info(asset, &info), PRT_OK);
+  EXPECT_EQ(prt_sh_get_info(asset.get(), &info), PRT_OK);
   const std::uint32_t n2 = info.order * info.order;
-  std::vector<float> transfer(std::size_t(info.vertex_count) * info.channels * n2);
   if (light.empty()) {
+    int width = 0, height = 0;
+    const std::vector<float> pixels = read_hdr(map, &width, &height);
     light.resize(3 * n2);
     const prt_env_image env = prt::latlong_env(width, height, pixels.data());
     EXPECT_EQ(prt_sh_project(info.order, &env, light.data()), PRT_OK);
   }
   EXPECT_EQ(light.size(), 3u * n2);
-  EXPECT_EQ(prt_sh_decode_transfer(asset, 0, info.vertex_count, transfer.data()), PRT_OK);
+  std::vector<float> transfer(std::size_t(info.vertex_count) * info.channels * n2);
+  EXPECT_EQ(prt_sh_decode_transfer(asset.get(), 0, info.vertex_count, transfer.data()), PRT_OK);
   std::vector<float> radiance(3 * std::size_t(info.vertex_count));
   for (std::size_t v = 0; v < info.vertex_count; ++v) {
     for (std::uint32_t ch = 0; ch < 3; ++ch) {
@@ -99,135 +56,163 @@ std::vector<float> shade_independently(std::vector<float> light, const std::vect
       radiance[3 * v + ch] = float(sum);
     }
   }
-  prt_asset_destroy(asset);
-  prt_context_destroy(context);
   return radiance;
 }
 
-std::vector<float> load_sky(int* width, int* height) {
-  int channels = 0;
-  float* data = stbi_loadf(kSky.c_str(), width, height, &channels, 3);
-  EXPECT_NE(data, nullptr);
-  std::vector<float> pixels(data, data + std::size_t(*width) * *height * 3);
-  stbi_image_free(data);
-  return pixels;
+// A sky linear in the direction, L_c(d) = a_c + b_c . d: positive everywhere, and its SH
+// projection is known in closed form (below).
+const double kLinearA[3] = {1.0, 0.8, 1.2};
+const double kLinearB[3][3] = {{0.5, 0.2, -0.3}, {-0.2, 0.4, 0.1}, {0.1, -0.3, 0.6}};
+
+void linear_sky(const double d[3], float rgb[3]) {
+  for (int c = 0; c < 3; ++c)
+    rgb[c] =
+        float(kLinearA[c] + kLinearB[c][0] * d[0] + kLinearB[c][1] * d[1] + kLinearB[c][2] * d[2]);
 }
 
-std::string vertex_run(const std::string& name, const std::string& extra) {
-  const std::string out = kDir + "/" + name + ".npy";
-  const ViewRun run =
-      run_view(kBlob + " --env " + kSky + " --headless --vertex-out " + out + " " + extra, name);
-  EXPECT_EQ(run.exit_code, 0) << run.output;
-  return out;
+// The linear sky's SH coefficients: Y00 is constant, so c00 = 4 pi a Y00; each band-1 function
+// is linear, Y1m(d) = g_m . d with g_m its values on the axes, and the integral of d_i d_j over
+// the sphere is 4 pi/3 delta_ij, so c1m = 4 pi/3 b . g_m; higher bands are orthogonal to both.
+// The basis values come from prt_sh_eval (the runtime's basis, tested on its own).
+std::vector<float> linear_sky_sh(std::uint32_t order) {
+  std::vector<float> light(3u * order * order, 0.0f);
+  const float axes[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  float basis[3][4];
+  for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(prt_sh_eval(2, axes[axis], basis[axis]), PRT_OK);
+  for (int c = 0; c < 3; ++c) {
+    light[c] = float(4.0 * kPi * kLinearA[c] * basis[0][0]);
+    for (int m = 1; m < 4; ++m) {
+      double dot = 0.0;
+      for (int axis = 0; axis < 3; ++axis) dot += kLinearB[c][axis] * basis[axis][m];
+      light[3 * m + c] = float(4.0 * kPi / 3.0 * dot);
+    }
+  }
+  return light;
+}
+
+// An `sh` blob built here (order 4, 37 vertices: not a multiple of any SIMD width), so the
+// backends also shade a partial last group.
+std::string odd_sh_blob() {
+  const prt_test::Transfer t = prt_test::random_transfer(4, 37, 3, 8, 11);
+  return write_blob("odd_sh.prtk", prt_test::make_blob(prt_test::encode(t), t.vertices));
 }
 
 TEST(PrtView, WritesPngOfRequestedSize) {
-  const std::string png = kDir + "/size.png";
-  std::remove(png.c_str());
-  const ViewRun run = run_view(
-      kBlob + " --env " + kSky + " --headless --size 160x90 --out " + png + " --backend cpu",
-      "size");
+  const std::string png = scratch().file("size.png");
+  const prt_test::CommandResult run =
+      run_view(quote(kBlob) + " --env " + quote(write_test_sky()) +
+                   " --headless --size 160x90 --backend cpu --out " + quote(png),
+               "size");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   int w = 0, h = 0, c = 0;
   ASSERT_TRUE(stbi_info(png.c_str(), &w, &h, &c)) << run.output;
   EXPECT_EQ(w, 160);
   EXPECT_EQ(h, 90);
   EXPECT_NE(run.output.find("wrote " + png), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("sh_quad.prtk: 8 vertices, 4 triangles, sh order 3, shadowed transfer, "
+                            "3 channel(s)"),
+            std::string::npos)
+      << run.output;
 }
 
 TEST(PrtView, VertexOutMatchesDotProductsOfDecodedTransfer) {
-  const std::vector<float> shaded = read_npy(vertex_run("cpu", "--backend cpu"));
-  int width = 0, height = 0;
-  const std::vector<float> pixels = load_sky(&width, &height);
-  const std::vector<float> expected = shade_independently({}, pixels, width, height);
-  ASSERT_EQ(shaded.size(), expected.size());
-  // Float shading against double sums: rounding only.
-  EXPECT_LT(relative_difference(shaded, expected), 1e-5);
+  const std::string sky = write_test_sky();
+  for (const std::string& blob : {kBlob, odd_sh_blob()}) {
+    const std::vector<float> shaded = view_vertices(blob, sky, "cpu", "--backend cpu");
+    const std::vector<float> expected = shade_independently(blob, {}, sky);
+    ASSERT_EQ(shaded.size(), expected.size()) << blob;
+    ASSERT_FALSE(shaded.empty());
+    // Float shading against double sums: rounding only.
+    EXPECT_LT(relative_difference(shaded, expected), 1e-5) << blob;
+  }
 }
 
-// Cross and probe maps go through a cube resampling and prt_sh_project; the baker projects
-// the same file texel by texel with each texel's exact solid angle (another method): the shaded
-// radiance agrees to a few times the resampling error (the probe's, the larger); a resampling
-// turned by half a probe texel differs by far more.
-TEST(PrtView, CrossAndProbeMapsMatchTheBakersTexelProjection) {
-  for (const char* name : {"rnl_cross.hdr", "rnl_probe.hdr"}) {
-    const std::string map = std::string(PRT_SHARED_DIR) + "/assets/envmaps/" + name;
-    if (!std::ifstream(map)) GTEST_SKIP() << map << " not found";
-    const std::string out = kDir + "/" + name + ".npy";
-    const ViewRun run = run_view(
-        kBlob + " --env " + map + " --headless --backend cpu " + "--vertex-out " + out, name);
-    ASSERT_EQ(run.exit_code, 0) << run.output;
-    const prt::io::EnvMap env = prt::io::load_envmap(map, prt::io::EnvMapping::Auto);
-    const std::vector<float> light = prt::bake::project_env_sh(env, 4).to_float();
-    const std::vector<float> expected = shade_independently(light, {}, 0, 0);
-    const std::vector<float> shaded = read_npy(out);
-    ASSERT_EQ(shaded.size(), expected.size());
+// The same linear sky as a lat-long, a vertical cross and a probe file: prt-view reads each in
+// its own mapping (the cross and the probe resampled to cube faces), and the shaded radiance
+// matches the closed-form light to the discretisation error of each map: the midpoint rule over
+// the lat-long's 32 rows (the largest), bilinear resampling of the probe, RGBE rounding. A cross
+// face or the probe's axis taken the wrong way round fails by far.
+TEST(PrtView, EveryMappingOfALinearSkyGivesItsClosedFormLight) {
+  struct Case {
+    std::string map;
+    const char* mapping;
+    double tolerance;  // about twice the measured difference
+  };
+  const Case cases[] = {
+      {write_hdr("linear_latlong.hdr", 64, 32, latlong_map(linear_sky, 64, 32)), "latlong", 1e-3},
+      {write_hdr("linear_cross.hdr", 48, 64, cross_map(linear_sky, 16)), "cross", 1.5e-4},
+      {write_hdr("linear_probe.hdr", 64, 64, probe_map(linear_sky, 64)), "probe", 6e-4}};
+  const std::vector<float> expected = shade_independently(kBlob, linear_sky_sh(3));
+  for (const Case& c : cases) {
+    const std::string name = std::string("linear_") + c.mapping;
+    const std::vector<float> shaded = view_vertices(kBlob, c.map, name, "--backend cpu");
+    ASSERT_EQ(shaded.size(), expected.size()) << c.mapping;
     const double difference = relative_difference(shaded, expected);
-    std::printf("%s: relative RMS difference %.5f\n", name, difference);
-    EXPECT_LT(difference, 1e-4) << name;
+    std::printf("%s: relative RMS difference %.2e\n", c.mapping, difference);
+    EXPECT_LT(difference, c.tolerance) << c.mapping;
+    const std::string log = prt_test::read_text(scratch().file(name + ".log"));
+    EXPECT_NE(log.find(std::string(" ") + c.mapping + " map"), std::string::npos) << log;
   }
 }
 
 TEST(PrtView, FullTurnEqualsNoTurn) {
-  const std::vector<float> a = read_npy(vertex_run("turn0", "--backend cpu --rotate 0"));
-  const std::vector<float> b = read_npy(vertex_run("turn360", "--backend cpu --rotate 360"));
+  const std::string sky = write_test_sky();
+  const std::vector<float> a = view_vertices(kBlob, sky, "turn0", "--backend cpu --rotate 0");
+  const std::vector<float> b = view_vertices(kBlob, sky, "turn360", "--backend cpu --rotate 360");
   ASSERT_EQ(a.size(), b.size());
   ASSERT_FALSE(a.empty());
   EXPECT_LT(relative_difference(b, a), 1e-5);
 }
 
-// Turning the light a quarter about +Y equals shifting the lat-long columns by W/4 (derivation
-// in tests/baker/render/env_rotation_test.cpp): turned(x) = original(x + W/4).
+// Turning the light a quarter about +Y equals shifting the lat-long columns by W/4
+// (formats/SPEC.md): turned(x) = original(x + W/4).
 TEST(PrtView, QuarterTurnEqualsQuarterColumnShiftOfTheMap) {
+  const std::string sky = write_test_sky();
   int width = 0, height = 0;
-  const std::vector<float> pixels = load_sky(&width, &height);
+  const std::vector<float> pixels = read_hdr(sky, &width, &height);
   ASSERT_EQ(width % 4, 0);
-  std::vector<float> shifted(pixels.size());
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const int from = (x + width / 4) % width;
-      for (int c = 0; c < 3; ++c)
-        shifted[(y * width + x) * 3 + c] = pixels[(y * width + from) * 3 + c];
-    }
-  }
-  const std::string shifted_path = kDir + "/sky_shifted.hdr";
-  ASSERT_TRUE(stbi_write_hdr(shifted_path.c_str(), width, height, 3, shifted.data()));
-  const std::vector<float> turned = read_npy(vertex_run("turn90", "--backend cpu --rotate 90"));
-  const std::string out = kDir + "/shifted.npy";
-  const ViewRun run =
-      run_view(kBlob + " --env " + shifted_path + " --headless --backend cpu --vertex-out " + out,
-               "shifted");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::vector<float> expected = read_npy(out);
+  const std::string shifted =
+      write_hdr("sky_shifted.hdr", width, height, quarter_turned(pixels, width, height));
+  const std::vector<float> turned =
+      view_vertices(kBlob, sky, "turn90", "--backend cpu --rotate 90");
+  const std::vector<float> expected = view_vertices(kBlob, shifted, "shifted", "--backend cpu");
   ASSERT_EQ(turned.size(), expected.size());
   // The SH of a turned light vary smoothly with the turn: rounding only, as for the full turn.
   EXPECT_LT(relative_difference(turned, expected), 1e-5);
-  const std::vector<float> unturned = read_npy(vertex_run("turn0b", "--backend cpu"));
+  const std::vector<float> unturned = view_vertices(kBlob, sky, "turn0b", "--backend cpu");
   EXPECT_GT(relative_difference(unturned, expected), 1e-2);  // the turn does something
 }
 
 TEST(PrtView, CpuAndAutoBackendsAgree) {
-  const std::vector<float> cpu = read_npy(vertex_run("agree_cpu", "--backend cpu"));
-  const std::vector<float> best = read_npy(vertex_run("agree_auto", "--backend auto"));
-  ASSERT_EQ(cpu.size(), best.size());
-  // SIMD sums in float (prt_sh_asset.h): rounding of a 16-term dot product.
-  EXPECT_LT(relative_difference(best, cpu), 1e-5);
+  const std::string sky = write_test_sky();
+  for (const std::string& blob : {kBlob, odd_sh_blob()}) {
+    const std::vector<float> cpu = view_vertices(blob, sky, "agree_cpu", "--backend cpu");
+    const std::vector<float> best = view_vertices(blob, sky, "agree_auto", "--backend auto");
+    ASSERT_EQ(cpu.size(), best.size());
+    // SIMD sums in float (prt_sh_asset.h): rounding of a 16-term dot product.
+    EXPECT_LT(relative_difference(best, cpu), 1e-5) << blob;
+  }
 }
 
 TEST(PrtView, GlBackendAgreesWithCpu) {
   if (!PRT_VIEW_HAS_GL) GTEST_SKIP() << "built without the headless GL helper";
-  const std::vector<float> cpu = read_npy(vertex_run("gl_cpu", "--backend cpu"));
-  const std::vector<float> gl = read_npy(vertex_run("gl_gl", "--backend gl --frames 3"));
-  ASSERT_EQ(cpu.size(), gl.size());
-  EXPECT_LT(relative_difference(gl, cpu), 1e-5);
+  const std::string sky = write_test_sky();
+  for (const std::string& blob : {kBlob, odd_sh_blob()}) {
+    const std::vector<float> cpu = view_vertices(blob, sky, "gl_cpu", "--backend cpu");
+    const std::vector<float> gl = view_vertices(blob, sky, "gl_gl", "--backend gl --frames 3");
+    ASSERT_EQ(cpu.size(), gl.size());
+    EXPECT_LT(relative_difference(gl, cpu), 1e-5) << blob;
+  }
 }
 
 TEST(PrtView, ReferenceOfItselfHasZeroErrorAndDrawsAHeatMap) {
-  const std::string self = vertex_run("self", "--backend cpu");
-  const std::string heat = kDir + "/heat.png";
-  const ViewRun run =
-      run_view(kBlob + " --env " + kSky + " --headless --backend cpu --size 64x48 " +
-                   "--reference " + self + " --error-out " + heat + " --frames 3",
+  const std::string sky = write_test_sky();
+  view_vertices(kBlob, sky, "self", "--backend cpu");
+  const std::string heat = scratch().file("heat.png");
+  const prt_test::CommandResult run =
+      run_view(quote(kBlob) + " --env " + quote(sky) + " --headless --backend cpu --size 64x48 " +
+                   "--reference " + quote(scratch().file("self.npy")) + " --error-out " +
+                   quote(heat) + " --frames 3",
                "self_compare");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("relative RMSE 0.00000 (0.00 %)"), std::string::npos) << run.output;
@@ -237,17 +222,32 @@ TEST(PrtView, ReferenceOfItselfHasZeroErrorAndDrawsAHeatMap) {
   EXPECT_EQ(w, 64);
 }
 
+TEST(PrtView, ReferenceOfAnotherSizeFailsNamingBoth) {
+  const std::string sky = write_test_sky();
+  view_vertices(odd_sh_blob(), sky, "odd", "--backend cpu");
+  const prt_test::CommandResult run =
+      run_view(quote(kBlob) + " --env " + quote(sky) + " --headless --reference " +
+                   quote(scratch().file("odd.npy")),
+               "wrong_reference");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("odd.npy: 37 vertices, the blob has 8"), std::string::npos)
+      << run.output;
+}
+
 TEST(PrtView, BadBlobFailsNamingTheFile) {
-  const std::string not_blob = kDir + "/not_a_blob.prtk";
-  std::ofstream(not_blob) << "hello";
-  const ViewRun run = run_view(not_blob + " --env " + kSky + " --headless --out x.png", "bad_blob");
+  const std::string not_blob = scratch().write("not_a_blob.prtk", "hello");
+  const prt_test::CommandResult run =
+      run_view(quote(not_blob) + " --env " + quote(write_test_sky()) + " --headless --out x.png",
+               "bad_blob");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find("not_a_blob.prtk: "), std::string::npos) << run.output;
 }
 
 TEST(PrtView, MissingMapFailsNamingTheFile) {
-  const ViewRun run =
-      run_view(kBlob + " --env " + kDir + "/no_such_sky.hdr --headless --out x.png", "missing_map");
+  const prt_test::CommandResult run =
+      run_view(quote(kBlob) + " --env " + quote(scratch().file("no_such_sky.hdr")) +
+                   " --headless --out x.png",
+               "missing_map");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find("no_such_sky.hdr: cannot open file"), std::string::npos) << run.output;
 }
@@ -255,11 +255,12 @@ TEST(PrtView, MissingMapFailsNamingTheFile) {
 // A backend the context may not use (limited here through PRT_BACKEND, as on a CPU without
 // SSE4.1) fails with the runtime's result and reason, not a crash or a silent fallback.
 TEST(PrtView, UnusableBackendFailsWithTheRuntimesReason) {
+  const std::string sky = write_test_sky();
   for (const char* backend : {"simd", "gl"}) {
     if (!PRT_VIEW_HAS_GL && std::string(backend) == "gl") continue;
-    const ViewRun run =
-        run_view(kBlob + " --env " + kSky + " --headless --frames 2 --backend " + backend,
-                 std::string("limited_") + backend, "PRT_BACKEND=cpu");
+    const prt_test::CommandResult run = run_view(
+        quote(kBlob) + " --env " + quote(sky) + " --headless --frames 2 --backend " + backend,
+        std::string("limited_") + backend, "PRT_BACKEND=cpu");
     EXPECT_EQ(run.exit_code, 1) << run.output;
     EXPECT_NE(run.output.find(std::string("backend ") + backend + ": "), std::string::npos)
         << run.output;
@@ -268,25 +269,32 @@ TEST(PrtView, UnusableBackendFailsWithTheRuntimesReason) {
 }
 
 TEST(PrtView, BadArgumentsExitTwo) {
+  const std::string sky = quote(write_test_sky()), blob = quote(kBlob);
   EXPECT_EQ(
-      run_view(kBlob + " --env " + kSky + " --headless --backend vulkan --out x.png", "bad_backend")
+      run_view(blob + " --env " + sky + " --headless --backend vulkan --out x.png", "bad_backend")
           .exit_code,
       2);
-  EXPECT_EQ(run_view(kBlob + " --env " + kSky + " --out x.png", "no_headless").exit_code, 2);
-  EXPECT_EQ(run_view(kBlob + " --headless --out x.png", "no_env").exit_code, 2);
-  EXPECT_EQ(run_view(kBlob + " --env " + kSky + " --headless --size 12 --out x.png", "bad_size")
+  EXPECT_EQ(run_view(blob + " --env " + sky + " --out x.png", "no_headless").exit_code, 2);
+  EXPECT_EQ(run_view(blob + " --headless --out x.png", "no_env").exit_code, 2);
+  EXPECT_EQ(
+      run_view(blob + " --env " + sky + " --headless --size 12 --out x.png", "bad_size").exit_code,
+      2);
+  EXPECT_EQ(run_view(blob + " --env " + sky + " --headless", "nothing_to_do").exit_code, 2);
+  EXPECT_EQ(run_view(blob + " --env " + sky + " --headless --out x.png --error-out e.png",
+                     "error_out_alone")
                 .exit_code,
             2);
 }
 
 TEST(PrtView, MontageTilesImages) {
-  const std::string a = kDir + "/tile_a.png", b = kDir + "/tile_b.png", out = kDir + "/tiles.png";
+  const std::string a = scratch().file("tile_a.png"), b = scratch().file("tile_b.png");
+  const std::string out = scratch().file("tiles.png");
   const unsigned char red[3 * 4 * 2] = {255, 0, 0, 255, 0, 0, 255, 0, 0, 255, 0, 0,
                                         255, 0, 0, 255, 0, 0, 255, 0, 0, 255, 0, 0};
   ASSERT_TRUE(stbi_write_png(a.c_str(), 4, 2, 3, red, 12));
   ASSERT_TRUE(stbi_write_png(b.c_str(), 4, 2, 3, red, 12));
-  const ViewRun run =
-      run_view("--montage " + out + " --montage-columns 1 " + a + " " + b, "montage");
+  const prt_test::CommandResult run = run_view(
+      "--montage " + quote(out) + " --montage-columns 1 " + quote(a) + " " + quote(b), "montage");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   int w = 0, h = 0, c = 0;
   ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &c));

@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: MIT
+// prt-view's pixels, read back with stb (not the viewer's code): the tone mapping of a known
+// radiance and the heat map's colours at known errors.
+//
+// The blobs are flat quads facing the camera (+Z) whose every vertex has the same order-1 `sh`
+// transfer t (offset t, scale 0), lit by a constant map m: the radiance is t * L00 with
+// L00 = 4 pi Y00 m = 2 sqrt(pi) m, so every covered pixel shows that radiance and the background
+// shows m. The expected bytes are worked out here from the published formulas: exposure 2^EV,
+// the ACES filmic fit of K. Narkowicz (2015) and the sRGB transfer function (IEC 61966-2-1).
+#include <gtest/gtest.h>
+#include <stb_image.h>
+#include <prt/format/blob_writer.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "sh/sh_blob_test_util.hpp"
+#include "viewer/viewer_test_util.hpp"
+
+namespace {
+
+using namespace prt_view_test;
+
+// An axis-aligned rectangle in the z = 0 plane: [x0, x1] x [y0, y1].
+struct Rect {
+  float x0, y0, x1, y1;
+};
+
+// A blob of `rects` (four vertices and two triangles each) whose every vertex has the order-1
+// RGB transfer `t` (stored exactly: offset t, scale 0, q 0).
+std::string flat_blob(const std::string& name, const std::vector<Rect>& rects,
+                      const std::array<float, 3>& t) {
+  const std::uint32_t vertices = 4 * static_cast<std::uint32_t>(rects.size());
+  std::vector<float> positions;
+  std::vector<std::uint32_t> triangles;
+  for (const Rect& r : rects) {
+    const std::uint32_t base = static_cast<std::uint32_t>(positions.size() / 3);
+    positions.insert(positions.end(),
+                     {r.x0, r.y0, 0.0f, r.x1, r.y0, 0.0f, r.x1, r.y1, 0.0f, r.x0, r.y1, 0.0f});
+    triangles.insert(triangles.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  prt_test::Transfer transfer;
+  transfer.order = 1, transfer.vertices = vertices, transfer.channels = 3, transfer.kind = 0;
+  transfer.offset.assign(t.begin(), t.end());
+  transfer.scale.assign(3, 0.0f);
+  transfer.q.assign(3u * vertices, 0u);
+  const prt_test::Bytes shtr = prt_test::encode(transfer);
+  prt::format::BlobWriter writer;
+  prt::format::SectionOptions required;
+  required.required = true;
+  writer.add_section(PRT_BLOB_TAG_VPOS, positions.data(), positions.size() * 4, vertices, required);
+  writer.add_section(PRT_BLOB_TAG_TRIS, triangles.data(), triangles.size() * 4,
+                     static_cast<std::uint32_t>(triangles.size() / 3), required);
+  writer.add_section(PRT_BLOB_TAG_SHTR, shtr.data(), shtr.size(), vertices, required);
+  return write_blob(name, writer.finish());
+}
+
+// A constant lat-long map (64 x 32) of `m`; RGBE stores these values exactly.
+const std::array<float, 3> kConstant = {0.75f, 0.5f, 1.0f};
+
+std::string constant_map() {
+  std::vector<float> rgb;
+  for (int i = 0; i < 64 * 32; ++i) rgb.insert(rgb.end(), kConstant.begin(), kConstant.end());
+  return write_hdr("constant.hdr", 64, 32, rgb);
+}
+
+// The published formulas, in double.
+double aces_narkowicz(double x) {
+  x = std::max(x, 0.0);
+  return std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+double srgb_encode(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+int display_byte(double radiance, double exposure_ev) {
+  return static_cast<int>(
+      std::lround(srgb_encode(aces_narkowicz(radiance * std::exp2(exposure_ev))) * 255.0));
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const unsigned char* p = &rgb[(std::size_t(y) * width + x) * 3];
+    return {p[0], p[1], p[2]};
+  }
+};
+
+Png read_png(const std::string& path) {
+  Png png;
+  int channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
+  EXPECT_NE(data, nullptr) << path;
+  if (data) png.rgb.assign(data, data + std::size_t(png.width) * png.height * 3);
+  stbi_image_free(data);
+  return png;
+}
+
+// Every pixel of the block [x0, x1) x [y0, y1) within one 8-bit step of `expected`.
+void expect_block(const Png& png, int x0, int y0, int x1, int y1,
+                  const std::array<int, 3>& expected, const std::string& what) {
+  int worst = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(png.at(x, y)[c] - expected[c]));
+  const std::array<int, 3> seen = png.at((x0 + x1) / 2, (y0 + y1) / 2);
+  EXPECT_LE(worst, 1) << what << ": expected " << expected[0] << " " << expected[1] << " "
+                      << expected[2] << ", e.g. " << seen[0] << " " << seen[1] << " " << seen[2];
+}
+
+TEST(PrtViewPixels, ToneMappingOfAKnownRadianceAndOfTheBackground) {
+  const std::array<float, 3> t = {0.1f, 0.3f, 0.45f};
+  const std::string blob = flat_blob("tone.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, t);
+  const std::string png_path = scratch().file("tone.png");
+  const double ev = 0.75;
+  const prt_test::CommandResult run = run_view(
+      quote(blob) + " --env " + quote(constant_map()) +
+          " --headless --backend cpu --size 200x200 --exposure 0.75 --out " + quote(png_path),
+      "tone");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("exposure +0.75 EV"), std::string::npos) << run.output;
+  const Png png = read_png(png_path);
+  ASSERT_EQ(png.width, 200);
+  std::array<int, 3> surface, background;
+  for (int c = 0; c < 3; ++c) {
+    surface[c] = display_byte(t[c] * 2.0 * std::sqrt(kPi) * kConstant[c], ev);
+    background[c] = display_byte(kConstant[c], ev);
+  }
+  std::printf("surface %d %d %d, background %d %d %d\n", surface[0], surface[1], surface[2],
+              background[0], background[1], background[2]);
+  // The quad fills the middle of the frame (the camera frames its bounding sphere); the corners
+  // see the map.
+  expect_block(png, 80, 80, 120, 120, surface, "the quad");
+  for (const auto& [x, y] :
+       {std::pair{0, 0}, std::pair{190, 0}, std::pair{0, 190}, std::pair{190, 190}})
+    expect_block(png, x, y, x + 10, y + 10, background, "a corner");
+}
+
+// The heat map's ramp as the viewer documents it (samples/viewer/README.md): sRGB display
+// colours at e / scale = 0, 0.2, 0.4, 0.6, 0.8, 1, linear in between, white beyond.
+const double kRamp[6][3] = {{0.0, 0.0, 0.0}, {0.15, 0.1, 0.6}, {0.7, 0.15, 0.6},
+                            {1.0, 0.5, 0.1}, {1.0, 0.9, 0.2},  {1.0, 1.0, 1.0}};
+
+std::array<int, 3> ramp_byte(double t) {
+  t = std::clamp(t, 0.0, 1.0) * 5.0;
+  const int i = std::min(static_cast<int>(t), 4);
+  std::array<int, 3> rgb;
+  for (int c = 0; c < 3; ++c)
+    rgb[c] = static_cast<int>(
+        std::lround((kRamp[i][c] + (t - i) * (kRamp[i + 1][c] - kRamp[i][c])) * 255.0));
+  return rgb;
+}
+
+// Runs of pixels along row y that differ from `backdrop` (more than one step in a channel):
+// [begin, end) pairs, left to right.
+std::vector<std::pair<int, int>> runs_off(const Png& png, int y,
+                                          const std::array<int, 3>& backdrop) {
+  std::vector<std::pair<int, int>> runs;
+  for (int x = 0; x < png.width; ++x) {
+    const std::array<int, 3> p = png.at(x, y);
+    bool off = false;
+    for (int c = 0; c < 3; ++c) off = off || std::abs(p[c] - backdrop[c]) > 1;
+    if (!off) continue;
+    if (runs.empty() || runs.back().second != x)
+      runs.push_back({x, x + 1});
+    else
+      runs.back().second = x + 1;
+  }
+  return runs;
+}
+
+// Twelve quads in a row, left to right at ramp positions 0, 0.1, ..., 1 and 1.5 (beyond the
+// scale). Every vertex shades the same radiance x; the reference of quad k is x (1 + s_k), so
+// its error |x - ref| / mean |ref| is s_k / (1 + mean s) exactly, and --error-scale puts it at
+// its ramp position.
+TEST(PrtViewPixels, HeatMapShowsTheDocumentedRampAtKnownErrors) {
+  std::vector<double> ramp_at;
+  for (int k = 0; k <= 10; ++k) ramp_at.push_back(0.1 * k);
+  ramp_at.push_back(1.5);
+  std::vector<Rect> rects;
+  for (std::size_t k = 0; k < ramp_at.size(); ++k)
+    rects.push_back({1.5f * k, 0.0f, 1.5f * k + 1.0f, 3.0f});
+  const std::string blob = flat_blob("heat.prtk", rects, {0.2f, 0.25f, 0.3f});
+  const std::string map = constant_map();
+  const std::vector<float> shaded = view_vertices(blob, map, "heat_x", "--backend cpu");
+  ASSERT_EQ(shaded.size(), 3 * 4 * ramp_at.size());
+
+  const double sigma = 0.5;
+  double mean_s = 0.0;
+  for (double t : ramp_at) mean_s += sigma * t / ramp_at.size();
+  std::vector<float> reference(shaded.size());
+  for (std::size_t i = 0; i < shaded.size(); ++i)
+    reference[i] = float(1.0 + sigma * ramp_at[i / 12]) * shaded[i];  // 12 floats per quad
+  const std::string reference_path = scratch().file("heat_reference.npy");
+  {
+    // float32 [V, 3] .npy, format 1.0, written here.
+    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                         std::to_string(reference.size() / 3) + ", 3), }";
+    while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+    header += '\n';
+    std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
+    bytes += char(header.size() & 0xFF);
+    bytes += char(header.size() >> 8);
+    bytes += header;
+    bytes.append(reinterpret_cast<const char*>(reference.data()), reference.size() * 4);
+    scratch().write("heat_reference.npy", bytes);
+  }
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.9g", sigma / (1.0 + mean_s));
+  const std::string heat = scratch().file("heat.png");
+  const prt_test::CommandResult run =
+      run_view(quote(blob) + " --env " + quote(map) + " --headless --backend cpu --size 480x480 " +
+                   "--reference " + quote(reference_path) + " --error-out " + quote(heat) +
+                   " --error-scale " + scale,
+               "heat");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Png png = read_png(heat);
+  ASSERT_EQ(png.width, 480);
+
+  const std::array<int, 3> backdrop = {64, 64, 64};  // mid grey 0.25: "no surface"
+  expect_block(png, 0, 0, 10, 10, backdrop, "the backdrop");
+  // The camera looks at the row's centre with no roll: the middle image row crosses every quad.
+  const std::vector<std::pair<int, int>> runs = runs_off(png, png.height / 2, backdrop);
+  ASSERT_EQ(runs.size(), ramp_at.size()) << "one run of colour per quad along the middle row";
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const int x = (runs[k].first + runs[k].second) / 2;
+    ASSERT_GE(runs[k].second - runs[k].first, 12) << "quad " << k;
+    expect_block(png, x - 3, png.height / 2 - 3, x + 4, png.height / 2 + 4, ramp_byte(ramp_at[k]),
+                 "quad " + std::to_string(k) + " at ramp position " + std::to_string(ramp_at[k]));
+  }
+}
+
+}  // namespace
