@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,12 @@ TEST(EnvMapBroken, NonImageHdr) {
   const unsigned char pixels[4 * 2 * 3] = {};
   ASSERT_NE(stbi_write_png(png.c_str(), 4, 2, 3, pixels, 4 * 3), 0);
   expect_envmap_error(png, {"not a Radiance .hdr image"});
-  expect_envmap_error(dir.file("absent.hdr"), {"cannot open"});
+  expect_envmap_error(dir.file("absent.hdr"), {"cannot open", "No such file"});
+  // A folder given where a map is expected is named as one (a stream read would only say that a
+  // read failed).
+  const std::string folder = dir.file("folder.hdr");
+  std::filesystem::create_directory(folder);
+  expect_envmap_error(folder, {"cannot open", "is a directory"});
 }
 
 TEST(EnvMapBroken, TruncatedAndMisshapenHdr) {

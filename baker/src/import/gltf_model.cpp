@@ -12,21 +12,13 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
+
+#include "prt/io/file.hpp"
 
 namespace prt::bake::detail {
 namespace {
 
 using Json = nlohmann::json;
-
-std::vector<unsigned char> read_file_bytes(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open file");
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  const std::string text = buffer.str();
-  return std::vector<unsigned char>(text.begin(), text.end());
-}
 
 std::uint32_t read_u32(const unsigned char* p) {
   return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
@@ -510,7 +502,7 @@ AccessorData read_accessor(const tinygltf::Model& model, int index, bool normali
 }
 
 tinygltf::Model load_gltf_model(const std::string& path, const Context& ctx) {
-  const std::vector<unsigned char> bytes = read_file_bytes(path);
+  const std::vector<unsigned char> bytes = io::read_file(path);
   // A .glb must be a GLB container; anything else is taken as JSON unless it has GLB's magic.
   const bool glb_name = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 ||
                                              path.compare(path.size() - 4, 4, ".GLB") == 0);

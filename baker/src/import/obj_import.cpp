@@ -7,12 +7,11 @@
 // written as "v x y z r g b" become COLOR_0.
 #include <charconv>
 #include <cstdlib>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <tuple>
 
 #include "import_detail.hpp"
+#include "prt/io/file.hpp"
 
 namespace prt::bake::detail {
 namespace {
@@ -223,11 +222,8 @@ Mesh build_mesh(const ObjFile& obj, const ObjObject& object) {
 }  // namespace
 
 Scene import_obj(const std::string& path, const Context& ctx) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open file");
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  const ObjFile obj = parse_obj(path, buffer.str());
+  const std::vector<unsigned char> bytes = io::read_file(path);
+  const ObjFile obj = parse_obj(path, std::string(bytes.begin(), bytes.end()));
 
   Scene scene;
   scene.source = path;

@@ -9,11 +9,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 
 #include "hdr_stream.hpp"
 #include "prt/io/error.hpp"
+#include "prt/io/file.hpp"
 
 namespace prt::io {
 namespace {
@@ -533,10 +532,7 @@ std::string top_exponent_warning(const std::string& path, std::size_t texels, fl
 }  // namespace
 
 EnvMap load_envmap(const std::string& path, EnvMapping mapping, const MessageHook& messages) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open file");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                         std::istreambuf_iterator<char>());
+  const std::vector<unsigned char> bytes = read_file(path);
   if (!detail::has_radiance_signature(bytes) ||
       !stbi_is_hdr_from_memory(bytes.data(), static_cast<int>(bytes.size()))) {
     throw Error(path + ": not a Radiance .hdr image (no #?RADIANCE / #?RGBE signature)");

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 
 #include "prt/io/error.hpp"
+#include "prt/io/file.hpp"
 
 namespace prt::io {
 namespace {
@@ -164,10 +164,7 @@ void write_image(const std::string& path, const LinearImage& image, float exposu
 }
 
 std::vector<glm::vec3> read_npy_vec3(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open file");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                         std::istreambuf_iterator<char>());
+  const std::vector<unsigned char> bytes = read_file(path);
   if (bytes.size() < 10 || std::memcmp(bytes.data(), "\x93NUMPY", 6) != 0) {
     throw Error(path + ": not a NumPy .npy file");
   }
