@@ -5,6 +5,9 @@
 
 #include "techniques.h"
 
+extern const prt_technique_entry prt_sh_technique_entry;      /* sh/sh_section.c */
+extern const prt_technique_entry prt_wavelet_technique_entry; /* wavelet/wavelet_section.c */
+
 static const prt_technique_entry* const kTechniques[] = {
     &prt_sh_technique_entry,
     &prt_wavelet_technique_entry,

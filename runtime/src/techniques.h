@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Private to the runtime: the technique table. Each technique defines its entry in its own
- * folder (runtime/src/<t>/<t>_section.c); techniques.c lists the entries once. Shared code
- * (loading, queries) loops over the table and never names a technique. */
+ * folder (runtime/src/<t>/<t>_section.c); techniques.c declares and lists the entries once. Shared
+ * code (loading, queries) loops over the table and never names a technique. */
 #ifndef PRT_RUNTIME_TECHNIQUES_H
 #define PRT_RUNTIME_TECHNIQUES_H
 
@@ -18,9 +18,6 @@ typedef struct prt_technique_entry {
    * PRT_ERROR_CORRUPT with msg naming the field. */
   prt_result (*open)(const prt_asset_section* section, void* view, char* msg, size_t capacity);
 } prt_technique_entry;
-
-extern const prt_technique_entry prt_sh_technique_entry;
-extern const prt_technique_entry prt_wavelet_technique_entry;
 
 /* The entry of `technique`, NULL when this runtime does not implement it. */
 const prt_technique_entry* prt_internal_technique(prt_technique technique);
