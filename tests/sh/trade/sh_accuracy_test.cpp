@@ -25,9 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,6 +35,7 @@
 #include "prt/baker/sh/sh_transfer.hpp"
 #include "prt/io/envmap.hpp"
 #include "prt/io/radiance_error.hpp"
+#include "support/command.hpp"
 
 namespace prt::bake {
 namespace {
@@ -53,38 +52,16 @@ struct TableRow {
   double error = 0.0, ref_noise = 0.0;
 };
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  std::string field;
-  while (std::getline(in, field, ',')) fields.push_back(field);
-  return fields;
-}
-
 TableRow read_trade_row(const std::string& path, const std::string& map, std::uint32_t order,
                         std::uint32_t rays, int bounces) {
-  std::ifstream csv(path);
-  std::string line;
   TableRow row;
-  if (!std::getline(csv, line)) return row;
-  const std::vector<std::string> header = split(line);
-  auto column = [&](const char* name) {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return i;
-    }
-    return header.size();
-  };
-  const std::size_t c_map = column("map"), c_order = column("order"), c_rays = column("rays"),
-                    c_bounces = column("bounces"), c_error = column("rel_rmse"),
-                    c_noise = column("ref_noise");
-  while (std::getline(csv, line)) {
-    const std::vector<std::string> f = split(line);
-    if (f.size() != header.size()) continue;
-    if (f[c_map] == map && std::stoul(f[c_order]) == order && std::stoul(f[c_rays]) == rays &&
-        std::stoi(f[c_bounces]) == bounces) {
+  for (const auto& f : prt_test::read_csv(path)) {
+    if (f.count("#fields")) continue;
+    if (f.at("map") == map && std::stoul(f.at("order")) == order &&
+        std::stoul(f.at("rays")) == rays && std::stoi(f.at("bounces")) == bounces) {
       row.found = true;
-      row.error = std::stod(f[c_error]);
-      row.ref_noise = std::stod(f[c_noise]);
+      row.error = std::stod(f.at("rel_rmse"));
+      row.ref_noise = std::stod(f.at("ref_noise"));
     }
   }
   return row;
