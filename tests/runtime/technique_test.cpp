@@ -88,7 +88,7 @@ TEST(Technique, AssetTechniquesAreTheSectionsItHolds) {
   }
   {
     const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_DUAL_PARABOLOID, 16, 10, 30, 2);
-    WvltAsset wavelet(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, true));
+    LoadedAsset wavelet(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, true));
     ASSERT_EQ(wavelet.result, PRT_OK);
     EXPECT_EQ(prt_asset_techniques(wavelet.asset), 1u << PRT_TECHNIQUE_WAVELET);
   }

@@ -19,29 +19,11 @@
 #include <vector>
 
 #include "sh/sh_blob_test_util.hpp"
+#include "support/limited_context.hpp"
 
 namespace {
 
 using namespace prt_test;
-
-// A context with the given limits (contexts ignore the environment by default).
-struct LimitedContext {
-  prt_context* ctx = nullptr;
-  LimitedContext(prt_backend backend_limit, prt_simd_isa isa_limit) {
-    prt_context_desc desc = prt::sized<prt_context_desc>();
-    desc.backend_limit = backend_limit;
-    desc.simd_isa_limit = isa_limit;
-    EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
-  }
-  ~LimitedContext() { prt_context_destroy(ctx); }
-  LimitedContext(const LimitedContext&) = delete;
-  LimitedContext& operator=(const LimitedContext&) = delete;
-};
-
-bool simd_usable(prt_context* ctx) {
-  prt_backend_info info = prt::sized<prt_backend_info>();
-  return prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable;
-}
 
 // Light coefficients in [-amplitude, amplitude], order^2 RGB triples.
 std::vector<float> random_light(uint32_t order, uint32_t seed, float amplitude = 2.0f) {
@@ -89,25 +71,9 @@ void expect_matches_double_sum(const Transfer& t, const std::vector<float>& ligh
     }
 }
 
-std::string isa_test_name(const ::testing::TestParamInfo<prt_simd_isa>& info) {
-  return info.param == PRT_SIMD_ISA_AVX2 ? "avx2" : "sse41";
-}
-
 // One instruction set, forced by the context's ISA limit; skipped where the CPU lacks it.
-class ShSimd : public ::testing::TestWithParam<prt_simd_isa> {
+class ShSimd : public SimdIsaTest {
  protected:
-  LimitedContext limited{PRT_BACKEND_AUTO, GetParam()};
-  prt_context* ctx = limited.ctx;
-
-  void SetUp() override {
-    prt_backend_info info = prt::sized<prt_backend_info>();
-    ASSERT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info), PRT_OK);
-    if (!info.compiled) GTEST_SKIP() << "SIMD compiled out (PRT_ENABLE_SIMD=OFF)";
-    if (!info.usable || info.isa != GetParam())
-      GTEST_SKIP() << "this CPU lacks " << prt_simd_isa_name(GetParam()) << " (" << info.note
-                   << ")";
-  }
-
   // SIMD shading of [first, first+count) into a vector of exactly 3*count floats.
   std::vector<float> shade(const LoadedAsset& a, const std::vector<float>& light, uint32_t first,
                            uint32_t count) {
@@ -264,8 +230,7 @@ TEST_P(ShSimd, RejectsWhatTheScalarPathRejects) {
   EXPECT_EQ(quick.asset, nullptr);
 }
 
-INSTANTIATE_TEST_SUITE_P(Isa, ShSimd, ::testing::Values(PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2),
-                         isa_test_name);
+INSTANTIATE_TEST_SUITE_P(Isa, ShSimd, kSimdIsas, isa_test_name);
 
 // --- Dispatch -------------------------------------------------------------------------------
 
@@ -284,12 +249,13 @@ std::vector<float> shade_on(const LoadedAsset& a, prt_backend backend, const Sce
 }
 
 TEST(ShSimdDispatch, AutoPicksSimdWhenUsable) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
-  if (!simd_usable(limited.ctx)) GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
+  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
+  if (!simd_usable(limited.get()))
+    GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
+  LoadedAsset a(limited.get(), s.blob);
   ASSERT_EQ(a.result, PRT_OK);
-  EXPECT_EQ(prt_context_backend(limited.ctx), PRT_BACKEND_SIMD);
+  EXPECT_EQ(prt_context_backend(limited.get()), PRT_BACKEND_SIMD);
   const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
   const std::vector<float> simd = shade_on(a, PRT_BACKEND_SIMD, s);
   const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
@@ -300,9 +266,9 @@ TEST(ShSimdDispatch, AutoPicksSimdWhenUsable) {
 }
 
 TEST(ShSimdDispatch, ContextLimitedToCpuRefusesSimd) {
-  LimitedContext limited(PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO);
+  const prt::ContextPtr limited = limited_context(PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
+  LoadedAsset a(limited.get(), s.blob);
   ASSERT_EQ(a.result, PRT_OK);
   shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
   const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
@@ -314,20 +280,20 @@ TEST(ShSimdDispatch, ContextLimitedToCpuRefusesSimd) {
 }
 
 TEST(ShSimdDispatch, IsaLimitNoneRefusesSimd) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_NONE);
+  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_NONE);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
+  LoadedAsset a(limited.get(), s.blob);
   ASSERT_EQ(a.result, PRT_OK);
   shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
 }
 
 TEST(ShSimdDispatch, CompiledOutSimdIsUnsupported) {
   if (PRT_TEST_SIMD_COMPILED) GTEST_SKIP() << "SIMD is compiled in (see the `scalar` preset)";
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
+  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
+  LoadedAsset a(limited.get(), s.blob);
   ASSERT_EQ(a.result, PRT_OK);
-  EXPECT_EQ(prt_context_backend(limited.ctx), PRT_BACKEND_CPU);
+  EXPECT_EQ(prt_context_backend(limited.get()), PRT_BACKEND_CPU);
   shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
   const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
   const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
@@ -335,9 +301,9 @@ TEST(ShSimdDispatch, CompiledOutSimdIsUnsupported) {
 }
 
 TEST(ShSimdDispatch, GlIsNotShadedHere) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
+  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
+  LoadedAsset a(limited.get(), s.blob);
   ASSERT_EQ(a.result, PRT_OK);
   shade_on(a, PRT_BACKEND_GL, s, PRT_ERROR_UNSUPPORTED_BACKEND);
 }

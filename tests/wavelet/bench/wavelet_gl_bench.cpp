@@ -80,7 +80,7 @@ BENCHMARK(BM_StreamTriad)
 struct GlBench {
   prt_context* context = nullptr;
   prt_test::Bytes blob;
-  std::unique_ptr<prt_test::WvltAsset> loaded;
+  std::unique_ptr<prt_test::LoadedAsset> loaded;
   prt_gl_wavelet_shader* shader = nullptr;
   std::vector<float> light;
   GlBench() {
@@ -88,7 +88,7 @@ struct GlBench {
     const prt_test::WvltTransfer t = prt_bench::bake_shaped_transfer();
     g_figures.traffic = prt_bench::wavelet_traffic(t);
     blob = prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), t.vertices);
-    loaded = std::make_unique<prt_test::WvltAsset>(context, blob);
+    loaded = std::make_unique<prt_test::LoadedAsset>(context, blob);
     light = prt_test::wvlt_random_light(t.coefficients(), 3);
     if (loaded->result == PRT_OK &&
         prt_wavelet_prepare_light(loaded->asset, light.data(), light.data(), nullptr) == PRT_OK)
