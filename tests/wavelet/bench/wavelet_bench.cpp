@@ -245,7 +245,7 @@ void register_relight() {
     }
 }
 
-// The environment: the 1k beach map of the issue, or a synthetic sky with a sun.
+// The environment: the 1k beach map the accuracy test uses, or a synthetic sky with a sun.
 struct LatLong {
   std::vector<float> rgb;
   uint32_t width = 0, height = 0;

@@ -101,7 +101,7 @@ class WaveletAsset : public ::testing::Test {
   }
 };
 
-// THE DONE-WHEN TEST: a known row found in the blob's bytes by §7.2's offsets and decoded here.
+// The layout itself: a known row found in the blob's bytes by §7.2's offsets and decoded here.
 TEST_F(WaveletAsset, KnownRowDecodesByHandFromTheBlobBytes) {
   // Cube, S = 16: F = 6, 6 * 256 = 1536 coefficients, B = 6 blocks, log2 S + 1 = 5 bands/face.
   const uint32_t S = 16, V = 3, F = 6, B = 6, bands = 30;

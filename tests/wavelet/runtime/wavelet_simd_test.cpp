@@ -298,7 +298,7 @@ void time_backends(const char* title, const WvltTransfer& t) {
   }
 }
 
-// The bunny-sized case of the issue: 36k vertices, 1000 non-zeros each, N = 64 (random indices:
+// A bunny-sized case: 36k vertices, 1000 non-zeros each, N = 64 (random indices:
 // every light load a cache miss in L1), then the same pairs over an N = 16 cube whose 24 KB light
 // stays in L1, which shows what the scattered light loads cost.
 TEST(WaveletSimdTiming, DISABLED_BunnySizedTiming) {
