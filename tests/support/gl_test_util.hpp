@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Shared by the GL tests: the headless context (or a stated skip), loader
-// wrappers (hiding an entry point, lying about the version or the SSBO limit), a counting
-// allocator, and the float-rounding tolerances every backend is held to (sh and wavelet).
+// Shared by the GL tests: the headless context (or a stated skip), loader wrappers (hiding an
+// entry point, lying about the version or the SSBO limit), and the float-rounding tolerances every
+// backend is held to (sh and wavelet).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 
 #include "headless_gl.h"
 #include "sh/sh_blob_test_util.hpp"
+#include "support/counting_allocator.hpp"
 #include "support/gl_state.hpp"
 #include "support/limited_context.hpp"
 #include "wavelet/wavelet_blob_test_util.hpp"
@@ -163,21 +164,5 @@ inline void* lying_loader(void* user, const char* name) {
     return as_address(&small_ssbo_get_integer64v);
   return headless_gl_get_proc(nullptr, name);
 }
-
-// Counts live allocations; fails every allocation once `fail` is set.
-struct CountingAllocator {
-  int live = 0;
-  bool fail = false;
-  static void* alloc(void* user, size_t size, size_t align) {
-    auto* self = static_cast<CountingAllocator*>(user);
-    if (self->fail) return nullptr;
-    ++self->live;
-    return std::aligned_alloc(align, (size + align - 1) / align * align);
-  }
-  static void free(void* user, void* ptr, size_t) {
-    --static_cast<CountingAllocator*>(user)->live;
-    std::free(ptr);
-  }
-};
 
 }  // namespace prt_test

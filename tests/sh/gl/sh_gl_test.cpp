@@ -338,7 +338,7 @@ TEST(GlSh, NullArguments) {
 TEST(GlSh, ShaderComesFromTheAssetsAllocator) {
   PRT_REQUIRE_GL(gl);
   CountingAllocator counter;
-  const prt_allocator allocator = {CountingAllocator::alloc, CountingAllocator::free, &counter};
+  const prt_allocator allocator = counter.api();
   const GlAsset a(prt_test::random_transfer(3, 40, 3, 8, 4), PRT_BACKEND_AUTO, false, &allocator);
   const int before = counter.live;
   prt_gl_sh_shader* shader = nullptr;

@@ -395,7 +395,7 @@ TEST(GlWavelet, NullArguments) {
 TEST(GlWavelet, ShaderComesFromTheAssetsAllocator) {
   PRT_REQUIRE_GL(gl);
   CountingAllocator counter;
-  const prt_allocator allocator = {CountingAllocator::alloc, CountingAllocator::free, &counter};
+  const prt_allocator allocator = counter.api();
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 40, 30, 4), PRT_BACKEND_AUTO, false, &allocator);
   const int before = counter.live;
   prt_gl_wavelet_shader* shader = nullptr;
