@@ -20,6 +20,7 @@
 
 #include "sh/sh_blob_test_util.hpp"
 #include "support/limited_context.hpp"
+#include "support/simd_dispatch.hpp"
 
 namespace {
 
@@ -240,72 +241,42 @@ struct Scene {
   Bytes blob = make_blob(encode(t), t.vertices);
 };
 
-std::vector<float> shade_on(const LoadedAsset& a, prt_backend backend, const Scene& s,
-                            prt_result expected = PRT_OK) {
-  std::vector<float> out(size_t(s.t.vertices) * 3);
-  EXPECT_EQ(prt_sh_shade(a.asset, backend, s.light.data(), 0, s.t.vertices, out.data()), expected)
-      << prt_backend_name(backend);
-  return out;
+// Shades all of the scene's asset on a backend.
+ShadeAll shade_all(const Scene& s) {
+  return [&s](const prt_asset* asset, prt_backend backend, std::vector<float>* out) {
+    out->assign(size_t(s.t.vertices) * 3, 0.0f);
+    return prt_sh_shade(asset, backend, s.light.data(), 0, s.t.vertices, out->data());
+  };
 }
 
 TEST(ShSimdDispatch, AutoPicksSimdWhenUsable) {
-  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
-  if (!simd_usable(limited.get()))
+  if (!simd_usable(limited_context().get()))
     GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
   const Scene s;
-  LoadedAsset a(limited.get(), s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  EXPECT_EQ(prt_context_backend(limited.get()), PRT_BACKEND_SIMD);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  const std::vector<float> simd = shade_on(a, PRT_BACKEND_SIMD, s);
-  const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
-  EXPECT_EQ(std::memcmp(automatic.data(), simd.data(), simd.size() * 4), 0);
   // The reference sums in double and the kernels in float: over 3000 sums of 36 terms some last
   // bits differ, which shows that AUTO did not run the reference.
-  EXPECT_NE(std::memcmp(automatic.data(), cpu.data(), cpu.size() * 4), 0);
+  EXPECT_FALSE(expect_auto_shades_as_simd(s.blob, shade_all(s)));
 }
 
 TEST(ShSimdDispatch, ContextLimitedToCpuRefusesSimd) {
-  const prt::ContextPtr limited = limited_context(PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.get(), s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  std::vector<float> reference(automatic.size());
-  ASSERT_EQ(
-      prt_sh_shade(a.asset, PRT_BACKEND_CPU, s.light.data(), 0, s.t.vertices, reference.data()),
-      PRT_OK);
-  EXPECT_EQ(std::memcmp(automatic.data(), reference.data(), reference.size() * 4), 0);
+  expect_cpu_limit_refuses_simd(s.blob, shade_all(s));
 }
 
 TEST(ShSimdDispatch, IsaLimitNoneRefusesSimd) {
-  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_NONE);
   const Scene s;
-  LoadedAsset a(limited.get(), s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
+  expect_isa_limit_none_refuses_simd(s.blob, shade_all(s));
 }
 
 TEST(ShSimdDispatch, CompiledOutSimdIsUnsupported) {
   if (PRT_TEST_SIMD_COMPILED) GTEST_SKIP() << "SIMD is compiled in (see the `scalar` preset)";
-  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.get(), s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  EXPECT_EQ(prt_context_backend(limited.get()), PRT_BACKEND_CPU);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
-  EXPECT_EQ(std::memcmp(automatic.data(), cpu.data(), cpu.size() * 4), 0);
+  expect_compiled_out_simd_unsupported(s.blob, shade_all(s));
 }
 
 TEST(ShSimdDispatch, GlIsNotShadedHere) {
-  const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.get(), s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_GL, s, PRT_ERROR_UNSUPPORTED_BACKEND);
+  expect_gl_not_shaded_here(s.blob, shade_all(s));
 }
 
 }  // namespace
