@@ -51,15 +51,6 @@ fs::path demo_scene_file() {
   return path;
 }
 
-struct AssetHandle {
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ~AssetHandle() {
-    prt_asset_destroy(asset);
-    prt_context_destroy(context);
-  }
-};
-
 TEST(ShBakeCommand, DemoSceneBlobLoadsAndReportParses) {
   const fs::path blob = temp_dir() / "demo_sh.prtk", report = temp_dir() / "demo_sh.json";
   const CommandResult bake =
@@ -67,13 +58,12 @@ TEST(ShBakeCommand, DemoSceneBlobLoadsAndReportParses) {
                "--transfer interreflected --bounces 1 --seed 3 -o " + quoted(blob) + " --report " +
                quoted(report));
   ASSERT_EQ(bake.exit_code, 0) << bake.output;
-  AssetHandle h;
-  ASSERT_EQ(prt_context_create(nullptr, &h.context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(h.context, blob.string().c_str(), PRT_VALIDATE_FULL, &h.asset),
-            PRT_OK)
-      << prt_context_last_message(h.context);
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_file(context.get(), blob.string().c_str(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
   prt_sh_info info = prt::sized<prt_sh_info>();
-  ASSERT_EQ(prt_sh_get_info(h.asset, &info), PRT_OK);
+  ASSERT_EQ(prt_sh_get_info(asset.get(), &info), PRT_OK);
   EXPECT_EQ(info.order, 3u);
   EXPECT_EQ(info.bits, 8u);
   EXPECT_EQ(info.channels, 3u);

@@ -67,21 +67,18 @@ TEST(WaveletBakeCommand, BlobLoadsAndReportParses) {
       scene_file() + " --cube 16 --keep 50 --quantizer vertex --samples 4 --seed 2" +
       " --bounces 1 --albedo 0.5,0.6,0.7 -o " + quoted(blob) + " --report " + quoted(report));
   ASSERT_EQ(bake.exit_code, 0) << bake.output;
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(context, blob.string().c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK)
-      << prt_context_last_message(context);
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_file(context.get(), blob.string().c_str(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
   prt_wavelet_info info = prt::sized<prt_wavelet_info>();
-  ASSERT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
+  ASSERT_EQ(prt_wavelet_get_info(asset.get(), &info), PRT_OK);
   EXPECT_EQ(info.param, PRT_WAVELET_PARAM_CUBE);
   EXPECT_EQ(info.size, 16u);
   EXPECT_EQ(info.quantizer, 0u);
   EXPECT_EQ(info.keep, 50u);
   EXPECT_EQ(info.bounces, 1u);
   EXPECT_LE(info.pair_count, 50u * info.vertex_count);
-  prt_asset_destroy(asset);
-  prt_context_destroy(context);
 
   std::ifstream file(report);
   const nlohmann::json json = nlohmann::json::parse(file);
@@ -107,17 +104,15 @@ TEST(WaveletBakeCommand, DualParaboloidAndKeepEnergy) {
   const prt_test::CommandResult bake = run_bake(
       scene_file() + " --param dual-paraboloid --cube 32 --keep-energy 0.9 -o " + quoted(blob));
   ASSERT_EQ(bake.exit_code, 0) << bake.output;
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(context, blob.string().c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK);
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_file(context.get(), blob.string().c_str(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
   prt_wavelet_info info = prt::sized<prt_wavelet_info>();
-  ASSERT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
+  ASSERT_EQ(prt_wavelet_get_info(asset.get(), &info), PRT_OK);
   EXPECT_EQ(info.param, PRT_WAVELET_PARAM_DUAL_PARABOLOID);
   EXPECT_EQ(info.faces, 2u);
   EXPECT_EQ(info.quantizer, 1u);  // band, the default
-  prt_asset_destroy(asset);
-  prt_context_destroy(context);
 }
 
 TEST(WaveletBakeCommand, BadAndForeignOptionsFail) {

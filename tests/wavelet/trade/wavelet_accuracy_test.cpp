@@ -30,6 +30,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "prt/baker/reference.hpp"
@@ -50,24 +51,18 @@ const std::string kSun = kShared + "/assets/envmaps/spiaggia_di_mondello_1k.hdr"
 constexpr std::uint32_t kSize = 64, kKeep = 1000, kStride = 8, kSpp = 512, kShRays = 256;
 const glm::vec3 kAlbedo(0.8f);
 
-using ContextPtr = std::unique_ptr<prt_context, decltype(&prt_context_destroy)>;
-using AssetPtr = std::unique_ptr<prt_asset, decltype(&prt_asset_destroy)>;
-
+// A blob loaded at full validation in a context of its own.
 struct Loaded {
-  ContextPtr context{nullptr, &prt_context_destroy};
-  AssetPtr asset{nullptr, &prt_asset_destroy};
+  prt::ContextPtr context;
+  prt::AssetPtr asset;
 };
 
 Loaded load(const std::vector<std::uint8_t>& blob) {
-  Loaded loaded;
-  prt_context* context = nullptr;
-  EXPECT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-  loaded.context.reset(context);
-  prt_asset* asset = nullptr;
-  EXPECT_EQ(prt_asset_load_memory(context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &asset),
-            PRT_OK)
-      << prt_context_last_message(context);
-  loaded.asset.reset(asset);
+  Loaded loaded{prt::create_context().handle, nullptr};
+  prt::Made<prt::AssetPtr> made =
+      prt::load_asset_memory(loaded.context.get(), blob.data(), blob.size(), PRT_VALIDATE_FULL);
+  EXPECT_EQ(made.result, PRT_OK) << prt_context_last_message(loaded.context.get());
+  loaded.asset = std::move(made.handle);
   return loaded;
 }
 
