@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 
@@ -36,6 +37,45 @@ class TradeCliTest : public ::testing::Test {
 
   static std::string quoted(const std::filesystem::path& path) {
     return shell_quote(path.string());
+  }
+
+  // The sweep's arguments: `out` as its output folder, on `threads` threads.
+  virtual std::string trade_arguments(const std::string& out, int threads) const = 0;
+
+  // Runs the sweep into dir_/name on `threads` threads and reads its table back. It must succeed
+  // and write trade.csv and trade.md (no rows when it fails); `cached`: its references come from
+  // the cache of an earlier run (nothing rendered), otherwise they are rendered.
+  CsvTable run_trade(const std::string& name, int threads, bool cached) const {
+    const CommandResult r =
+        run_bake(trade_arguments((dir_ / name).string(), threads), dir_ / (name + ".log"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    if (r.exit_code != 0) return {};
+    if (cached) {
+      EXPECT_EQ(r.output.find("rendering"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("from the cache"), std::string::npos) << r.output;
+    } else {
+      EXPECT_NE(r.output.find("rendering"), std::string::npos) << r.output;
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir_ / name / "trade.md"));
+    return read_table(dir_ / name / "trade.csv");
+  }
+
+  // Each row's `sweeps` and relative RMSE by the row's key; every setting must have an error
+  // above 0 and shade better than black (relative RMSE 1).
+  struct Swept {
+    std::map<std::string, std::string> sweeps;
+    std::map<std::string, double> error;
+  };
+  template <typename Key>
+  static Swept swept(const CsvTable& table, Key&& key) {
+    Swept s;
+    for (const auto& row : table) {
+      const std::string k = key(row);
+      s.sweeps[k] = row.at("sweeps");
+      s.error[k] = std::stod(row.at("rel_rmse"));
+      EXPECT_TRUE(s.error[k] > 0.0 && s.error[k] < 1.0) << k << ": " << s.error[k];
+    }
+    return s;
   }
 
   // The table, each row checked to have a field for every column.

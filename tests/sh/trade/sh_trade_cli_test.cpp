@@ -19,7 +19,7 @@ using Table = prt_test::CsvTable;
 
 class ShTradeCli : public prt_test::TradeCliTest {
  protected:
-  std::string trade_arguments(const std::string& out, int threads) const {
+  std::string trade_arguments(const std::string& out, int threads) const override {
     return "--threads " + std::to_string(threads) + " trade sh " + quoted(demo_scene_) + " --env " +
            quoted(sky_) + " --out-dir " + quoted(out) + " --cache-dir " + quoted(dir_ / "cache") +
            " --orders 1,3 --rays 16,32 --bounces 0,1 --base-rays 16 --base-order 3"
@@ -28,26 +28,19 @@ class ShTradeCli : public prt_test::TradeCliTest {
 };
 
 TEST_F(ShTradeCli, SweepsCachesAndRepeatsItself) {
-  const CommandResult first = run_bake(trade_arguments((dir_ / "a").string(), 2), dir_ / "a.log");
-  ASSERT_EQ(first.exit_code, 0) << first.output;
-  EXPECT_NE(first.output.find("rendering"), std::string::npos) << first.output;
-  const Table a = read_table(dir_ / "a" / "trade.csv");
-  EXPECT_TRUE(fs::exists(dir_ / "a" / "trade.md"));
+  const Table a = run_trade("a", 2, false);
+  ASSERT_FALSE(a.empty());
 
   // Orders {1,3} at 16 rays; rays {16,32} at order 3; bounces {0,1} at order 3, 16 rays: the
   // base setting (3, 16, 0) is in all three sweeps and baked once.
   // Every setting shades better than black (relative RMSE 1), and order 3 is closer to the
   // reference than order 1 by far more than its noise.
-  std::map<std::string, std::string> sweeps;
-  std::map<std::string, double> error;
-  for (const auto& row : a) {
-    const std::string setting = row.at("order") + "/" + row.at("rays") + "/" + row.at("bounces");
-    sweeps[setting] = row.at("sweeps");
-    error[setting] = std::stod(row.at("rel_rmse"));
-    EXPECT_TRUE(error[setting] > 0.0 && error[setting] < 1.0) << setting << ": " << error[setting];
+  const auto [sweeps, error] = swept(a, [](const std::map<std::string, std::string>& row) {
+    return row.at("order") + "/" + row.at("rays") + "/" + row.at("bounces");
+  });
+  for (const auto& row : a)
     EXPECT_EQ(row.at("transfer"), row.at("bounces") == "0" ? "shadowed" : "interreflected");
-  }
-  EXPECT_LT(error["3/16/0"], error["1/16/0"]);
+  EXPECT_LT(error.at("3/16/0"), error.at("1/16/0"));
   const std::map<std::string, std::string> expected = {{"1/16/0", "order"},
                                                        {"3/16/0", "order+rays+bounces"},
                                                        {"3/32/0", "rays"},
@@ -55,11 +48,8 @@ TEST_F(ShTradeCli, SweepsCachesAndRepeatsItself) {
   EXPECT_EQ(sweeps, expected);
 
   // Second run, on one thread: references from the cache, the same numbers but for the timings.
-  const CommandResult second = run_bake(trade_arguments((dir_ / "b").string(), 1), dir_ / "b.log");
-  ASSERT_EQ(second.exit_code, 0) << second.output;
-  EXPECT_EQ(second.output.find("rendering"), std::string::npos) << second.output;
-  EXPECT_NE(second.output.find("from the cache"), std::string::npos) << second.output;
-  const Table b = read_table(dir_ / "b" / "trade.csv");
+  const Table b = run_trade("b", 1, true);
+  ASSERT_FALSE(b.empty());
   expect_same_but_timings(a, b,
                           {"shade_cpu_ms", "shade_simd_ms", "bake_seconds", "rays_per_second"});
 }

@@ -53,7 +53,7 @@ class WaveletTradeCli : public prt_test::TradeCliTest {
       obj << "f " << o + 1 + f[0] << ' ' << o + 1 + f[2] << ' ' << o + 1 + f[3] << "\n";
     }
   }
-  std::string trade_arguments(const std::string& out, int threads) const {
+  std::string trade_arguments(const std::string& out, int threads) const override {
     return "--threads " + std::to_string(threads) + " trade wavelet " + quoted(scene_) + " --env " +
            quoted(sky_) + " --out-dir " + quoted(out) + " --cache-dir " + quoted(dir_ / "cache") +
            " --sizes 16 --base-size 16 --keeps 20,64 --base-keep 64 --light-terms 0,all"
@@ -69,29 +69,19 @@ std::string key(const std::map<std::string, std::string>& row) {
 }
 
 TEST_F(WaveletTradeCli, SweepsCachesAndRepeatsItself) {
-  const CommandResult first = run_bake(trade_arguments((dir_ / "a").string(), 2), dir_ / "a.log");
-  ASSERT_EQ(first.exit_code, 0) << first.output;
-  EXPECT_NE(first.output.find("rendering"), std::string::npos) << first.output;
-  const Table a = read_table(dir_ / "a" / "trade.csv");
-  EXPECT_TRUE(fs::exists(dir_ / "a" / "trade.md"));
+  const Table a = run_trade("a", 2, false);
+  ASSERT_FALSE(a.empty());
 
   // Cube 16 (96 blocks... 6 of 256): N sweep at K = 64 (default_wavelet_keep's floor), K sweep
   // {20, 64} x {float, vertex, band}, M sweep {0, all} at K 64 band, param at 16 (cube and
   // paraboloid); sh orders {2, 3} x {8, 16} bits. One map.
   // Every setting shades better than black (relative RMSE 1); more kept coefficients, more light
   // detail terms and a higher sh order are closer to the reference, by far more than its noise.
-  std::map<std::string, std::string> sweeps;
-  std::map<std::string, double> error;
-  for (const auto& row : a) {
-    sweeps[key(row)] = row.at("sweeps");
-    error[key(row)] = std::stod(row.at("rel_rmse"));
-    EXPECT_TRUE(error[key(row)] > 0.0 && error[key(row)] < 1.0)
-        << key(row) << ": " << error[key(row)];
-  }
-  EXPECT_LT(error["wavelet/cube/16/64/band/all/"], error["wavelet/cube/16/20/band/all/"]);
-  EXPECT_LT(error["wavelet/cube/16/64/float/all/"], error["wavelet/cube/16/20/float/all/"]);
-  EXPECT_LT(error["wavelet/cube/16/64/band/all/"], error["wavelet/cube/16/64/band/0/"]);
-  EXPECT_LT(error["sh////8-bit grey//3"], error["sh////8-bit grey//2"]);
+  const auto [sweeps, error] = swept(a, key);
+  EXPECT_LT(error.at("wavelet/cube/16/64/band/all/"), error.at("wavelet/cube/16/20/band/all/"));
+  EXPECT_LT(error.at("wavelet/cube/16/64/float/all/"), error.at("wavelet/cube/16/20/float/all/"));
+  EXPECT_LT(error.at("wavelet/cube/16/64/band/all/"), error.at("wavelet/cube/16/64/band/0/"));
+  EXPECT_LT(error.at("sh////8-bit grey//3"), error.at("sh////8-bit grey//2"));
   const std::map<std::string, std::string> expected = {
       {"wavelet/cube/16/20/float/all/", "K"},  {"wavelet/cube/16/20/vertex/all/", "K"},
       {"wavelet/cube/16/20/band/all/", "K"},   {"wavelet/cube/16/64/float/all/", "K"},
@@ -126,11 +116,8 @@ TEST_F(WaveletTradeCli, SweepsCachesAndRepeatsItself) {
   }
 
   // Second run, on one thread: references from the cache, the same numbers but for the timings.
-  const CommandResult second = run_bake(trade_arguments((dir_ / "b").string(), 1), dir_ / "b.log");
-  ASSERT_EQ(second.exit_code, 0) << second.output;
-  EXPECT_EQ(second.output.find("rendering"), std::string::npos) << second.output;
-  EXPECT_NE(second.output.find("from the cache"), std::string::npos) << second.output;
-  const Table b = read_table(dir_ / "b" / "trade.csv");
+  const Table b = run_trade("b", 1, true);
+  ASSERT_FALSE(b.empty());
   expect_same_but_timings(
       a, b,
       {"shade_cpu_ms", "shade_simd_ms", "light_update_ms", "bake_seconds", "rays_per_second"});
