@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gl_create_checks.hpp"
 #include "support/gl_test_util.hpp"
 
 namespace {
@@ -21,7 +22,6 @@ using prt_test::ShaderPtr;
 using prt_test::Transfer;
 
 using prt_test::CountingAllocator;
-using prt_test::lying_loader;
 
 // An `sh` asset in its own context.
 struct GlAsset {
@@ -46,6 +46,17 @@ ShaderPtr create_shader(const GlAsset& a, headless_gl* gl) {
   EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl, &shader), PRT_OK)
       << a.message();
   return ShaderPtr(shader);
+}
+
+// Creation of the asset's shader, for the shared refusal checks (gl_create_checks.hpp).
+prt_test::TryCreateShader try_create(const GlAsset& a) {
+  return [&a](prt_context* context, prt_gl_loader_fn loader, void* user, bool* shader_null) {
+    prt_gl_sh_shader* shader = nullptr;
+    const prt_result r = prt_gl_sh_create(context, a.asset(), loader, user, &shader);
+    *shader_null = shader == nullptr;
+    prt_gl_sh_destroy(shader);
+    return r;
+  };
 }
 
 std::vector<float> read_all(prt_gl_sh_shader* shader, uint32_t vertices) {
@@ -209,42 +220,23 @@ TEST(GlSh, NoShtrSectionIsNotFound) {
 TEST(GlSh, MissingEntryPointIsUnsupportedAndNamed) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
-  for (const char* name : {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData",
-                           "glProgramUniform1ui", "glGetError"}) {
-    prt_test::LoaderOverride loader;
-    loader.gl = gl.gl;
-    loader.hidden = name;
-    prt_gl_sh_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), prt_test::LoaderOverride::get, &loader,
-                               &shader),
-              PRT_ERROR_UNSUPPORTED_BACKEND)
-        << name;
-    EXPECT_EQ(shader, nullptr);
-    EXPECT_NE(a.message().find(name), std::string::npos) << a.message();
-  }
+  prt_test::expect_refused_without_entry_points(
+      try_create(a), a.context.get(), gl.gl,
+      {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData", "glProgramUniform1ui",
+       "glGetError"});
 }
 
 TEST(GlSh, ContextOlderThan43IsUnsupported) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
-  prt_gl_sh_shader* shader = nullptr;
-  char lie[] = "version";
-  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("3.3"), std::string::npos) << a.message();
+  prt_test::expect_refused_below_gl_43(try_create(a), a.context.get());
 }
 
 TEST(GlSh, AssetLargerThanTheSsboLimitIsUnsupported) {
   PRT_REQUIRE_GL(gl);
   // 100 vertices * 12 bytes of output > 1024 bytes.
   const GlAsset a(prt_test::random_transfer(1, 100, 1, 8, 1));
-  prt_gl_sh_shader* shader = nullptr;
-  char lie[] = "ssbo";
-  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("1024"), std::string::npos) << a.message();
+  prt_test::expect_refused_above_ssbo_limit(try_create(a), a.context.get());
 }
 
 TEST(GlSh, BackendLimitBelowGlIsUnsupported) {

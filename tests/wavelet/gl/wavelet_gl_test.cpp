@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gl_create_checks.hpp"
 #include "support/gl_test_util.hpp"
 
 namespace {
@@ -20,7 +21,6 @@ using prt_test::Bytes;
 using prt_test::ContextPtr;
 using prt_test::CountingAllocator;
 using prt_test::LoadedAsset;
-using prt_test::lying_loader;
 using prt_test::WaveletShaderPtr;
 using prt_test::WvltTransfer;
 
@@ -54,6 +54,17 @@ WaveletShaderPtr create_shader(const GlAsset& a, headless_gl* gl) {
             PRT_OK)
       << a.message();
   return WaveletShaderPtr(shader);
+}
+
+// Creation of the asset's shader, for the shared refusal checks (gl_create_checks.hpp).
+prt_test::TryCreateShader try_create(const GlAsset& a) {
+  return [&a](prt_context* context, prt_gl_loader_fn loader, void* user, bool* shader_null) {
+    prt_gl_wavelet_shader* shader = nullptr;
+    const prt_result r = prt_gl_wavelet_create(context, a.asset(), loader, user, &shader);
+    *shader_null = shader == nullptr;
+    prt_gl_wavelet_destroy(shader);
+    return r;
+  };
 }
 
 std::vector<float> read_all(prt_gl_wavelet_shader* shader, uint32_t vertices) {
@@ -295,42 +306,23 @@ TEST(GlWavelet, CorruptRowsAtQuickValidationStayInBounds) {
 TEST(GlWavelet, MissingEntryPointIsUnsupportedAndNamed) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1));
-  for (const char* name : {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData",
-                           "glProgramUniform1ui", "glBufferSubData", "glGetError"}) {
-    prt_test::LoaderOverride loader;
-    loader.gl = gl.gl;
-    loader.hidden = name;
-    prt_gl_wavelet_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), prt_test::LoaderOverride::get,
-                                    &loader, &shader),
-              PRT_ERROR_UNSUPPORTED_BACKEND)
-        << name;
-    EXPECT_EQ(shader, nullptr);
-    EXPECT_NE(a.message().find(name), std::string::npos) << a.message();
-  }
+  prt_test::expect_refused_without_entry_points(
+      try_create(a), a.context.get(), gl.gl,
+      {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData", "glProgramUniform1ui",
+       "glBufferSubData", "glGetError"});
 }
 
 TEST(GlWavelet, ContextOlderThan43IsUnsupported) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1));
-  prt_gl_wavelet_shader* shader = nullptr;
-  char lie[] = "version";
-  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("3.3"), std::string::npos) << a.message();
+  prt_test::expect_refused_below_gl_43(try_create(a), a.context.get());
 }
 
 TEST(GlWavelet, AssetLargerThanTheSsboLimitIsUnsupported) {
   PRT_REQUIRE_GL(gl);
   // The light alone is 16 * 1536 bytes > 1024.
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 4, 4, 1));
-  prt_gl_wavelet_shader* shader = nullptr;
-  char lie[] = "ssbo";
-  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("1024"), std::string::npos) << a.message();
+  prt_test::expect_refused_above_ssbo_limit(try_create(a), a.context.get());
 }
 
 TEST(GlWavelet, BackendLimitBelowGlIsUnsupported) {
