@@ -207,8 +207,15 @@ TEST(WaveletSimdDispatch, CompiledOutSimdIsUnsupported) {
 TEST(WaveletSimdDispatch, GlAndUnknownBackendsAreNotShadedHere) {
   const Scene s;
   expect_gl_not_shaded_here(s.blob, shade_all(s));
-  const DispatchRun run(s.blob, shade_all(s), PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
-  run.shade(prt_backend(77), PRT_ERROR_INVALID_ARGUMENT);
+  // A value outside the enum, called directly (a std::function would load it as a prt_backend,
+  // which UBSan rightly reports).
+  const prt::ContextPtr context = limited_context();
+  LoadedAsset a(context.get(), s.blob);
+  ASSERT_EQ(a.result, PRT_OK);
+  std::vector<float> out(3 * size_t(s.t.vertices));
+  EXPECT_EQ(prt_wavelet_shade(a.asset, prt_backend(77), s.light.data(), nullptr, 0, s.t.vertices,
+                              out.data()),
+            PRT_ERROR_INVALID_ARGUMENT);
 }
 
 // --- Timing (manual) ------------------------------------------------------------------------
