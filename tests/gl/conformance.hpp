@@ -57,7 +57,7 @@ inline void for_each_simd_isa(Summary& summary,
                               const std::function<void(prt_context*, const std::string&)>& run) {
   for (prt_simd_isa isa : {PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2}) {
     const std::string name = std::string("simd/") + prt_simd_isa_name(isa);
-    prt_test::ContextPtr ctx(prt_test::make_context(PRT_BACKEND_AUTO, isa));
+    const prt::ContextPtr ctx = prt_test::limited_context(PRT_BACKEND_AUTO, isa);
     prt_backend_info info = prt::sized<prt_backend_info>();
     ASSERT_EQ(prt_backend_get_info(ctx.get(), PRT_BACKEND_SIMD, &info), PRT_OK);
     if (!info.compiled || !info.usable || info.isa != isa) {

@@ -9,24 +9,11 @@
 #include <vector>
 
 #include "support/blob_test_util.hpp"
+#include "support/counting_allocator.hpp"
 
 namespace {
 
 using namespace prt_test;
-
-struct Counter {
-  int live = 0, total = 0, fail_at = -1;
-  static void* alloc(void* user, size_t size, size_t align) {
-    auto* self = static_cast<Counter*>(user);
-    if (self->total++ == self->fail_at) return nullptr;
-    ++self->live;
-    return std::aligned_alloc(align, (size + align - 1) / align * align);
-  }
-  static void release(void* user, void* ptr, size_t) {
-    --static_cast<Counter*>(user)->live;
-    std::free(ptr);
-  }
-};
 
 class Asset : public ::testing::Test {
  protected:
@@ -200,34 +187,29 @@ TEST_F(Asset, ConcurrentQueries) {
 
 // Every allocation failing in turn gives OUT_OF_MEMORY and leaks nothing.
 TEST_F(Asset, EveryAllocationFailureIsReported) {
-  for (int mode = 0; mode < 3; ++mode) {
-    for (int fail_at = 1;; ++fail_at) {  // allocation 0 is the context itself
-      Counter counter;
-      counter.fail_at = fail_at;
-      prt_allocator allocator{&Counter::alloc, &Counter::release, &counter};
-      prt_context_desc desc = prt::sized<prt_context_desc>();
-      desc.allocator = &allocator;
-      prt_context* c = nullptr;
-      ASSERT_EQ(prt_context_create(&desc, &c), PRT_OK);
-      prt_asset* asset = nullptr;
-      prt_result r;
-      if (mode == 0)
-        r = prt_asset_load_memory(c, golden.data(), golden.size(), PRT_VALIDATE_FULL, &asset);
-      else if (mode == 1)
-        r = prt_asset_load_file(c, golden_path().c_str(), PRT_VALIDATE_QUICK, &asset);
-      else
-        r = prt_asset_validate(c, golden.data(), golden.size(), PRT_VALIDATE_FULL, nullptr, 0);
-      prt_asset_destroy(asset);
-      prt_context_destroy(c);
-      EXPECT_EQ(counter.live, 0) << "mode " << mode << " fail_at " << fail_at;
-      if (counter.total <= fail_at) {  // no allocation failed: done
-        EXPECT_EQ(r, PRT_OK);
-        EXPECT_GT(fail_at, 1) << "at least one allocation was exercised";
-        break;
-      }
-      EXPECT_EQ(r, PRT_ERROR_OUT_OF_MEMORY) << "mode " << mode << " fail_at " << fail_at;
-    }
-  }
+  expect_every_allocation_failure_reported(
+      [&](prt_context* c) {
+        prt_asset* asset = nullptr;
+        const prt_result r =
+            prt_asset_load_memory(c, golden.data(), golden.size(), PRT_VALIDATE_FULL, &asset);
+        prt_asset_destroy(asset);
+        return r;
+      },
+      "copying load at full validation");
+  expect_every_allocation_failure_reported(
+      [&](prt_context* c) {
+        prt_asset* asset = nullptr;
+        const prt_result r =
+            prt_asset_load_file(c, golden_path().c_str(), PRT_VALIDATE_QUICK, &asset);
+        prt_asset_destroy(asset);
+        return r;
+      },
+      "file load at quick validation");
+  expect_every_allocation_failure_reported(
+      [&](prt_context* c) {
+        return prt_asset_validate(c, golden.data(), golden.size(), PRT_VALIDATE_FULL, nullptr, 0);
+      },
+      "full validation");
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 
 #include <prt/prt.hpp>
 
+#include "support/counting_allocator.hpp"
+
 namespace {
 
 TEST(Version, LibraryMatchesHeaders) {
@@ -52,35 +54,7 @@ TEST(ResultString, EveryCodeHasItsOwnName) {
   EXPECT_EQ(PRT_ERROR_UNSUPPORTED_BACKEND, 40);
 }
 
-// Counts live allocations and bytes; checks that free gets back the size given to alloc.
-struct CountingAllocator {
-  int live = 0;
-  int total = 0;
-  int fail_at = -1;  // the allocation number that returns NULL, -1 never
-  bool size_mismatch = false;
-  std::vector<std::pair<void*, size_t>> blocks;
-
-  static void* alloc(void* user, size_t size, size_t align) {
-    auto* self = static_cast<CountingAllocator*>(user);
-    if (self->total++ == self->fail_at) return nullptr;
-    void* p = std::aligned_alloc(align, (size + align - 1) / align * align);
-    self->blocks.emplace_back(p, size);
-    ++self->live;
-    return p;
-  }
-  static void release(void* user, void* ptr, size_t size) {
-    auto* self = static_cast<CountingAllocator*>(user);
-    for (auto it = self->blocks.begin(); it != self->blocks.end(); ++it)
-      if (it->first == ptr) {
-        if (it->second != size) self->size_mismatch = true;
-        self->blocks.erase(it);
-        break;
-      }
-    --self->live;
-    std::free(ptr);
-  }
-  prt_allocator api() { return prt_allocator{&alloc, &release, this}; }
-};
+using prt_test::CountingAllocator;
 
 TEST(Context, CustomAllocatorGetsEveryAllocationBack) {
   CountingAllocator counter;

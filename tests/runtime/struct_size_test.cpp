@@ -56,7 +56,7 @@ TEST(StructSize, OutputStructsFollowTheRule) {
   LoadedAsset sh_asset(ctx.ctx, make_blob(encode(sh), sh.vertices));
   ASSERT_EQ(sh_asset.result, PRT_OK);
   const WvltTransfer wavelet = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, 5, 10, 2);
-  WvltAsset wavelet_asset(ctx.ctx, wvlt_make_blob(wvlt_encode(wavelet), wavelet.vertices));
+  LoadedAsset wavelet_asset(ctx.ctx, wvlt_make_blob(wvlt_encode(wavelet), wavelet.vertices));
   ASSERT_EQ(wavelet_asset.result, PRT_OK);
 
   expect_output_struct_rules<prt_backend_info>(

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sh/sh_blob_test_util.hpp"
+#include "support/counting_allocator.hpp"
 #include "wavelet/wavelet_blob_test_util.hpp"
 
 namespace {
@@ -88,7 +89,7 @@ TEST(Technique, AssetTechniquesAreTheSectionsItHolds) {
   }
   {
     const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_DUAL_PARABOLOID, 16, 10, 30, 2);
-    WvltAsset wavelet(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, true));
+    LoadedAsset wavelet(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, true));
     ASSERT_EQ(wavelet.result, PRT_OK);
     EXPECT_EQ(prt_asset_techniques(wavelet.asset), 1u << PRT_TECHNIQUE_WAVELET);
   }
@@ -168,55 +169,29 @@ TEST(Technique, SectionInfoSaysDomainAndTechnique) {
   EXPECT_EQ(info.technique, PRT_TECHNIQUE_NONE);
 }
 
-struct Counter {
-  int live = 0, total = 0, fail_at = -1;
-  static void* alloc(void* user, size_t size, size_t align) {
-    auto* self = static_cast<Counter*>(user);
-    if (self->total++ == self->fail_at) return nullptr;
-    ++self->live;
-    return std::aligned_alloc(align, (size + align - 1) / align * align);
-  }
-  static void release(void* user, void* ptr, size_t) {
-    --static_cast<Counter*>(user)->live;
-    std::free(ptr);
-  }
-};
-
 // Every allocation of a load or a validation of a blob with both techniques failing in turn
 // (the technique views included) gives OUT_OF_MEMORY and leaks nothing.
 TEST(Technique, EveryAllocationFailureWhileOpeningViewsIsReported) {
   const Bytes blob = both_techniques_blob(9);
-  for (int mode = 0; mode < 3; ++mode) {
-    for (int fail_at = 1;; ++fail_at) {  // allocation 0 is the context itself
-      Counter counter;
-      counter.fail_at = fail_at;
-      prt_allocator allocator{&Counter::alloc, &Counter::release, &counter};
-      prt_context_desc desc = prt::sized<prt_context_desc>();
-      desc.allocator = &allocator;
-      prt_context* c = nullptr;
-      ASSERT_EQ(prt_context_create(&desc, &c), PRT_OK);
-      prt_asset* asset = nullptr;
-      prt_result r;
-      if (mode == 0)
-        r = prt_asset_load_memory(c, blob.data(), blob.size(), PRT_VALIDATE_QUICK, &asset);
-      else if (mode == 1)
-        r = prt_asset_load_memory(c, blob.data(), blob.size(), PRT_VALIDATE_FULL, &asset);
-      else
-        r = prt_asset_validate(c, blob.data(), blob.size(), PRT_VALIDATE_QUICK, nullptr, 0);
-      if (r == PRT_OK && asset) {
-        EXPECT_EQ(prt_asset_techniques(asset),
-                  (1u << PRT_TECHNIQUE_SH) | (1u << PRT_TECHNIQUE_WAVELET));
-      }
-      prt_asset_destroy(asset);
-      prt_context_destroy(c);
-      EXPECT_EQ(counter.live, 0) << "mode " << mode << " fail_at " << fail_at;
-      if (counter.total <= fail_at) {  // no allocation failed: done
-        EXPECT_EQ(r, PRT_OK);
-        break;
-      }
-      EXPECT_EQ(r, PRT_ERROR_OUT_OF_MEMORY) << "mode " << mode << " fail_at " << fail_at;
-    }
+  for (const prt_validation level : {PRT_VALIDATE_QUICK, PRT_VALIDATE_FULL}) {
+    expect_every_allocation_failure_reported(
+        [&](prt_context* c) {
+          prt_asset* asset = nullptr;
+          const prt_result r = prt_asset_load_memory(c, blob.data(), blob.size(), level, &asset);
+          if (r == PRT_OK && asset) {
+            EXPECT_EQ(prt_asset_techniques(asset),
+                      (1u << PRT_TECHNIQUE_SH) | (1u << PRT_TECHNIQUE_WAVELET));
+          }
+          prt_asset_destroy(asset);
+          return r;
+        },
+        level == PRT_VALIDATE_QUICK ? "load at quick validation" : "load at full validation");
   }
+  expect_every_allocation_failure_reported(
+      [&](prt_context* c) {
+        return prt_asset_validate(c, blob.data(), blob.size(), PRT_VALIDATE_QUICK, nullptr, 0);
+      },
+      "quick validation");
 }
 
 }  // namespace

@@ -4,8 +4,6 @@
 // independently of the runtime.
 #pragma once
 
-#include <prt/format/blob_writer.hpp>
-
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "support/blob_test_util.hpp"
+#include "support/mesh_blob.hpp"
 
 namespace prt_test {
 
@@ -74,33 +73,9 @@ inline Bytes encode(const Transfer& t) {
 inline constexpr uint32_t kVPOS = PRT_BLOB_TAG_VPOS, kTRIS = PRT_BLOB_TAG_TRIS,
                           kSHTR = PRT_BLOB_TAG_SHTR;
 
-// A blob with `vertex_count` positions, one triangle and the given SHTR bytes (sections 0, 1, 2).
-// The triangle's indices are clamped to the last vertex, so 1 and 2 vertices work too.
+// The mesh blob (support/mesh_blob.hpp) with the given SHTR bytes as section 2.
 inline Bytes make_blob(const Bytes& shtr, uint32_t vertex_count, bool zstd = false) {
-  prt::format::BlobWriter w;
-  std::vector<float> positions(size_t(vertex_count) * 3);
-  for (size_t i = 0; i < positions.size(); ++i) positions[i] = float(i % 7) * 0.25f;
-  const uint32_t last = vertex_count > 0 ? vertex_count - 1 : 2u;
-  const uint32_t tri[3] = {0, last < 1 ? last : 1u, last < 2 ? last : 2u};
-  prt::format::SectionOptions required;
-  required.required = true;
-  w.add_section(kVPOS, positions.data(), positions.size() * 4, vertex_count, required);
-  w.add_section(kTRIS, tri, sizeof tri, 1, required);
-  prt::format::SectionOptions sh = required;
-  if (zstd) sh.compression = prt::format::Compression::kZstd;
-  w.add_section(kSHTR, shtr.data(), shtr.size(), vertex_count, sh);
-  return w.finish();
+  return mesh_blob(kSHTR, shtr, vertex_count, zstd);
 }
-
-// An asset loaded at full validation from an exact-size heap copy that it borrows.
-struct LoadedAsset {
-  std::unique_ptr<uint8_t[]> bytes;
-  prt_asset* asset = nullptr;
-  prt_result result;
-  LoadedAsset(prt_context* ctx, const Bytes& blob, prt_validation level = PRT_VALIDATE_FULL)
-      : bytes(exact_copy(blob)),
-        result(prt_asset_load_memory_borrowed(ctx, bytes.get(), blob.size(), level, &asset)) {}
-  ~LoadedAsset() { prt_asset_destroy(asset); }
-};
 
 }  // namespace prt_test

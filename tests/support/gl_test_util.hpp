@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Shared by the GL tests: the headless context (or a stated skip), contexts with limits, loader
-// wrappers (hiding an entry point, lying about the version or the SSBO limit), a counting
-// allocator, and the float-rounding tolerances every backend is held to (sh and wavelet).
+// Shared by the GL tests: the headless context (or a stated skip), loader wrappers (hiding an
+// entry point, lying about the version or the SSBO limit), and the float-rounding tolerances every
+// backend is held to (sh and wavelet).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -18,6 +18,9 @@
 
 #include "headless_gl.h"
 #include "sh/sh_blob_test_util.hpp"
+#include "support/counting_allocator.hpp"
+#include "support/gl_state.hpp"
+#include "support/limited_context.hpp"
 #include "wavelet/wavelet_blob_test_util.hpp"
 
 namespace prt_test {
@@ -55,17 +58,6 @@ inline bool no_gl_allowed() {
 using ContextPtr = prt::ContextPtr;
 using ShaderPtr = prt::GlShShaderPtr;
 using WaveletShaderPtr = prt::GlWaveletShaderPtr;
-
-// A context with backend limits (for the caller to own in a ContextPtr).
-inline prt_context* make_context(prt_backend limit = PRT_BACKEND_AUTO,
-                                 prt_simd_isa isa = PRT_SIMD_ISA_AUTO) {
-  prt_context_desc desc = prt::sized<prt_context_desc>();
-  desc.backend_limit = limit;
-  desc.simd_isa_limit = isa;
-  prt_context* ctx = nullptr;
-  EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
-  return ctx;
-}
 
 // A light with the spread of a real environment's projection: a bright sky term, a "sun"
 // (the SH projection of a delta light, which excites every band) and a small random rest.
@@ -153,36 +145,6 @@ inline std::vector<float> wavelet_prepared(const WvltTransfer& t, const std::vec
   return prepared;
 }
 
-// GL entry points and values for the state checks (GL/glcorearb.h), fetched from the headless
-// context's loader.
-namespace gl_names {
-constexpr unsigned kGlCopyReadBuffer = 0x8F36, kGlBufferSize = 0x8764,
-                   kGlShaderStorageBufferBinding = 0x90D3, kGlCurrentProgram = 0x8B8D,
-                   kGlUniformBufferBinding = 0x8A28;
-using BindBufferFn = void (*)(unsigned, unsigned);
-using GetErrorFn = unsigned (*)(void);
-using GetBufferSubDataFn = void (*)(unsigned, ptrdiff_t, ptrdiff_t, void*);
-using GetBufferParameterivFn = void (*)(unsigned, unsigned, int*);
-using GetIntegervFn = void (*)(unsigned, int*);
-using GetIntegeriVFn = void (*)(unsigned, unsigned, int*);
-using GetInteger64vFn = void (*)(unsigned, int64_t*);
-}  // namespace gl_names
-
-template <typename Fn>
-Fn gl_function(const char* name) {
-  void* address = headless_gl_get_proc(nullptr, name);
-  Fn fn = nullptr;
-  std::memcpy(&fn, &address, sizeof fn);
-  return fn;
-}
-
-template <typename Fn>
-void* as_address(Fn fn) {
-  void* address;
-  std::memcpy(&address, &fn, sizeof address);
-  return address;
-}
-
 // A loader that lies about the context: user = "version" answers GL 3.3, user = "ssbo" a
 // GL_MAX_SHADER_STORAGE_BLOCK_SIZE of 1024 bytes; everything else is the real entry point.
 inline void old_version_get_integerv(unsigned pname, int* data) {
@@ -202,21 +164,5 @@ inline void* lying_loader(void* user, const char* name) {
     return as_address(&small_ssbo_get_integer64v);
   return headless_gl_get_proc(nullptr, name);
 }
-
-// Counts live allocations; fails every allocation once `fail` is set.
-struct CountingAllocator {
-  int live = 0;
-  bool fail = false;
-  static void* alloc(void* user, size_t size, size_t align) {
-    auto* self = static_cast<CountingAllocator*>(user);
-    if (self->fail) return nullptr;
-    ++self->live;
-    return std::aligned_alloc(align, (size + align - 1) / align * align);
-  }
-  static void free(void* user, void* ptr, size_t) {
-    --static_cast<CountingAllocator*>(user)->live;
-    std::free(ptr);
-  }
-};
 
 }  // namespace prt_test

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // The test helpers themselves, on files written here byte by byte: a helper that misread a table
 // or an array would let the tests that use it pass on wrong output.
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
 #include <string>
 
+#include "support/blob_test_util.hpp"
 #include "support/command.hpp"
+#include "support/counting_allocator.hpp"
 #include "support/test_files.hpp"
 
 namespace {
@@ -63,6 +66,47 @@ TEST(Support, ReadNpyReadsShapeAndValuesAndRejectsOtherFiles) {
   EXPECT_EQ(b.columns, 1u);
   EXPECT_EQ(prt_test::read_npy_f32(dir.write("c.npy", npy("(2, 3)", v, 5))).rows, 0u);
   EXPECT_EQ(prt_test::read_npy_f32(dir.write("d.npy", "not an array")).rows, 0u);
+}
+
+TEST(Support, CountingAllocatorCountsFailsAndChecksSizes) {
+  prt_test::CountingAllocator counter;
+  counter.fail_at = 1;
+  void* a = prt_test::CountingAllocator::alloc(&counter, 24, 8);
+  EXPECT_EQ(prt_test::CountingAllocator::alloc(&counter, 8, 8), nullptr);
+  void* b = prt_test::CountingAllocator::alloc(&counter, 8, 16);
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  EXPECT_EQ(counter.live, 2);
+  EXPECT_EQ(counter.total, 3);
+  prt_test::CountingAllocator::release(&counter, a, 24);
+  EXPECT_FALSE(counter.size_mismatch);
+  prt_test::CountingAllocator::release(&counter, b, 4);
+  EXPECT_TRUE(counter.size_mismatch);
+  EXPECT_EQ(counter.live, 0);
+}
+
+// Loads the golden blob and reports success whatever the load returned: a failing allocation
+// that is swallowed.
+prt_result swallowing_load(prt_context* context) {
+  static const prt_test::Bytes golden = prt_test::read_file(prt_test::golden_path());
+  prt_asset* asset = nullptr;
+  prt_asset_load_memory(context, golden.data(), golden.size(), PRT_VALIDATE_FULL, &asset);
+  prt_asset_destroy(asset);
+  return PRT_OK;
+}
+
+TEST(Support, AllocationFailureSweepCatchesASwallowedFailure) {
+  ::testing::TestPartResultArray failures;
+  {
+    const ::testing::ScopedFakeTestPartResultReporter intercept(
+        ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
+    prt_test::expect_every_allocation_failure_reported(swallowing_load, "swallowing load");
+  }
+  ASSERT_GT(failures.size(), 0);
+  EXPECT_NE(std::string(failures.GetTestPartResult(0).message())
+                .find("swallowing load, allocation 1 failing"),
+            std::string::npos)
+      << failures.GetTestPartResult(0).message();
 }
 
 }  // namespace

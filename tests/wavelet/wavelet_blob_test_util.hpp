@@ -13,7 +13,6 @@
 #pragma once
 
 #include <prt/prt_wavelet.h>
-#include <prt/format/blob_writer.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -25,6 +24,7 @@
 #include <vector>
 
 #include "support/blob_test_util.hpp"
+#include "support/mesh_blob.hpp"
 
 namespace prt_test {
 
@@ -189,41 +189,15 @@ inline Bytes wvlt_encode(const WvltTransfer& t) {
 inline constexpr uint32_t kWvltVPOS = PRT_BLOB_TAG_VPOS, kWvltTRIS = PRT_BLOB_TAG_TRIS,
                           kWvltWVLT = PRT_BLOB_TAG_WVLT;
 
-// A blob with `vertex_count` positions, one triangle and the given WVLT bytes (sections 0, 1, 2;
-// the WVLT section is index 2). zstd asks the writer to compress WVLT (kept raw if not smaller).
+// The mesh blob (support/mesh_blob.hpp) with the given WVLT bytes as section 2.
 inline Bytes wvlt_make_blob(const Bytes& wvlt, uint32_t vertex_count, bool zstd = false) {
-  prt::format::BlobWriter w;
-  std::vector<float> positions(size_t(vertex_count) * 3);
-  for (size_t i = 0; i < positions.size(); ++i) positions[i] = float(i % 5) * 0.5f;
-  const uint32_t last = vertex_count > 0 ? vertex_count - 1 : 2u;
-  const uint32_t tri[3] = {0, last < 1 ? last : 1u, last < 2 ? last : 2u};
-  prt::format::SectionOptions required;
-  required.required = true;
-  w.add_section(kWvltVPOS, positions.data(), positions.size() * 4, vertex_count, required);
-  w.add_section(kWvltTRIS, tri, sizeof tri, 1, required);
-  prt::format::SectionOptions section = required;
-  if (zstd) section.compression = prt::format::Compression::kZstd;
-  w.add_section(kWvltWVLT, wvlt.data(), wvlt.size(), vertex_count, section);
-  return w.finish();
+  return mesh_blob(kWvltWVLT, wvlt, vertex_count, zstd);
 }
 
 // Byte offset of the (uncompressed) WVLT section inside a blob from wvlt_make_blob.
 inline size_t wvlt_section_offset(const Bytes& blob) {
   return size_t(get_u64(blob, entry(2) + PRT_BLOB_SEC_OFF_OFFSET));
 }
-
-// An asset loaded from an exact-size heap copy that it borrows (ASan sees any over-read).
-struct WvltAsset {
-  std::unique_ptr<uint8_t[]> bytes;
-  prt_asset* asset = nullptr;
-  prt_result result;
-  WvltAsset(prt_context* ctx, const Bytes& blob, prt_validation level = PRT_VALIDATE_FULL)
-      : bytes(exact_copy(blob)),
-        result(prt_asset_load_memory_borrowed(ctx, bytes.get(), blob.size(), level, &asset)) {}
-  ~WvltAsset() { prt_asset_destroy(asset); }
-  WvltAsset(const WvltAsset&) = delete;
-  WvltAsset& operator=(const WvltAsset&) = delete;
-};
 
 // A random light of coefficient_count RGBA quadruples, channels in [-1, 1], 4th float 0.
 inline std::vector<float> wvlt_random_light(uint32_t coefficient_count, uint32_t seed) {

@@ -39,7 +39,7 @@ inline void expect_near_reference(const WvltTransfer& t, const std::vector<float
 inline void expect_zero_light_blocks_skipped(prt_context* ctx, prt_backend backend) {
   constexpr uint32_t kBlock = 256;
   const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 32, 40, 900, 31);
-  WvltAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
   ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx);
   const uint32_t blocks = t.coefficients() / kBlock;
   std::vector<float> light = wvlt_random_light(t.coefficients(), 32);

@@ -12,16 +12,14 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "io/turned_maps.hpp"
 #include "prt/baker/demo_scene.hpp"
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sh/env_sh.hpp"
+#include "support/command.hpp"
 #include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
@@ -92,19 +90,6 @@ TEST(EnvRotation, ReferenceRadianceUnderTurnedMapMatchesShiftedMap) {
   EXPECT_GT(std::sqrt(diff_unturned / norm), 10.0 * noise);
 }
 
-// float32 [N,3] .npy as prt-bake writes it (header length from bytes 8-9, then raw floats).
-std::vector<float> read_npy_floats(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
-                                std::istreambuf_iterator<char>());
-  if (bytes.size() < 10) return {};
-  const std::size_t data =
-      10 + (static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8));
-  std::vector<float> values((bytes.size() - data) / 4);
-  std::memcpy(values.data(), bytes.data() + data, values.size() * 4);
-  return values;
-}
-
 // prt-bake reference --env-rotate 90 on a map equals no rotation on its quarter-shifted copy
 // (the RGBE files hold the same texels, permuted), and the report states the rotation.
 TEST(EnvRotation, ReferenceCommandTurnsTheEnvironment) {
@@ -118,13 +103,18 @@ TEST(EnvRotation, ReferenceCommandTurnsTheEnvironment) {
   ASSERT_TRUE(stbi_write_hdr((dir / "original.hdr").c_str(), kWidth, kHeight, 3, original.data()));
   ASSERT_TRUE(stbi_write_hdr((dir / "shifted.hdr").c_str(), kWidth, kHeight, 3, shifted.data()));
   auto render = [&](const std::string& env, const std::string& extra, const std::string& name) {
-    const std::string command = std::string("\"") + PRT_BAKE_EXE + "\" reference \"" +
-                                (dir / "scene.glb").string() + "\" --env \"" +
-                                (dir / env).string() + "\" --spp 128 --vertex-out \"" +
-                                (dir / (name + ".npy")).string() + "\" --report \"" +
-                                (dir / (name + ".json")).string() + "\" --quiet " + extra;
-    EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    return read_npy_floats(dir / (name + ".npy"));
+    auto quoted = [&](const std::string& file) {
+      return prt_test::shell_quote((dir / file).string());
+    };
+    const prt_test::CommandResult r = prt_test::run_command(
+        PRT_BAKE_EXE,
+        "reference " + quoted("scene.glb") + " --env " + quoted(env) + " --spp 128 --vertex-out " +
+            quoted(name + ".npy") + " --report " + quoted(name + ".json") + " --quiet " + extra,
+        dir / (name + ".log"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const prt_test::NpyArray npy = prt_test::read_npy_f32(dir / (name + ".npy"));
+    EXPECT_EQ(npy.columns, 3u) << name;
+    return npy.values;
   };
   const std::vector<float> turned = render("original.hdr", "--env-rotate 90", "turned");
   const std::vector<float> expected = render("shifted.hdr", "--seed 1", "shifted");
@@ -138,8 +128,7 @@ TEST(EnvRotation, ReferenceCommandTurnsTheEnvironment) {
   // Two independent renders of the same lighting differ by their combined noise, which each
   // report estimates (relative_rmse); a wrong turn differs by far more (the map is asymmetric).
   auto noise_of = [&](const std::string& name) {
-    std::ifstream in(dir / (name + ".json"));
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = prt_test::read_text(dir / (name + ".json"));
     const std::size_t at = text.find("\"relative_rmse\":");
     return at == std::string::npos ? 0.0 : std::atof(text.c_str() + at + 16);
   };
@@ -152,9 +141,7 @@ TEST(EnvRotation, ReferenceCommandTurnsTheEnvironment) {
     diff_unturned += (double(unturned[i]) - expected[i]) * (double(unturned[i]) - expected[i]);
   }
   EXPECT_GT(std::sqrt(diff_unturned / norm), 4.0 * noise);
-  std::ifstream report(dir / "turned.json");
-  const std::string json((std::istreambuf_iterator<char>(report)),
-                         std::istreambuf_iterator<char>());
+  const std::string json = prt_test::read_text(dir / "turned.json");
   EXPECT_NE(json.find("\"rotate_degrees\": 90"), std::string::npos) << json;
 }
 

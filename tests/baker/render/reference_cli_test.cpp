@@ -5,14 +5,12 @@
 
 #include <stb_image.h>
 
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 #include "prt/baker/demo_scene.hpp"
+#include "support/command.hpp"
 #include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
@@ -39,33 +37,13 @@ void write_obj(const Mesh& mesh, const fs::path& path) {
   }
 }
 
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+// prt-bake with `arguments` (shell words), its output kept in the test's folder.
+prt_test::CommandResult run(const std::string& arguments) {
+  return prt_test::run_command(PRT_BAKE_EXE, arguments, output_dir() / "command.log");
 }
 
-// Reads a float32 [N,3] .npy written by prt-bake.
-std::vector<float> read_npy_n3(const fs::path& path, std::size_t* rows) {
-  const std::string bytes = read_all(path);
-  EXPECT_GE(bytes.size(), 10u);
-  if (bytes.size() < 10) return {};
-  const std::size_t header_len =
-      static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8);
-  const std::string header = bytes.substr(10, header_len);
-  const std::size_t shape = header.find("'shape': (");
-  EXPECT_NE(shape, std::string::npos);
-  *rows = std::stoul(header.substr(shape + 10));
-  EXPECT_NE(header.find("'shape': (" + std::to_string(*rows) + ", 3)"), std::string::npos);
-  std::vector<float> values(*rows * 3);
-  EXPECT_EQ(bytes.size(), 10 + header_len + values.size() * 4);
-  std::memcpy(values.data(), bytes.data() + 10 + header_len,
-              std::min(values.size() * 4, bytes.size() - 10 - header_len));
-  return values;
-}
-
-int run(const std::string& args) {
-  const std::string command = std::string("\"") + PRT_BAKE_EXE + "\" " + args;
-  return std::system(command.c_str());
+std::string quoted(const fs::path& path) {
+  return prt_test::shell_quote(path.string());
 }
 
 TEST(ReferenceCommand, WhiteFurnaceThroughTheCommandLine) {
@@ -78,16 +56,17 @@ TEST(ReferenceCommand, WhiteFurnaceThroughTheCommandLine) {
     const fs::path npy = dir / ("sphere_" + std::to_string(bounces) + ".npy");
     const fs::path report = dir / ("report_" + std::to_string(bounces) + ".json");
     fs::remove(npy);
-    ASSERT_EQ(run("reference \"" + (dir / "sphere.obj").string() + "\" --env \"" +
-                  (dir / "white.hdr").string() + "\" --albedo 0.8,0.8,0.8 --spp 1024 --bounces " +
-                  std::to_string(bounces) + " --vertex-out \"" + npy.string() + "\" --report \"" +
-                  report.string() + "\" --threads 2 --quiet"),
-              0);
-    std::size_t rows = 0;
-    const std::vector<float> values = read_npy_n3(npy, &rows);
-    ASSERT_EQ(rows, sphere.vertex_count());
-    for (std::size_t i = 0; i < values.size(); ++i) ASSERT_NEAR(values[i], 0.8f, 0.008f) << i;
-    const std::string json = read_all(report);
+    const prt_test::CommandResult r = run(
+        "reference " + quoted(dir / "sphere.obj") + " --env " + quoted(dir / "white.hdr") +
+        " --albedo 0.8,0.8,0.8 --spp 1024 --bounces " + std::to_string(bounces) + " --vertex-out " +
+        quoted(npy) + " --report " + quoted(report) + " --threads 2 --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const prt_test::NpyArray values = prt_test::read_npy_f32(npy);
+    ASSERT_EQ(values.rows, sphere.vertex_count());
+    ASSERT_EQ(values.columns, 3u);
+    for (std::size_t i = 0; i < values.values.size(); ++i)
+      ASSERT_NEAR(values.values[i], 0.8f, 0.008f) << i;
+    const std::string json = prt_test::read_text(report);
     EXPECT_NE(json.find("\"relative_rmse\""), std::string::npos) << json;
     EXPECT_NE(json.find("\"rays_per_second\""), std::string::npos) << json;
   }
@@ -100,10 +79,10 @@ TEST(ReferenceCommand, WritesPngAndHdrImages) {
   for (const char* name : {"demo.png", "demo.hdr"}) {
     const fs::path image = dir / name;
     fs::remove(image);
-    ASSERT_EQ(run("reference \"" + (dir / "demo.glb").string() + "\" --env \"" +
-                  (dir / "sky.hdr").string() + "\" --image-out \"" + image.string() +
-                  "\" --image-size 40x30 --image-spp 2 --bounces 1 --quiet"),
-              0);
+    const prt_test::CommandResult r = run(
+        "reference " + quoted(dir / "demo.glb") + " --env " + quoted(dir / "sky.hdr") +
+        " --image-out " + quoted(image) + " --image-size 40x30 --image-spp 2 --bounces 1 --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
     int w = 0, h = 0, channels = 0;
     void* data = std::string(name).find(".hdr") != std::string::npos
                      ? static_cast<void*>(stbi_loadf(image.string().c_str(), &w, &h, &channels, 3))
@@ -118,14 +97,13 @@ TEST(ReferenceCommand, WritesPngAndHdrImages) {
 TEST(ReferenceCommand, BadArgumentsFailWithNonZeroExit) {
   const fs::path dir = output_dir();
   write_obj(test::make_icosphere(1), dir / "small.obj");
-  const std::string scene = "\"" + (dir / "small.obj").string() + "\"";
-  EXPECT_NE(run("reference " + scene + " --albedo 0.5,0.5 --quiet 2>/dev/null"), 0);
-  EXPECT_NE(run("reference " + scene + " --image-out x.png --image-size 10 --quiet 2>/dev/null"),
-            0);
-  EXPECT_NE(run("reference " + scene + " --env \"" + (dir / "missing.hdr").string() +
-                "\" --quiet 2>/dev/null"),
-            0);
-  EXPECT_NE(run("reference " + scene + " --spp 1 --quiet 2>/dev/null"), 0);
+  const std::string scene = quoted(dir / "small.obj");
+  for (const std::string& bad :
+       {std::string("--albedo 0.5,0.5"), std::string("--image-out x.png --image-size 10"),
+        "--env " + quoted(dir / "missing.hdr"), std::string("--spp 1")}) {
+    const prt_test::CommandResult r = run("reference " + scene + " " + bad + " --quiet");
+    EXPECT_NE(r.exit_code, 0) << bad << "\n" << r.output;
+  }
 }
 
 }  // namespace

@@ -163,15 +163,6 @@ ShTransfer random_transfer(std::uint32_t order, std::size_t vertices, unsigned s
   return t;
 }
 
-struct AssetHandle {
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ~AssetHandle() {
-    prt_asset_destroy(asset);
-    prt_context_destroy(context);
-  }
-};
-
 // Little-endian loads, byte by byte.
 std::uint32_t le16(const std::uint8_t* p) {
   return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8;
@@ -197,14 +188,14 @@ TEST_P(ShBlobBits, ShtrBytesDecodedByHandEqualTheQuantizedValues) {
   const QuantizedShTransfer q = quantize_sh_transfer(t, bits, 0);
   const std::vector<std::uint8_t> blob = build_sh_blob(scene, q, "test blob");
 
-  AssetHandle h;
-  ASSERT_EQ(prt_context_create(nullptr, &h.context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_memory(h.context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &h.asset),
-            PRT_OK)
-      << prt_context_last_message(h.context);
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [loaded, result] =
+      prt::load_asset_memory(context.get(), blob.data(), blob.size(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(result, PRT_OK) << prt_context_last_message(context.get());
+  const prt_asset* asset = loaded.get();
   const void* data = nullptr;
   size_t size = 0;
-  ASSERT_EQ(prt_asset_section_data(h.asset, kShtr, &data, &size), PRT_OK);
+  ASSERT_EQ(prt_asset_section_data(asset, kShtr, &data, &size), PRT_OK);
   const auto* p = static_cast<const std::uint8_t*>(data);
   const std::size_t n2 = 9, columns = 3 * n2, bytes_per_value = std::size_t(bits) / 8;
   const std::size_t unpadded = 32 + 8 * columns + vertices * columns * bytes_per_value;
@@ -234,11 +225,11 @@ TEST_P(ShBlobBits, ShtrBytesDecodedByHandEqualTheQuantizedValues) {
               0.5 * f32(p + 36 + 8 * i) * (1 + 1e-5) + 1e-7);
   }
   // The mesh sections: positions in Scene order, the second mesh's indices offset by 9.
-  ASSERT_EQ(prt_asset_section_data(h.asset, PRT_SECTION_VPOS, &data, &size), PRT_OK);
+  ASSERT_EQ(prt_asset_section_data(asset, PRT_SECTION_VPOS, &data, &size), PRT_OK);
   ASSERT_EQ(size, vertices * 12);
   const auto* positions = static_cast<const float*>(data);
   EXPECT_EQ(positions[3 * 10 + 1], scene.meshes[1].positions[1].y);
-  ASSERT_EQ(prt_asset_section_data(h.asset, PRT_SECTION_TRIS, &data, &size), PRT_OK);
+  ASSERT_EQ(prt_asset_section_data(asset, PRT_SECTION_TRIS, &data, &size), PRT_OK);
   ASSERT_EQ(size, (8 + 4) * 12u);
   const auto* indices = static_cast<const std::uint32_t*>(data);
   EXPECT_EQ(indices[8 * 3], 9 + scene.meshes[1].indices[0]);

@@ -7,22 +7,23 @@
 #include <prt/prt_sh_asset.h>
 #include <prt/prt.hpp>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "prt/baker/demo_scene.hpp"
-#include "prt/baker/technique.hpp"
+#include "support/bake_help.hpp"
+#include "support/command.hpp"
 
 namespace prt::bake {
 namespace {
+
+using prt_test::CommandResult;
 
 namespace fs = std::filesystem;
 
@@ -35,27 +36,13 @@ fs::path temp_dir() {
   return dir;
 }
 
-struct CommandResult {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
 // prt-bake with `arguments`, its output captured.
-CommandResult run_bake(const std::string& arguments) {
-  const fs::path log = temp_dir() / "command.log";
-  const std::string command =
-      std::string("\"") + PRT_BAKE_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
-  CommandResult r;
-  r.status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.output = text.str();
-  return r;
+prt_test::CommandResult run_bake(const std::string& arguments) {
+  return prt_test::run_command(PRT_BAKE_EXE, arguments, temp_dir() / "command.log");
 }
 
 std::string quoted(const fs::path& path) {
-  return "\"" + path.string() + "\"";
+  return prt_test::shell_quote(path.string());
 }
 
 fs::path demo_scene_file() {
@@ -64,29 +51,19 @@ fs::path demo_scene_file() {
   return path;
 }
 
-struct AssetHandle {
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ~AssetHandle() {
-    prt_asset_destroy(asset);
-    prt_context_destroy(context);
-  }
-};
-
 TEST(ShBakeCommand, DemoSceneBlobLoadsAndReportParses) {
   const fs::path blob = temp_dir() / "demo_sh.prtk", report = temp_dir() / "demo_sh.json";
   const CommandResult bake =
       run_bake("--quiet bake sh " + quoted(demo_scene_file()) + " --order 3 --rays 16 --bits 8 " +
                "--transfer interreflected --bounces 1 --seed 3 -o " + quoted(blob) + " --report " +
                quoted(report));
-  ASSERT_EQ(bake.status, 0) << bake.output;
-  AssetHandle h;
-  ASSERT_EQ(prt_context_create(nullptr, &h.context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(h.context, blob.string().c_str(), PRT_VALIDATE_FULL, &h.asset),
-            PRT_OK)
-      << prt_context_last_message(h.context);
+  ASSERT_EQ(bake.exit_code, 0) << bake.output;
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_file(context.get(), blob.string().c_str(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
   prt_sh_info info = prt::sized<prt_sh_info>();
-  ASSERT_EQ(prt_sh_get_info(h.asset, &info), PRT_OK);
+  ASSERT_EQ(prt_sh_get_info(asset.get(), &info), PRT_OK);
   EXPECT_EQ(info.order, 3u);
   EXPECT_EQ(info.bits, 8u);
   EXPECT_EQ(info.channels, 3u);
@@ -123,53 +100,22 @@ TEST(ShBakeCommand, BadAndForeignOptionsFail) {
     fs::remove(blob);
     const CommandResult r =
         run_bake("--quiet bake sh " + scene + " --rays 4 " + bad + " -o " + quoted(blob));
-    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_NE(r.exit_code, 0) << bad;
     EXPECT_FALSE(fs::exists(blob)) << bad;
   }
   const CommandResult missing =
       run_bake("--quiet bake sh " + quoted(temp_dir() / "missing.glb") + " -o " + quoted(blob));
-  EXPECT_NE(missing.status, 0);
+  EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.output.find("missing.glb"), std::string::npos) << missing.output;
-  EXPECT_NE(run_bake("--quiet bake sh " + scene).status, 0);  // no -o
+  EXPECT_NE(run_bake("--quiet bake sh " + scene).exit_code, 0);  // no -o
   fs::remove_all(temp_dir());
-}
-
-// Each flag's name as --help prints it: the long name, once (as "--name " or "--name=").
-bool lists_flag(const std::string& help, const std::string& name) {
-  const std::string flag = name.substr(name.rfind(',') + 1);
-  for (std::size_t at = help.find(flag); at != std::string::npos; at = help.find(flag, at + 1)) {
-    const char next = at + flag.size() < help.size() ? help[at + flag.size()] : ' ';
-    if (next == ' ' || next == '=' || next == '\n') return true;
-  }
-  return false;
 }
 
 TEST(ShBakeCommand, HelpListsShFlagsOnly) {
   const CommandResult help = run_bake("bake sh --help");
-  ASSERT_EQ(help.status, 0) << help.output;
-  std::set<std::string> own;
-  const std::unique_ptr<TechniqueBake> bake = find_technique("sh")->make_bake();
-  const OptionList options = bake->options();  // holds pointers into `bake`
-  for (const OptionSpec& spec : options.specs()) {
-    own.insert(spec.name);
-    EXPECT_TRUE(lists_flag(help.output, spec.name)) << spec.name << "\n" << help.output;
-  }
+  ASSERT_EQ(help.exit_code, 0) << help.output;
+  const std::set<std::string> own = prt_test::expect_help_lists_own_flags_only(help.output, "sh");
   EXPECT_TRUE(own.count("--order") && own.count("--transfer") && own.count("--bits"));
-  for (const char* shared : {"--albedo", "--seed", "--output", "--report", "SCENE"})
-    EXPECT_NE(help.output.find(shared), std::string::npos) << shared;
-  std::size_t foreign = 0;
-  for (const Technique* other : techniques()) {
-    if (std::string(other->name()) == "sh") continue;
-    const std::unique_ptr<TechniqueBake> other_bake = other->make_bake();
-    const OptionList other_options = other_bake->options();
-    for (const OptionSpec& spec : other_options.specs()) {
-      if (own.count(spec.name)) continue;
-      ++foreign;
-      EXPECT_FALSE(lists_flag(help.output, spec.name)) << spec.name << "\n" << help.output;
-    }
-  }
-  EXPECT_GT(foreign, 0u);  // wavelet's --cube, --keep, ...
-  EXPECT_FALSE(lists_flag(help.output, "--technique"));
 }
 
 // Four vertices on a line with normals: both triangles have zero area. Unshadowed sh builds no
@@ -181,7 +127,7 @@ TEST(ShBakeCommand, AllDegenerateMeshIsNamed) {
   for (const char* transfer : {"unshadowed", "shadowed"}) {
     const CommandResult r = run_bake("bake sh " + quoted(obj) + " --transfer " + transfer +
                                      " --rays 16 -o " + quoted(blob));
-    EXPECT_EQ(r.status, 0) << r.output;  // a warning, not an error: the blob is valid
+    EXPECT_EQ(r.exit_code, 0) << r.output;  // a warning, not an error: the blob is valid
     EXPECT_NE(r.output.find("warning: " + obj.string() +
                             ": every triangle is degenerate (a repeated or out-of-range index, "
                             "a non-finite position or zero area): nothing casts shadows"),
@@ -194,7 +140,7 @@ TEST(ShBakeCommand, AllDegenerateMeshIsNamed) {
   std::ofstream(obj, std::ios::app) << "o good\nv 0 0 1\nv 1 0 1\nv 0 1 1\nvn 0 0 1\n"
                                        "f 5//2 6//2 7//2\n";
   const CommandResult mixed = run_bake("bake sh " + quoted(obj) + " --rays 16 -o " + quoted(blob));
-  EXPECT_EQ(mixed.status, 0) << mixed.output;
+  EXPECT_EQ(mixed.exit_code, 0) << mixed.output;
   EXPECT_NE(mixed.output.find("every triangle of mesh 0 ('flat') is degenerate"), std::string::npos)
       << mixed.output;
   EXPECT_EQ(mixed.output.find("every triangle is degenerate"), std::string::npos) << mixed.output;

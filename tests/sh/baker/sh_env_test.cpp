@@ -16,6 +16,7 @@
 
 #include "prt/baker/sh/env_sh.hpp"
 #include "sh/sh_test_util.hpp"
+#include "support/command.hpp"
 
 namespace {
 
@@ -189,12 +190,12 @@ TEST(EnvShCli, PrintsJsonMatchingTheLibrary) {
       out.write(reinterpret_cast<const char*>(texel), 4);
     }
   }
-  const auto json_path = dir / "out.json";
-  const std::string cmd = std::string("\"") + PRT_BAKE_EXE + "\" env-sh \"" + map_path.string() +
-                          "\" --order 4 > \"" + json_path.string() + "\"";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  std::ifstream in(json_path);
-  const auto j = nlohmann::json::parse(in);
+  // stdout and stderr together: a tiny map that loads cleanly prints nothing but the JSON.
+  const prt_test::CommandResult r = prt_test::run_command(
+      PRT_BAKE_EXE, "env-sh " + prt_test::shell_quote(map_path.string()) + " --order 4",
+      dir / "out.json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
   EXPECT_EQ(j.at("order"), 4);
   EXPECT_EQ(j.at("mapping"), "latlong");
   EXPECT_TRUE(j.contains("frame"));
@@ -206,9 +207,10 @@ TEST(EnvShCli, PrintsJsonMatchingTheLibrary) {
   for (uint32_t i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(coeffs[i][c].get<double>(), sh.at(i, c));
   // A bad order is refused with a non-zero exit.
-  const std::string bad = std::string("\"") + PRT_BAKE_EXE + "\" env-sh \"" + map_path.string() +
-                          "\" --order 0 > /dev/null 2>&1";
-  EXPECT_NE(std::system(bad.c_str()), 0);
+  const prt_test::CommandResult bad = prt_test::run_command(
+      PRT_BAKE_EXE, "env-sh " + prt_test::shell_quote(map_path.string()) + " --order 0",
+      dir / "bad.log");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;
 }
 #endif
 

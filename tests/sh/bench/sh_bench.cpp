@@ -17,8 +17,8 @@
 //
 //   prt_bench_sh [--benchmark_filter=...] [google benchmark flags]
 #include <benchmark/benchmark.h>
-#include <prt/prt.hpp>
 #include <prt/format/blob_writer.hpp>
+#include <prt/prt.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -32,17 +32,21 @@
 #include <tuple>
 #include <vector>
 
-#include "support/bench_embree.hpp"
-#include "support/bench_triad.hpp"
 #include "prt/baker/demo_scene.hpp"
 #include "prt/baker/embree_scene.hpp"
 #include "prt/baker/sampling.hpp"
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "support/bench_backends.hpp"
+#include "support/bench_embree.hpp"
+#include "support/bench_triad.hpp"
 
 namespace {
 
 using namespace prt::bake;
+using prt_bench::Backend;
+using prt_bench::kBackendCount;
+using prt_bench::kBackends;
 
 constexpr uint32_t kTiledVertices = 1u << 20;
 constexpr uint32_t kBakeOrder = 6, kBakeRays = 64;
@@ -180,38 +184,19 @@ const Blob& blob(uint32_t order, uint32_t bits, bool tiled) {
 
 // --- Backends ---------------------------------------------------------------------------------
 
-struct Backend {
-  const char* name;
-  prt_backend backend;
-  prt_simd_isa isa_limit;
-};
-constexpr Backend kBackends[] = {{"cpu", PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO},
-                                 {"simd-sse4.1", PRT_BACKEND_SIMD, PRT_SIMD_ISA_SSE41},
-                                 {"simd-avx2", PRT_BACKEND_SIMD, PRT_SIMD_ISA_AVX2}};
-
-// A context per backend and an asset per (backend, blob), made once and shared by the threads.
+// An asset per (backend, blob), made once and shared by the threads; declared after the blobs
+// it borrows, so that it is destroyed before them.
 class Assets {
  public:
   ~Assets() {
     for (auto& entry : assets_) prt_asset_destroy(entry.second);
-    for (auto& entry : contexts_) prt_context_destroy(entry.second);
   }
   // The asset, or null with `why` set when the backend cannot run here.
-  prt_asset* get(const Backend& backend, const Blob& b, std::string* why) {
+  prt_asset* get(int backend_index, const Blob& b, std::string* why) {
+    prt_context* ctx = contexts_.usable(backend_index, why);
+    if (!ctx) return nullptr;
     const std::lock_guard<std::mutex> lock(mutex_);
-    prt_context*& ctx = contexts_[backend.name];
-    if (!ctx) {
-      prt_context_desc desc = prt::sized<prt_context_desc>();
-      desc.simd_isa_limit = backend.isa_limit;
-      if (prt_context_create(&desc, &ctx) != PRT_OK) return nullptr;
-    }
-    prt_backend_info info = prt::sized<prt_backend_info>();
-    prt_backend_get_info(ctx, backend.backend, &info);
-    if (!info.usable || (backend.backend == PRT_BACKEND_SIMD && info.isa != backend.isa_limit)) {
-      *why = std::string(backend.name) + " not usable here: " + info.note;
-      return nullptr;
-    }
-    prt_asset*& asset = assets_[{backend.name, &b}];
+    prt_asset*& asset = assets_[{backend_index, &b}];
     if (!asset && prt_asset_load_memory_borrowed(ctx, b.bytes.data(), b.bytes.size(),
                                                  PRT_VALIDATE_FULL, &asset) != PRT_OK) {
       *why = std::string("load failed: ") + prt_context_last_message(ctx);
@@ -221,9 +206,9 @@ class Assets {
   }
 
  private:
+  prt_bench::BackendContexts contexts_;
   std::mutex mutex_;
-  std::map<std::string, prt_context*> contexts_;
-  std::map<std::pair<std::string, const Blob*>, prt_asset*> assets_;
+  std::map<std::pair<int, const Blob*>, prt_asset*> assets_;
 } g_assets;
 
 // --- Benchmarks -----------------------------------------------------------------------------
@@ -241,33 +226,21 @@ void shade(benchmark::State& state, int backend_index, std::size_t row_index) {
   const uint32_t order = row.order;
   const Blob& b = blob(order, row.bits, row.tiled);
   std::string why;
-  prt_asset* asset = g_assets.get(backend, b, &why);
+  prt_asset* asset = g_assets.get(backend_index, b, &why);
   if (!asset) {
     state.SkipWithError(why.c_str());
     return;
   }
   const uint32_t threads = state.threads(), index = state.thread_index();
-  const uint32_t first = uint32_t(uint64_t(b.vertices) * index / threads);
-  const uint32_t count = uint32_t(uint64_t(b.vertices) * (index + 1) / threads) - first;
+  const auto [first, count] = prt_bench::thread_share(state, b.vertices);
   std::vector<float> light(std::size_t(order) * order * 3), out(std::size_t(count) * 3);
   std::mt19937 rng(order);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   for (float& l : light) l = unit(rng);
-  double seconds = 0.0, cpu_seconds = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = prt_bench::thread_cpu_seconds();
-    const prt_result r =
-        prt_sh_shade(asset, backend.backend, light.data(), first, count, out.data());
-    cpu_seconds += prt_bench::thread_cpu_seconds() - cpu_start;
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (r != PRT_OK) {
-      state.SkipWithError(prt_result_string(r));
-      break;
-    }
-    benchmark::DoNotOptimize(out.data());
-    benchmark::ClobberMemory();
-  }
+  const auto [seconds, cpu_seconds] = prt_bench::time_shading(
+      state,
+      [&] { return prt_sh_shade(asset, backend.backend, light.data(), first, count, out.data()); },
+      out.data());
   const double vertices = double(count) * double(state.iterations());
   state.SetItemsProcessed(static_cast<int64_t>(vertices));
   state.SetBytesProcessed(static_cast<int64_t>(vertices * b.bytes_per_vertex));
@@ -288,7 +261,7 @@ void register_shading() {
         ShadingRow figure;
         figure.order = order, figure.bits = bits, figure.tiled = tiled;
         g_figures.shading.push_back(figure);
-        for (int backend = 0; backend < 3; ++backend)
+        for (int backend = 0; backend < kBackendCount; ++backend)
           for (const int threads : {1, 2}) {
             const std::string name = std::string("Shade/") + kBackends[backend].name +
                                      "/order:" + std::to_string(order) +

@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "sh/sh_blob_test_util.hpp"
+#include "support/bench_gl.hpp"
 #include "support/bench_triad.hpp"
-#include "headless_gl.h"
 
 namespace {
 
@@ -42,24 +42,9 @@ struct GlFigure {
 struct Figures {
   double triad[3] = {0, 0, 0};  // bytes/s by thread count 1, 2
   std::vector<GlFigure> gl;
-  std::string renderer, skipped;
 } g_figures;
 
-// The process's one headless context, made on first use (benchmarks run on the main thread).
-headless_gl* g_gl = nullptr;
-bool g_gl_tried = false;
-headless_gl* shared_gl() {
-  if (!g_gl_tried) {
-    g_gl_tried = true;
-    char error[1024];
-    g_gl = headless_gl_create(error, sizeof error);
-    if (g_gl)
-      g_figures.renderer = headless_gl_renderer(g_gl);
-    else
-      g_figures.skipped = std::string("no headless GL: ") + error;
-  }
-  return g_gl;
-}
+prt_bench::SharedGl g_gl;
 
 // The memory roofline (bench_triad.hpp), by wall clock: llvmpipe's threads are not ours to time.
 void BM_StreamTriad(benchmark::State& state) {
@@ -89,7 +74,7 @@ struct GlBench {
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     for (uint32_t i = 0; i < 3 * order * order; ++i) light.push_back(unit(rng));
     if (loaded->result == PRT_OK)
-      prt_gl_sh_create(context, loaded->asset, headless_gl_get_proc, shared_gl(), &shader);
+      prt_gl_sh_create(context, loaded->asset, headless_gl_get_proc, g_gl.get(), &shader);
   }
   ~GlBench() {
     prt_gl_sh_destroy(shader);
@@ -100,8 +85,8 @@ struct GlBench {
 };
 
 void BM_GlShade(benchmark::State& state, uint32_t order, uint32_t bits, bool readback) {
-  if (!shared_gl()) {
-    state.SkipWithError(g_figures.skipped.c_str());
+  if (!g_gl.get()) {
+    state.SkipWithError(g_gl.missing().c_str());
     return;
   }
   GlBench bench(order, bits);
@@ -159,26 +144,20 @@ void register_gl() {
 }
 
 // llvmpipe's thread count: LP_NUM_THREADS, else one per core (capped at 2 for the triad we have).
-int llvmpipe_threads() {
-  const char* env = std::getenv("LP_NUM_THREADS");
-  int threads = env ? std::atoi(env) : int(std::thread::hardware_concurrency());
-  return threads <= 1 ? 1 : 2;
-}
-
 void print_summary() {
   const Figures& f = g_figures;
   std::printf("\nsummary\n");
   std::printf("  memory bandwidth (triad): %.2f GB/s on 1 thread, %.2f GB/s on 2 threads\n",
               f.triad[1] * 1e-9, f.triad[2] * 1e-9);
-  if (!f.skipped.empty()) {
-    std::printf("  gl: %s\n", f.skipped.c_str());
+  if (!g_gl.missing().empty()) {
+    std::printf("  gl: %s\n", g_gl.missing().c_str());
     return;
   }
-  const int threads = llvmpipe_threads();
+  const int threads = prt_bench::llvmpipe_threads();
   std::printf(
       "\n  gl shading on %s, %u vertices, RGB transfer; bytes moved = quantised transfer "
       "+ 12 B radiance written (+ 12 B read back); %% of the %d-thread triad\n",
-      f.renderer.c_str(), kVertices, threads);
+      g_gl.renderer().c_str(), kVertices, threads);
   std::printf("  %5s %4s %-10s %10s %8s %8s\n", "order", "bits", "readback", "Mvert/s", "GB/s",
               "% triad");
   for (const GlFigure& g : f.gl) {
@@ -200,6 +179,6 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   print_summary();
-  headless_gl_destroy(g_gl);
+  g_gl.destroy();
   return 0;
 }

@@ -58,7 +58,7 @@ void check_all_backends(uint32_t order, uint32_t channels, uint32_t bits) {
                   " channel(s), " + std::to_string(bits) + "-bit");
 
   // The scalar reference, checked against the exact sum first.
-  ContextPtr cpu_ctx(prt_test::make_context());
+  const prt::ContextPtr cpu_ctx = prt_test::limited_context();
   LoadedAsset cpu_asset(cpu_ctx.get(), blob);
   ASSERT_EQ(cpu_asset.result, PRT_OK);
   std::vector<float> reference_rgb(3 * size_t(kVertices));
@@ -87,12 +87,13 @@ void check_all_backends(uint32_t order, uint32_t channels, uint32_t bits) {
 
   // GL.
   {
-    ContextPtr ctx(prt_test::make_context());
+    const prt::ContextPtr ctx = prt_test::limited_context();
     LoadedAsset asset(ctx.get(), blob);
     ASSERT_EQ(asset.result, PRT_OK);
     auto [shader, made] = prt::gl_sh_create(ctx.get(), asset.asset, headless_gl_get_proc, gl.gl);
     ASSERT_EQ(made, PRT_OK) << prt_context_last_message(ctx.get());
     ASSERT_EQ(prt_gl_sh_shade(shader.get(), light.data(), 0, kVertices), PRT_OK);
+    prt_test::expect_gl_state_restored("prt_gl_sh_shade");
     std::vector<float> rgb(3 * size_t(kVertices));
     ASSERT_EQ(prt_gl_sh_read(shader.get(), 0, kVertices, rgb.data()), PRT_OK);
     double worst = compare("gl", t, truth, reference, rgb, 0, kVertices);

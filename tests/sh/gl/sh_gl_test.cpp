@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gl_create_checks.hpp"
 #include "support/gl_test_util.hpp"
 
 namespace {
@@ -21,9 +22,6 @@ using prt_test::ShaderPtr;
 using prt_test::Transfer;
 
 using prt_test::CountingAllocator;
-using prt_test::gl_function;
-using prt_test::lying_loader;
-using namespace prt_test::gl_names;
 
 // An `sh` asset in its own context.
 struct GlAsset {
@@ -33,12 +31,8 @@ struct GlAsset {
   GlAsset(const Transfer& t, prt_backend limit = PRT_BACKEND_AUTO, bool zstd = false,
           const prt_allocator* allocator = nullptr)
       : transfer(t) {
-    prt_context_desc desc = prt::sized<prt_context_desc>();
-    desc.backend_limit = limit;
-    desc.allocator = allocator;
-    prt_context* ctx = nullptr;
-    EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
-    context.reset(ctx);
+    context = prt_test::limited_context(limit, PRT_SIMD_ISA_AUTO, allocator);
+    prt_context* ctx = context.get();
     loaded = std::make_unique<LoadedAsset>(
         ctx, prt_test::make_blob(prt_test::encode(t), t.vertices, zstd));
     EXPECT_EQ(loaded->result, PRT_OK) << prt_context_last_message(ctx);
@@ -52,6 +46,17 @@ ShaderPtr create_shader(const GlAsset& a, headless_gl* gl) {
   EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), headless_gl_get_proc, gl, &shader), PRT_OK)
       << a.message();
   return ShaderPtr(shader);
+}
+
+// Creation of the asset's shader, for the shared refusal checks (gl_create_checks.hpp).
+prt_test::TryCreateShader try_create(const GlAsset& a) {
+  return [&a](prt_context* context, prt_gl_loader_fn loader, void* user, bool* shader_null) {
+    prt_gl_sh_shader* shader = nullptr;
+    const prt_result r = prt_gl_sh_create(context, a.asset(), loader, user, &shader);
+    *shader_null = shader == nullptr;
+    prt_gl_sh_destroy(shader);
+    return r;
+  };
 }
 
 std::vector<float> read_all(prt_gl_sh_shader* shader, uint32_t vertices) {
@@ -144,50 +149,23 @@ TEST(GlSh, OutputBufferIsTightlyPackedRgbAndStateIsLeftUnbound) {
   const uint32_t buffer = prt_gl_sh_output_buffer(shader.get());
   ASSERT_NE(buffer, 0u);
 
-  // The indexed SSBO and uniform buffer bindings, the generic SSBO binding and the program are
-  // back to 0.
-  auto get_integerv = gl_function<GetIntegervFn>("glGetIntegerv");
-  auto get_integeri_v = gl_function<GetIntegeriVFn>("glGetIntegeri_v");
-  int value = -1;
-  get_integerv(kGlCurrentProgram, &value);
-  EXPECT_EQ(value, 0);
-  get_integerv(kGlShaderStorageBufferBinding, &value);
-  EXPECT_EQ(value, 0);
-  for (unsigned i = 0; i < 4; ++i) {
-    value = -1;
-    get_integeri_v(kGlShaderStorageBufferBinding, i, &value);
-    EXPECT_EQ(value, 0) << "indexed SSBO binding " << i;
-    value = -1;
-    get_integeri_v(kGlUniformBufferBinding, i, &value);
-    EXPECT_EQ(value, 0) << "indexed uniform buffer binding " << i;
-  }
+  // The program and the buffer bindings the backend uses are back to 0.
+  prt_test::expect_gl_bindings_cleared();
 
   // Read the whole buffer through GL itself: 12 bytes per vertex, RGB floats, nothing else.
-  auto bind = gl_function<BindBufferFn>("glBindBuffer");
-  auto get_sub_data = gl_function<GetBufferSubDataFn>("glGetBufferSubData");
-  auto get_parameter = gl_function<GetBufferParameterivFn>("glGetBufferParameteriv");
-  bind(kGlCopyReadBuffer, buffer);
   int size = 0;
-  get_parameter(kGlCopyReadBuffer, kGlBufferSize, &size);
+  const std::vector<float> rgb = prt_test::read_gl_buffer_floats(buffer, &size);
   ASSERT_EQ(size, int(12 * n));
-  std::vector<uint8_t> bytes(static_cast<size_t>(size));
-  get_sub_data(kGlCopyReadBuffer, 0, size, bytes.data());
-  bind(kGlCopyReadBuffer, 0);
-  std::vector<float> rgb(3 * size_t(n));
-  for (uint32_t v = 0; v < n; ++v)
-    for (uint32_t c = 0; c < 3; ++c) std::memcpy(&rgb[3 * v + c], &bytes[12 * v + 4 * c], 4);
   expect_matches(a.transfer, light, rgb.data(), 0, n);
   EXPECT_EQ(read_all(shader.get(), n), rgb) << "prt_gl_sh_read returns the buffer's bytes";
 }
 
 TEST(GlSh, ErrorsTheApplicationLeftPendingDoNotFailCreation) {
   PRT_REQUIRE_GL(gl);
-  auto bind = gl_function<BindBufferFn>("glBindBuffer");
-  auto get_error = gl_function<GetErrorFn>("glGetError");
-  bind(0x1234u, 0);  // not a buffer target: GL_INVALID_ENUM stays pending
+  prt_test::leave_gl_error_pending();
   const GlAsset a(prt_test::random_transfer(2, 10, 1, 8, 6));
   EXPECT_TRUE(create_shader(a, gl.gl));
-  EXPECT_EQ(get_error(), 0u) << "create cleared the pending error and raised none";
+  EXPECT_EQ(prt_test::take_gl_error(), 0u) << "create cleared the pending error and raised none";
 }
 
 TEST(GlSh, ManyVerticesSpanSeveralDispatches) {
@@ -214,7 +192,7 @@ TEST(GlSh, AssetWithoutVerticesShadesNothing) {
   const prt_test::Bytes shtr = prt_test::encode(t);
   w.add_section(prt_test::kVPOS, nullptr, 0, 0, required);
   w.add_section(prt_test::kSHTR, shtr.data(), shtr.size(), 0, required);
-  ContextPtr ctx(prt_test::make_context());
+  const prt::ContextPtr ctx = prt_test::limited_context();
   LoadedAsset loaded(ctx.get(), w.finish());
   ASSERT_EQ(loaded.result, PRT_OK) << prt_context_last_message(ctx.get());
   prt_gl_sh_shader* raw = nullptr;
@@ -229,15 +207,8 @@ TEST(GlSh, AssetWithoutVerticesShadesNothing) {
 
 TEST(GlSh, NoShtrSectionIsNotFound) {
   PRT_REQUIRE_GL(gl);
-  prt::format::BlobWriter w;
-  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  const uint32_t tri[3] = {0, 1, 2};
-  prt::format::SectionOptions required;
-  required.required = true;
-  w.add_section(prt_test::kVPOS, positions, sizeof positions, 3, required);
-  w.add_section(prt_test::kTRIS, tri, sizeof tri, 1, required);
-  ContextPtr ctx(prt_test::make_context());
-  LoadedAsset loaded(ctx.get(), w.finish());
+  const prt::ContextPtr ctx = prt_test::limited_context();
+  LoadedAsset loaded(ctx.get(), prt_test::mesh_only_blob());
   ASSERT_EQ(loaded.result, PRT_OK);
   prt_gl_sh_shader* shader = reinterpret_cast<prt_gl_sh_shader*>(&loaded);
   EXPECT_EQ(prt_gl_sh_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &shader),
@@ -249,42 +220,23 @@ TEST(GlSh, NoShtrSectionIsNotFound) {
 TEST(GlSh, MissingEntryPointIsUnsupportedAndNamed) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
-  for (const char* name : {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData",
-                           "glProgramUniform1ui", "glGetError"}) {
-    prt_test::LoaderOverride loader;
-    loader.gl = gl.gl;
-    loader.hidden = name;
-    prt_gl_sh_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), prt_test::LoaderOverride::get, &loader,
-                               &shader),
-              PRT_ERROR_UNSUPPORTED_BACKEND)
-        << name;
-    EXPECT_EQ(shader, nullptr);
-    EXPECT_NE(a.message().find(name), std::string::npos) << a.message();
-  }
+  prt_test::expect_refused_without_entry_points(
+      try_create(a), a.context.get(), gl.gl,
+      {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData", "glProgramUniform1ui",
+       "glGetError"});
 }
 
 TEST(GlSh, ContextOlderThan43IsUnsupported) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
-  prt_gl_sh_shader* shader = nullptr;
-  char lie[] = "version";
-  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("3.3"), std::string::npos) << a.message();
+  prt_test::expect_refused_below_gl_43(try_create(a), a.context.get());
 }
 
 TEST(GlSh, AssetLargerThanTheSsboLimitIsUnsupported) {
   PRT_REQUIRE_GL(gl);
   // 100 vertices * 12 bytes of output > 1024 bytes.
   const GlAsset a(prt_test::random_transfer(1, 100, 1, 8, 1));
-  prt_gl_sh_shader* shader = nullptr;
-  char lie[] = "ssbo";
-  EXPECT_EQ(prt_gl_sh_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("1024"), std::string::npos) << a.message();
+  prt_test::expect_refused_above_ssbo_limit(try_create(a), a.context.get());
 }
 
 TEST(GlSh, BackendLimitBelowGlIsUnsupported) {
@@ -336,7 +288,7 @@ TEST(GlSh, BadRangesAreInvalidArguments) {
 TEST(GlSh, CreateReportsToTheCallersContext) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::random_transfer(2, 8, 3, 8, 1));
-  ContextPtr limited(prt_test::make_context(PRT_BACKEND_SIMD));
+  const prt::ContextPtr limited = prt_test::limited_context(PRT_BACKEND_SIMD);
   prt_gl_sh_shader* shader = nullptr;
   EXPECT_EQ(prt_gl_sh_create(limited.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader),
             PRT_ERROR_UNSUPPORTED_BACKEND);
@@ -345,7 +297,7 @@ TEST(GlSh, CreateReportsToTheCallersContext) {
   EXPECT_NE(std::string(prt_context_last_message(limited.get())).find("prt_gl_sh_create"),
             std::string::npos);
   EXPECT_EQ(prt_context_last_result(a.context.get()), PRT_OK) << a.message();
-  ContextPtr render(prt_test::make_context());
+  const prt::ContextPtr render = prt_test::limited_context();
   ASSERT_EQ(prt_gl_sh_create(render.get(), a.asset(), headless_gl_get_proc, gl.gl, &shader), PRT_OK)
       << prt_context_last_message(render.get());
   ShaderPtr owned(shader);
@@ -378,7 +330,7 @@ TEST(GlSh, NullArguments) {
 TEST(GlSh, ShaderComesFromTheAssetsAllocator) {
   PRT_REQUIRE_GL(gl);
   CountingAllocator counter;
-  const prt_allocator allocator = {CountingAllocator::alloc, CountingAllocator::free, &counter};
+  const prt_allocator allocator = counter.api();
   const GlAsset a(prt_test::random_transfer(3, 40, 3, 8, 4), PRT_BACKEND_AUTO, false, &allocator);
   const int before = counter.live;
   prt_gl_sh_shader* shader = nullptr;

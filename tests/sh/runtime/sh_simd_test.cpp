@@ -19,29 +19,12 @@
 #include <vector>
 
 #include "sh/sh_blob_test_util.hpp"
+#include "support/limited_context.hpp"
+#include "support/simd_dispatch.hpp"
 
 namespace {
 
 using namespace prt_test;
-
-// A context with the given limits (contexts ignore the environment by default).
-struct LimitedContext {
-  prt_context* ctx = nullptr;
-  LimitedContext(prt_backend backend_limit, prt_simd_isa isa_limit) {
-    prt_context_desc desc = prt::sized<prt_context_desc>();
-    desc.backend_limit = backend_limit;
-    desc.simd_isa_limit = isa_limit;
-    EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
-  }
-  ~LimitedContext() { prt_context_destroy(ctx); }
-  LimitedContext(const LimitedContext&) = delete;
-  LimitedContext& operator=(const LimitedContext&) = delete;
-};
-
-bool simd_usable(prt_context* ctx) {
-  prt_backend_info info = prt::sized<prt_backend_info>();
-  return prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable;
-}
 
 // Light coefficients in [-amplitude, amplitude], order^2 RGB triples.
 std::vector<float> random_light(uint32_t order, uint32_t seed, float amplitude = 2.0f) {
@@ -89,25 +72,9 @@ void expect_matches_double_sum(const Transfer& t, const std::vector<float>& ligh
     }
 }
 
-std::string isa_test_name(const ::testing::TestParamInfo<prt_simd_isa>& info) {
-  return info.param == PRT_SIMD_ISA_AVX2 ? "avx2" : "sse41";
-}
-
 // One instruction set, forced by the context's ISA limit; skipped where the CPU lacks it.
-class ShSimd : public ::testing::TestWithParam<prt_simd_isa> {
+class ShSimd : public SimdIsaTest {
  protected:
-  LimitedContext limited{PRT_BACKEND_AUTO, GetParam()};
-  prt_context* ctx = limited.ctx;
-
-  void SetUp() override {
-    prt_backend_info info = prt::sized<prt_backend_info>();
-    ASSERT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info), PRT_OK);
-    if (!info.compiled) GTEST_SKIP() << "SIMD compiled out (PRT_ENABLE_SIMD=OFF)";
-    if (!info.usable || info.isa != GetParam())
-      GTEST_SKIP() << "this CPU lacks " << prt_simd_isa_name(GetParam()) << " (" << info.note
-                   << ")";
-  }
-
   // SIMD shading of [first, first+count) into a vector of exactly 3*count floats.
   std::vector<float> shade(const LoadedAsset& a, const std::vector<float>& light, uint32_t first,
                            uint32_t count) {
@@ -264,8 +231,7 @@ TEST_P(ShSimd, RejectsWhatTheScalarPathRejects) {
   EXPECT_EQ(quick.asset, nullptr);
 }
 
-INSTANTIATE_TEST_SUITE_P(Isa, ShSimd, ::testing::Values(PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2),
-                         isa_test_name);
+INSTANTIATE_TEST_SUITE_P(Isa, ShSimd, kSimdIsas, isa_test_name);
 
 // --- Dispatch -------------------------------------------------------------------------------
 
@@ -275,71 +241,42 @@ struct Scene {
   Bytes blob = make_blob(encode(t), t.vertices);
 };
 
-std::vector<float> shade_on(const LoadedAsset& a, prt_backend backend, const Scene& s,
-                            prt_result expected = PRT_OK) {
-  std::vector<float> out(size_t(s.t.vertices) * 3);
-  EXPECT_EQ(prt_sh_shade(a.asset, backend, s.light.data(), 0, s.t.vertices, out.data()), expected)
-      << prt_backend_name(backend);
-  return out;
+// Shades all of the scene's asset on a backend.
+ShadeAll shade_all(const Scene& s) {
+  return [&s](const prt_asset* asset, prt_backend backend, std::vector<float>* out) {
+    out->assign(size_t(s.t.vertices) * 3, 0.0f);
+    return prt_sh_shade(asset, backend, s.light.data(), 0, s.t.vertices, out->data());
+  };
 }
 
 TEST(ShSimdDispatch, AutoPicksSimdWhenUsable) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
-  if (!simd_usable(limited.ctx)) GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
+  if (!simd_usable(limited_context().get()))
+    GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  EXPECT_EQ(prt_context_backend(limited.ctx), PRT_BACKEND_SIMD);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  const std::vector<float> simd = shade_on(a, PRT_BACKEND_SIMD, s);
-  const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
-  EXPECT_EQ(std::memcmp(automatic.data(), simd.data(), simd.size() * 4), 0);
   // The reference sums in double and the kernels in float: over 3000 sums of 36 terms some last
   // bits differ, which shows that AUTO did not run the reference.
-  EXPECT_NE(std::memcmp(automatic.data(), cpu.data(), cpu.size() * 4), 0);
+  EXPECT_FALSE(expect_auto_shades_as_simd(s.blob, shade_all(s)));
 }
 
 TEST(ShSimdDispatch, ContextLimitedToCpuRefusesSimd) {
-  LimitedContext limited(PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  std::vector<float> reference(automatic.size());
-  ASSERT_EQ(
-      prt_sh_shade(a.asset, PRT_BACKEND_CPU, s.light.data(), 0, s.t.vertices, reference.data()),
-      PRT_OK);
-  EXPECT_EQ(std::memcmp(automatic.data(), reference.data(), reference.size() * 4), 0);
+  expect_cpu_limit_refuses_simd(s.blob, shade_all(s));
 }
 
 TEST(ShSimdDispatch, IsaLimitNoneRefusesSimd) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_NONE);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
+  expect_isa_limit_none_refuses_simd(s.blob, shade_all(s));
 }
 
 TEST(ShSimdDispatch, CompiledOutSimdIsUnsupported) {
   if (PRT_TEST_SIMD_COMPILED) GTEST_SKIP() << "SIMD is compiled in (see the `scalar` preset)";
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  EXPECT_EQ(prt_context_backend(limited.ctx), PRT_BACKEND_CPU);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
-  EXPECT_EQ(std::memcmp(automatic.data(), cpu.data(), cpu.size() * 4), 0);
+  expect_compiled_out_simd_unsupported(s.blob, shade_all(s));
 }
 
 TEST(ShSimdDispatch, GlIsNotShadedHere) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  LoadedAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_GL, s, PRT_ERROR_UNSUPPORTED_BACKEND);
+  expect_gl_not_shaded_here(s.blob, shade_all(s));
 }
 
 }  // namespace

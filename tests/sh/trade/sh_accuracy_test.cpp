@@ -1,22 +1,23 @@
 // SPDX-License-Identifier: MIT
-// The "Done when" accuracy mark for technique sh: a shadowed order-6 bake of the Stanford
-// bunny, written to a blob, loaded and shaded by the runtime under rnl_probe.hdr, against the
-// reference renderer's per-vertex radiance (direct light, no bounces).
+// The accuracy `sh` promises on a real scene (docs/sh/trade.md): a shadowed order-6 bake of the
+// Stanford bunny, written to a blob, loaded and shaded by the runtime under rnl_probe.hdr, against
+// the reference renderer's per-vertex radiance (direct light, no bounces).
 //
 // Two bounds, both independent of the code under test's output:
-// - the mark: relative RMSE < 3 % (SH truncation alone is ~2.1 % there at order 6);
+// - the accuracy target: relative RMSE below 3 % at order 6, set above SH truncation's own error
+//   there so that a bake, quantiser or shading defect, not the truncation, is what breaks it;
 // - the trade table (docs/sh/trade/trade.csv, measured by prt-bake trade with a 2048-spp
 //   reference): this test's error may exceed the table's rnl_probe order-6 figure only by the
 //   noise of the two references. The bake here is the table's own setting (256 rays, seed 0,
 //   albedo 0.8), so the SH side is the same; noise adds in quadrature to the error, so the
 //   difference of the two errors is at most the larger noise, and the sum of both is a safe
 //   margin.
-// Noise budget: on the bunny under rnl_probe the reference's relative RMSE is ~2 % at 512 spp
-// (~1.4 % at 1024, 0.85 % at 2048: the map's bright patches make it noisier than a smooth sky).
-// Its noise is independent of the SH error, so squares add and the error against the exact
-// radiance is sqrt(error^2 - noise^2); the mark is checked on that figure, whose own
-// uncertainty is small (both terms are means over 35,947 vertices x 3 channels). 512 spp keeps
-// the reference, the test's dominant cost, at ~30 s of CPU time.
+// Noise: the reference's relative RMSE on this map is larger than on a smooth sky (its bright
+// patches), and the reference's cost, the test's dominant one, grows with its samples: 512 spp
+// keeps the noise under the 2.5 % checked below. The noise is independent of the SH error, so
+// squares add and the error against the exact radiance is sqrt(error^2 - noise^2); the target is
+// checked on that figure, whose own uncertainty is small (both terms are means over every vertex
+// and channel of the bunny).
 #include <gtest/gtest.h>
 
 #include <prt/prt.hpp>
@@ -25,9 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,6 +36,7 @@
 #include "prt/baker/sh/sh_transfer.hpp"
 #include "prt/io/envmap.hpp"
 #include "prt/io/radiance_error.hpp"
+#include "support/command.hpp"
 
 namespace prt::bake {
 namespace {
@@ -53,38 +53,16 @@ struct TableRow {
   double error = 0.0, ref_noise = 0.0;
 };
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  std::string field;
-  while (std::getline(in, field, ',')) fields.push_back(field);
-  return fields;
-}
-
 TableRow read_trade_row(const std::string& path, const std::string& map, std::uint32_t order,
                         std::uint32_t rays, int bounces) {
-  std::ifstream csv(path);
-  std::string line;
   TableRow row;
-  if (!std::getline(csv, line)) return row;
-  const std::vector<std::string> header = split(line);
-  auto column = [&](const char* name) {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return i;
-    }
-    return header.size();
-  };
-  const std::size_t c_map = column("map"), c_order = column("order"), c_rays = column("rays"),
-                    c_bounces = column("bounces"), c_error = column("rel_rmse"),
-                    c_noise = column("ref_noise");
-  while (std::getline(csv, line)) {
-    const std::vector<std::string> f = split(line);
-    if (f.size() != header.size()) continue;
-    if (f[c_map] == map && std::stoul(f[c_order]) == order && std::stoul(f[c_rays]) == rays &&
-        std::stoi(f[c_bounces]) == bounces) {
+  for (const auto& f : prt_test::read_csv(path)) {
+    if (f.count("#fields")) continue;
+    if (f.at("map") == map && std::stoul(f.at("order")) == order &&
+        std::stoul(f.at("rays")) == rays && std::stoi(f.at("bounces")) == bounces) {
       row.found = true;
-      row.error = std::stod(f[c_error]);
-      row.ref_noise = std::stod(f[c_noise]);
+      row.error = std::stod(f.at("rel_rmse"));
+      row.ref_noise = std::stod(f.at("ref_noise"));
     }
   }
   return row;
@@ -121,6 +99,8 @@ TEST(ShAccuracy, BunnyUnderRnlProbeAtOrder6MatchesTheReference) {
   ref_settings.albedo = kAlbedo;
   const ReferenceRenderer renderer(scene, env, ref_settings, ctx);
   const VertexRadiance reference = renderer.render_vertices(ctx);
+  // Well above the reference's noise at 512 spp, and small enough that removing it leaves the
+  // 3 % target meaningful.
   ASSERT_LE(reference.relative_rmse, 0.025) << "reference noisier than this test allows for";
 
   ShTransferSettings settings;
@@ -141,7 +121,7 @@ TEST(ShAccuracy, BunnyUnderRnlProbeAtOrder6MatchesTheReference) {
   RecordProperty("relative_rmse", std::to_string(error));
   RecordProperty("reference_noise", std::to_string(reference.relative_rmse));
   // The reference's noise is independent of the SH error, so their squares add: taking it out
-  // estimates the error against the exact radiance, which is what the mark is about.
+  // estimates the error against the exact radiance, which is what the target is about.
   const double noise_removed =
       std::sqrt(std::max(0.0, error * error - reference.relative_rmse * reference.relative_rmse));
   RecordProperty("relative_rmse_noise_removed", std::to_string(noise_removed));

@@ -5,27 +5,28 @@
 // of a small mesh once, and a mesh of degenerate triangles is named.
 #include <gtest/gtest.h>
 
-#include <prt/prt.hpp>
 #include <prt/prt_wavelet.h>
 #include <prt/prt_wavelet_asset.h>
+#include <prt/prt.hpp>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "prt/baker/demo_scene.hpp"
-#include "prt/baker/technique.hpp"
+#include "support/bake_help.hpp"
+#include "support/command.hpp"
 #include "support/render_test_scenes.hpp"
 
 namespace prt::bake {
 namespace {
+
+using prt_test::CommandResult;
 
 std::filesystem::path temp_dir() {
   const std::filesystem::path dir =
@@ -34,33 +35,18 @@ std::filesystem::path temp_dir() {
   return dir;
 }
 
-int run_bake(const std::string& arguments) {
-  const std::string command =
-      std::string("\"") + PRT_BAKE_EXE + "\" --quiet bake wavelet " + arguments;
-  return std::system(command.c_str());
+// prt-bake with `arguments`, its output captured.
+prt_test::CommandResult run_command(const std::string& arguments) {
+  return prt_test::run_command(PRT_BAKE_EXE, arguments, temp_dir() / "command.log");
 }
 
-struct CommandResult {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-// prt-bake with `arguments`, its output captured.
-CommandResult run_command(const std::string& arguments) {
-  const std::filesystem::path log = temp_dir() / "command.log";
-  const std::string command =
-      std::string("\"") + PRT_BAKE_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
-  CommandResult r;
-  r.status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.output = text.str();
-  return r;
+// prt-bake --quiet bake wavelet with `arguments`.
+prt_test::CommandResult run_bake(const std::string& arguments) {
+  return run_command("--quiet bake wavelet " + arguments);
 }
 
 std::string quoted(const std::filesystem::path& path) {
-  return "\"" + path.string() + "\"";
+  return prt_test::shell_quote(path.string());
 }
 
 // A small scene: a plane and a sphere on it (a few hundred vertices).
@@ -72,30 +58,27 @@ std::string scene_file() {
     scene.meshes.push_back(test::make_icosphere(1, 0.4f, {0.0f, 0.45f, 0.0f}));
     write_glb(scene, path.string());
   }
-  return "\"" + path.string() + "\"";
+  return quoted(path);
 }
 
 TEST(WaveletBakeCommand, BlobLoadsAndReportParses) {
   const std::filesystem::path blob = temp_dir() / "w.prtk", report = temp_dir() / "w.json";
-  ASSERT_EQ(run_bake(scene_file() + " --cube 16 --keep 50 --quantizer vertex " +
-                     "--samples 4 --seed 2 --bounces 1 --albedo 0.5,0.6,0.7 -o \"" + blob.string() +
-                     "\" --report \"" + report.string() + "\""),
-            0);
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(context, blob.string().c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK)
-      << prt_context_last_message(context);
+  const prt_test::CommandResult bake = run_bake(
+      scene_file() + " --cube 16 --keep 50 --quantizer vertex --samples 4 --seed 2" +
+      " --bounces 1 --albedo 0.5,0.6,0.7 -o " + quoted(blob) + " --report " + quoted(report));
+  ASSERT_EQ(bake.exit_code, 0) << bake.output;
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_file(context.get(), blob.string().c_str(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
   prt_wavelet_info info = prt::sized<prt_wavelet_info>();
-  ASSERT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
+  ASSERT_EQ(prt_wavelet_get_info(asset.get(), &info), PRT_OK);
   EXPECT_EQ(info.param, PRT_WAVELET_PARAM_CUBE);
   EXPECT_EQ(info.size, 16u);
   EXPECT_EQ(info.quantizer, 0u);
   EXPECT_EQ(info.keep, 50u);
   EXPECT_EQ(info.bounces, 1u);
   EXPECT_LE(info.pair_count, 50u * info.vertex_count);
-  prt_asset_destroy(asset);
-  prt_context_destroy(context);
 
   std::ifstream file(report);
   const nlohmann::json json = nlohmann::json::parse(file);
@@ -118,25 +101,23 @@ TEST(WaveletBakeCommand, BlobLoadsAndReportParses) {
 
 TEST(WaveletBakeCommand, DualParaboloidAndKeepEnergy) {
   const std::filesystem::path blob = temp_dir() / "p.prtk";
-  ASSERT_EQ(run_bake(scene_file() + " --param dual-paraboloid --cube 32 " +
-                     "--keep-energy 0.9 -o \"" + blob.string() + "\""),
-            0);
-  prt_context* context = nullptr;
-  prt_asset* asset = nullptr;
-  ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
-  ASSERT_EQ(prt_asset_load_file(context, blob.string().c_str(), PRT_VALIDATE_FULL, &asset), PRT_OK);
+  const prt_test::CommandResult bake = run_bake(
+      scene_file() + " --param dual-paraboloid --cube 32 --keep-energy 0.9 -o " + quoted(blob));
+  ASSERT_EQ(bake.exit_code, 0) << bake.output;
+  const prt::ContextPtr context = prt::create_context().handle;
+  const auto [asset, loaded] =
+      prt::load_asset_file(context.get(), blob.string().c_str(), PRT_VALIDATE_FULL);
+  ASSERT_EQ(loaded, PRT_OK) << prt_context_last_message(context.get());
   prt_wavelet_info info = prt::sized<prt_wavelet_info>();
-  ASSERT_EQ(prt_wavelet_get_info(asset, &info), PRT_OK);
+  ASSERT_EQ(prt_wavelet_get_info(asset.get(), &info), PRT_OK);
   EXPECT_EQ(info.param, PRT_WAVELET_PARAM_DUAL_PARABOLOID);
   EXPECT_EQ(info.faces, 2u);
   EXPECT_EQ(info.quantizer, 1u);  // band, the default
-  prt_asset_destroy(asset);
-  prt_context_destroy(context);
 }
 
 TEST(WaveletBakeCommand, BadAndForeignOptionsFail) {
   const std::filesystem::path blob = temp_dir() / "bad.prtk";
-  const std::string out = " -o \"" + blob.string() + "\" 2>/dev/null";
+  const std::string out = " -o " + quoted(blob);
   for (const std::string& bad :
        {std::string("--cube 24"), std::string("--cube 256"), std::string("--cube 8"),
         std::string("--order 3"), std::string("--rays 64"), std::string("--bits 8"),
@@ -145,51 +126,21 @@ TEST(WaveletBakeCommand, BadAndForeignOptionsFail) {
         std::string("--samples 2"), std::string("--bounces 9"), std::string("--quantizer max"),
         std::string("--param sphere"), std::string("--albedo red")}) {
     std::filesystem::remove(blob);
-    EXPECT_NE(run_bake(scene_file() + " " + bad + out), 0) << bad;
+    EXPECT_NE(run_bake(scene_file() + " " + bad + out).exit_code, 0) << bad;
     EXPECT_FALSE(std::filesystem::exists(blob)) << bad;
   }
   // A technique the table does not have.
   std::filesystem::remove(blob);
-  EXPECT_NE(run_command("--quiet bake haar " + scene_file() + out).status, 0);
+  EXPECT_NE(run_command("--quiet bake haar " + scene_file() + out).exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(blob));
-}
-
-// Each flag's name as --help prints it: the long name, followed by a space, '=' or a newline.
-bool lists_flag(const std::string& help, const std::string& name) {
-  const std::string flag = name.substr(name.rfind(',') + 1);
-  for (std::size_t at = help.find(flag); at != std::string::npos; at = help.find(flag, at + 1)) {
-    const char next = at + flag.size() < help.size() ? help[at + flag.size()] : ' ';
-    if (next == ' ' || next == '=' || next == '\n') return true;
-  }
-  return false;
 }
 
 TEST(WaveletBakeCommand, HelpListsWaveletFlagsOnly) {
   const CommandResult help = run_command("bake wavelet --help");
-  ASSERT_EQ(help.status, 0) << help.output;
-  std::set<std::string> own;
-  const std::unique_ptr<TechniqueBake> bake = find_technique("wavelet")->make_bake();
-  const OptionList options = bake->options();  // holds pointers into `bake`
-  for (const OptionSpec& spec : options.specs()) {
-    own.insert(spec.name);
-    EXPECT_TRUE(lists_flag(help.output, spec.name)) << spec.name << "\n" << help.output;
-  }
+  ASSERT_EQ(help.exit_code, 0) << help.output;
+  const std::set<std::string> own =
+      prt_test::expect_help_lists_own_flags_only(help.output, "wavelet");
   EXPECT_TRUE(own.count("--cube") && own.count("--keep") && own.count("--quantizer"));
-  for (const char* shared : {"--albedo", "--seed", "--output", "--report", "SCENE"})
-    EXPECT_NE(help.output.find(shared), std::string::npos) << shared;
-  std::size_t foreign = 0;
-  for (const Technique* other : techniques()) {
-    if (std::string(other->name()) == "wavelet") continue;
-    const std::unique_ptr<TechniqueBake> other_bake = other->make_bake();
-    const OptionList other_options = other_bake->options();
-    for (const OptionSpec& spec : other_options.specs()) {
-      if (own.count(spec.name)) continue;
-      ++foreign;
-      EXPECT_FALSE(lists_flag(help.output, spec.name)) << spec.name << "\n" << help.output;
-    }
-  }
-  EXPECT_GT(foreign, 0u);  // sh's --order, --transfer, ...
-  EXPECT_FALSE(lists_flag(help.output, "--technique"));
 }
 
 // A quad of two triangles has four vertices: the self-check decodes each row once.
@@ -199,7 +150,7 @@ TEST(WaveletBakeCommand, SelfCheckOfAFourVertexMeshDecodesFourRows) {
                         "f 1//1 3//1 2//1\nf 2//1 3//1 4//1\n";
   const CommandResult r =
       run_command("bake wavelet " + quoted(obj) + " --cube 16 -o " + quoted(blob));
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("self-check passed: 4 decoded rows match"), std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("degenerate"), std::string::npos) << r.output;
@@ -212,7 +163,7 @@ TEST(WaveletBakeCommand, AllDegenerateMeshIsNamed) {
                         "f 1//1 2//1 3//1\nf 2//1 3//1 4//1\n";
   const CommandResult r =
       run_command("bake wavelet " + quoted(obj) + " --cube 16 -o " + quoted(blob));
-  EXPECT_EQ(r.status, 0) << r.output;  // a warning, not an error: the blob is valid
+  EXPECT_EQ(r.exit_code, 0) << r.output;  // a warning, not an error: the blob is valid
   EXPECT_NE(r.output.find("warning: " + obj.string() +
                           ": every triangle is degenerate (a repeated or out-of-range index, a "
                           "non-finite position or zero area): nothing casts shadows"),

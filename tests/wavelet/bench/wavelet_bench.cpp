@@ -38,6 +38,7 @@
 #include "prt/baker/context.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
 #include "prt/io/envmap.hpp"
+#include "support/bench_backends.hpp"
 #include "support/bench_embree.hpp"
 #include "support/bench_triad.hpp"
 #include "wavelet/wavelet_bench_asset.hpp"
@@ -46,15 +47,9 @@ namespace {
 
 // --- Figures kept for the summary (the last measurement of each benchmark) -----------------
 
-struct Backend {
-  const char* name;
-  prt_backend backend;
-  prt_simd_isa isa_limit;
-};
-constexpr Backend kBackends[] = {{"cpu", PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO},
-                                 {"simd-sse4.1", PRT_BACKEND_SIMD, PRT_SIMD_ISA_SSE41},
-                                 {"simd-avx2", PRT_BACKEND_SIMD, PRT_SIMD_ISA_AVX2}};
-constexpr int kBackendCount = 3;
+using prt_bench::Backend;
+using prt_bench::kBackendCount;
+using prt_bench::kBackends;
 
 struct LightFigure {
   uint32_t m = 0;
@@ -156,30 +151,18 @@ prt_bench::Rate shading_total(int backend, int threads) {
 
 // --- The asset ------------------------------------------------------------------------------
 
-// The transfer, its blob, and per backend a context and an asset borrowing the blob; made once.
+// The transfer, its blob, and per backend an asset borrowing the blob; made once.
 class Assets {
  public:
   ~Assets() {
     for (prt_asset* a : assets_) prt_asset_destroy(a);
-    for (prt_context* c : contexts_) prt_context_destroy(c);
   }
   // The asset for a backend, or null with `why` set when the backend cannot run here.
   prt_asset* get(int backend_index, std::string* why) {
+    prt_context* ctx = contexts_.usable(backend_index, why);
+    if (!ctx) return nullptr;
     const std::lock_guard<std::mutex> lock(mutex_);
     build();
-    const Backend& backend = kBackends[backend_index];
-    prt_context*& ctx = contexts_[backend_index];
-    if (!ctx) {
-      prt_context_desc desc = prt::sized<prt_context_desc>();
-      desc.simd_isa_limit = backend.isa_limit;
-      if (prt_context_create(&desc, &ctx) != PRT_OK) return nullptr;
-    }
-    prt_backend_info info = prt::sized<prt_backend_info>();
-    prt_backend_get_info(ctx, backend.backend, &info);
-    if (!info.usable || (backend.backend == PRT_BACKEND_SIMD && info.isa != backend.isa_limit)) {
-      *why = std::string(backend.name) + " not usable here: " + info.note;
-      return nullptr;
-    }
     prt_asset*& asset = assets_[backend_index];
     if (!asset && prt_asset_load_memory_borrowed(ctx, blob_.data(), blob_.size(), PRT_VALIDATE_FULL,
                                                  &asset) != PRT_OK) {
@@ -196,9 +179,9 @@ class Assets {
     g_figures.traffic = prt_bench::wavelet_traffic(t);
     blob_ = prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), t.vertices);
   }
+  prt_bench::BackendContexts contexts_;
   std::mutex mutex_;
   prt_test::Bytes blob_;
-  prt_context* contexts_[kBackendCount] = {};
   prt_asset* assets_[kBackendCount] = {};
 } g_assets;
 
@@ -230,25 +213,16 @@ void BM_Relight(benchmark::State& state, int backend_index) {
   }
   const uint32_t vertices = prt_bench::kBunnyVertices;
   const uint32_t threads = state.threads(), index = state.thread_index();
-  const uint32_t first = uint32_t(uint64_t(vertices) * index / threads);
-  const uint32_t count = uint32_t(uint64_t(vertices) * (index + 1) / threads) - first;
+  const auto [first, count] = prt_bench::thread_share(state, vertices);
   const std::vector<float> light = shading_light(asset);
   std::vector<float> out(std::size_t(count) * 3);
-  double seconds = 0.0, cpu_seconds = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = prt_bench::thread_cpu_seconds();
-    const prt_result r =
-        prt_wavelet_shade(asset, backend.backend, light.data(), nullptr, first, count, out.data());
-    cpu_seconds += prt_bench::thread_cpu_seconds() - cpu_start;
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (r != PRT_OK) {
-      state.SkipWithError(prt_result_string(r));
-      break;
-    }
-    benchmark::DoNotOptimize(out.data());
-    benchmark::ClobberMemory();
-  }
+  const auto [seconds, cpu_seconds] = prt_bench::time_shading(
+      state,
+      [&] {
+        return prt_wavelet_shade(asset, backend.backend, light.data(), nullptr, first, count,
+                                 out.data());
+      },
+      out.data());
   const double shaded = double(count) * double(state.iterations());
   state.SetItemsProcessed(static_cast<int64_t>(shaded));
   state.SetBytesProcessed(static_cast<int64_t>(shaded * g_figures.traffic.streamed_per_vertex));
@@ -271,7 +245,7 @@ void register_relight() {
     }
 }
 
-// The environment: the 1k beach map of the issue, or a synthetic sky with a sun.
+// The environment: the 1k beach map the accuracy test uses, or a synthetic sky with a sun.
 struct LatLong {
   std::vector<float> rgb;
   uint32_t width = 0, height = 0;

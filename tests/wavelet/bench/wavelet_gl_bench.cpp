@@ -26,9 +26,9 @@
 #include <thread>
 #include <vector>
 
+#include "support/bench_gl.hpp"
 #include "support/bench_triad.hpp"
 #include "wavelet/wavelet_bench_asset.hpp"
-#include "headless_gl.h"
 
 namespace {
 
@@ -43,24 +43,9 @@ struct Figures {
   double triad_cpu[3] = {0, 0, 0};  // the same by the CPU time of the triad's threads
   std::vector<GlFigure> gl;
   prt_bench::WaveletTraffic traffic;
-  std::string renderer, skipped;
 } g_figures;
 
-// The process's one headless context, made on first use (benchmarks run on the main thread).
-headless_gl* g_gl = nullptr;
-bool g_gl_tried = false;
-headless_gl* shared_gl() {
-  if (!g_gl_tried) {
-    g_gl_tried = true;
-    char error[1024];
-    g_gl = headless_gl_create(error, sizeof error);
-    if (g_gl)
-      g_figures.renderer = headless_gl_renderer(g_gl);
-    else
-      g_figures.skipped = std::string("no headless GL: ") + error;
-  }
-  return g_gl;
-}
+prt_bench::SharedGl g_gl;
 
 // The memory roofline (bench_triad.hpp), by wall clock and by CPU time.
 void BM_StreamTriad(benchmark::State& state) {
@@ -80,7 +65,7 @@ BENCHMARK(BM_StreamTriad)
 struct GlBench {
   prt_context* context = nullptr;
   prt_test::Bytes blob;
-  std::unique_ptr<prt_test::WvltAsset> loaded;
+  std::unique_ptr<prt_test::LoadedAsset> loaded;
   prt_gl_wavelet_shader* shader = nullptr;
   std::vector<float> light;
   GlBench() {
@@ -88,11 +73,11 @@ struct GlBench {
     const prt_test::WvltTransfer t = prt_bench::bake_shaped_transfer();
     g_figures.traffic = prt_bench::wavelet_traffic(t);
     blob = prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), t.vertices);
-    loaded = std::make_unique<prt_test::WvltAsset>(context, blob);
+    loaded = std::make_unique<prt_test::LoadedAsset>(context, blob);
     light = prt_test::wvlt_random_light(t.coefficients(), 3);
     if (loaded->result == PRT_OK &&
         prt_wavelet_prepare_light(loaded->asset, light.data(), light.data(), nullptr) == PRT_OK)
-      prt_gl_wavelet_create(context, loaded->asset, headless_gl_get_proc, shared_gl(), &shader);
+      prt_gl_wavelet_create(context, loaded->asset, headless_gl_get_proc, g_gl.get(), &shader);
   }
   ~GlBench() {
     prt_gl_wavelet_destroy(shader);
@@ -110,8 +95,8 @@ GlBench& bench() {
 }
 
 void BM_GlRelight(benchmark::State& state, bool readback) {
-  if (!shared_gl()) {
-    state.SkipWithError(g_figures.skipped.c_str());
+  if (!g_gl.get()) {
+    state.SkipWithError(g_gl.missing().c_str());
     return;
   }
   GlBench& b = bench();
@@ -166,12 +151,6 @@ BENCHMARK_CAPTURE(BM_GlRelight, with_readback, true)
     ->MinTime(0.5);
 
 // llvmpipe's thread count: LP_NUM_THREADS, else one per core (capped at 2 for the triad we have).
-int llvmpipe_threads() {
-  const char* env = std::getenv("LP_NUM_THREADS");
-  int threads = env ? std::atoi(env) : int(std::thread::hardware_concurrency());
-  return threads <= 1 ? 1 : 2;
-}
-
 void print_summary() {
   const Figures& f = g_figures;
   const prt_bench::WaveletTraffic& w = f.traffic;
@@ -180,17 +159,17 @@ void print_summary() {
       "  memory bandwidth (triad), by wall clock: %.2f GB/s on 1 thread, %.2f GB/s on 2; by CPU "
       "time: %.2f, %.2f\n",
       f.triad[1] * 1e-9, f.triad[2] * 1e-9, f.triad_cpu[1] * 1e-9, f.triad_cpu[2] * 1e-9);
-  if (!f.skipped.empty()) {
-    std::printf("  gl: %s\n", f.skipped.c_str());
+  if (!g_gl.missing().empty()) {
+    std::printf("  gl: %s\n", g_gl.missing().c_str());
     return;
   }
-  const int threads = llvmpipe_threads();
+  const int threads = prt_bench::llvmpipe_threads();
   std::printf(
       "\n  gl relight on %s: %u vertices, cube N = %u, %.0f pairs per vertex; per vertex %.0f B "
       "of rows + 12 B radiance (+ 12 B read back), %.0f B of light gathered; %% of the "
       "%d-thread triad\n",
-      f.renderer.c_str(), prt_bench::kBunnyVertices, prt_bench::kWaveletSize, w.pairs_per_vertex,
-      w.streamed_per_vertex, w.gathered_per_vertex, threads);
+      g_gl.renderer().c_str(), prt_bench::kBunnyVertices, prt_bench::kWaveletSize,
+      w.pairs_per_vertex, w.streamed_per_vertex, w.gathered_per_vertex, threads);
   std::printf("  paper (Ng et al. 2003 implementation report): %.0f frames/s for %.0f vertices\n",
               prt_bench::kPaperFps, prt_bench::kPaperVertices);
   // By wall clock (what a frame costs on this, possibly shared, machine) and per second of the
@@ -221,6 +200,6 @@ int main(int argc, char** argv) {
   benchmark::Shutdown();
   print_summary();
   g_bench.reset();
-  headless_gl_destroy(g_gl);
+  g_gl.destroy();
   return 0;
 }

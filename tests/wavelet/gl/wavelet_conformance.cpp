@@ -15,7 +15,7 @@ namespace prt_conformance {
 namespace {
 
 using prt_test::ContextPtr;
-using prt_test::WvltAsset;
+using prt_test::LoadedAsset;
 using prt_test::WvltPair;
 using prt_test::WvltTransfer;
 
@@ -107,8 +107,8 @@ void check_wavelet_backends(prt_wavelet_param param, uint32_t size) {
   const uint32_t part_first = 3, part_count = 997;
 
   // The scalar reference, checked against the exact sum first; it also prepares the light.
-  ContextPtr cpu_ctx(prt_test::make_context());
-  WvltAsset cpu_asset(cpu_ctx.get(), blob);
+  const prt::ContextPtr cpu_ctx = prt_test::limited_context();
+  LoadedAsset cpu_asset(cpu_ctx.get(), blob);
   ASSERT_EQ(cpu_asset.result, PRT_OK) << prt_context_last_message(cpu_ctx.get());
   std::vector<float> prepared(light.size());
   std::vector<uint8_t> zero_blocks(t.blocks());
@@ -124,7 +124,7 @@ void check_wavelet_backends(prt_wavelet_param param, uint32_t size) {
   const std::vector<double> reference(reference_rgb.begin(), reference_rgb.end());
 
   for_each_simd_isa(summary, [&](prt_context* ctx, const std::string& name) {
-    WvltAsset asset(ctx, blob);
+    LoadedAsset asset(ctx, blob);
     ASSERT_EQ(asset.result, PRT_OK);
     std::vector<float> rgb(3 * size_t(kVertices));
     const prt_result r = prt_wavelet_shade(asset.asset, PRT_BACKEND_SIMD, prepared.data(),
@@ -145,8 +145,8 @@ void check_wavelet_backends(prt_wavelet_param param, uint32_t size) {
 
   // GL (which walks every pair, mask or not): a sub-range on a fresh shader first, then all.
   {
-    ContextPtr ctx(prt_test::make_context());
-    WvltAsset asset(ctx.get(), blob);
+    const prt::ContextPtr ctx = prt_test::limited_context();
+    LoadedAsset asset(ctx.get(), blob);
     ASSERT_EQ(asset.result, PRT_OK);
     auto [shader, made] =
         prt::gl_wavelet_create(ctx.get(), asset.asset, headless_gl_get_proc, gl.gl);
@@ -156,6 +156,7 @@ void check_wavelet_backends(prt_wavelet_param param, uint32_t size) {
     ASSERT_EQ(prt_gl_wavelet_read(shader.get(), part_first, part_count, part.data()), PRT_OK);
     double worst = compare_wavelet("gl", t, truth, reference, part, part_first, part_count);
     ASSERT_EQ(prt_gl_wavelet_shade(shader.get(), prepared.data(), 0, kVertices), PRT_OK);
+    prt_test::expect_gl_state_restored("prt_gl_wavelet_shade");
     std::vector<float> rgb(3 * size_t(kVertices));
     ASSERT_EQ(prt_gl_wavelet_read(shader.get(), 0, kVertices, rgb.data()), PRT_OK);
     worst = std::max(worst, compare_wavelet("gl", t, truth, reference, rgb, 0, kVertices));

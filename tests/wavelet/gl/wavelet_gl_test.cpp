@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gl_create_checks.hpp"
 #include "support/gl_test_util.hpp"
 
 namespace {
@@ -19,12 +20,9 @@ namespace {
 using prt_test::Bytes;
 using prt_test::ContextPtr;
 using prt_test::CountingAllocator;
-using prt_test::gl_function;
-using prt_test::lying_loader;
+using prt_test::LoadedAsset;
 using prt_test::WaveletShaderPtr;
-using prt_test::WvltAsset;
 using prt_test::WvltTransfer;
-using namespace prt_test::gl_names;
 
 constexpr prt_wavelet_param kCube = PRT_WAVELET_PARAM_CUBE,
                             kParaboloid = PRT_WAVELET_PARAM_DUAL_PARABOLOID;
@@ -33,7 +31,7 @@ constexpr prt_wavelet_param kCube = PRT_WAVELET_PARAM_CUBE,
 struct GlAsset {
   WvltTransfer transfer;
   ContextPtr context;
-  std::unique_ptr<WvltAsset> loaded;
+  std::unique_ptr<LoadedAsset> loaded;
   GlAsset(const WvltTransfer& t, prt_backend limit = PRT_BACKEND_AUTO, bool zstd = false,
           const prt_allocator* allocator = nullptr, prt_validation validation = PRT_VALIDATE_FULL)
       : GlAsset(t, prt_test::wvlt_make_blob(prt_test::wvlt_encode(t), t.vertices, zstd), limit,
@@ -41,13 +39,9 @@ struct GlAsset {
   GlAsset(const WvltTransfer& t, const Bytes& blob, prt_backend limit,
           const prt_allocator* allocator, prt_validation validation)
       : transfer(t) {
-    prt_context_desc desc = prt::sized<prt_context_desc>();
-    desc.backend_limit = limit;
-    desc.allocator = allocator;
-    prt_context* ctx = nullptr;
-    EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
-    context.reset(ctx);
-    loaded = std::make_unique<WvltAsset>(ctx, blob, validation);
+    context = prt_test::limited_context(limit, PRT_SIMD_ISA_AUTO, allocator);
+    prt_context* ctx = context.get();
+    loaded = std::make_unique<LoadedAsset>(ctx, blob, validation);
     EXPECT_EQ(loaded->result, PRT_OK) << prt_context_last_message(ctx);
   }
   const prt_asset* asset() const { return loaded->asset; }
@@ -60,6 +54,17 @@ WaveletShaderPtr create_shader(const GlAsset& a, headless_gl* gl) {
             PRT_OK)
       << a.message();
   return WaveletShaderPtr(shader);
+}
+
+// Creation of the asset's shader, for the shared refusal checks (gl_create_checks.hpp).
+prt_test::TryCreateShader try_create(const GlAsset& a) {
+  return [&a](prt_context* context, prt_gl_loader_fn loader, void* user, bool* shader_null) {
+    prt_gl_wavelet_shader* shader = nullptr;
+    const prt_result r = prt_gl_wavelet_create(context, a.asset(), loader, user, &shader);
+    *shader_null = shader == nullptr;
+    prt_gl_wavelet_destroy(shader);
+    return r;
+  };
 }
 
 std::vector<float> read_all(prt_gl_wavelet_shader* shader, uint32_t vertices) {
@@ -196,53 +201,26 @@ TEST(GlWavelet, OutputBufferIsTightlyPackedRgbAndStateIsLeftUnbound) {
   const uint32_t buffer = prt_gl_wavelet_output_buffer(shader.get());
   ASSERT_NE(buffer, 0u);
 
-  // The indexed SSBO and uniform buffer bindings, the generic SSBO binding and the program are
-  // back to 0.
-  auto get_integerv = gl_function<GetIntegervFn>("glGetIntegerv");
-  auto get_integeri_v = gl_function<GetIntegeriVFn>("glGetIntegeri_v");
+  // The program and the buffer bindings the backend uses are back to 0.
   ASSERT_EQ(prt_gl_wavelet_shade(shader.get(), prt_test::wavelet_prepared(a.transfer, light).data(),
                                  0, n),
             PRT_OK);
-  int value = -1;
-  get_integerv(kGlCurrentProgram, &value);
-  EXPECT_EQ(value, 0);
-  get_integerv(kGlShaderStorageBufferBinding, &value);
-  EXPECT_EQ(value, 0);
-  for (unsigned i = 0; i < 4; ++i) {
-    value = -1;
-    get_integeri_v(kGlShaderStorageBufferBinding, i, &value);
-    EXPECT_EQ(value, 0) << "indexed SSBO binding " << i;
-    value = -1;
-    get_integeri_v(kGlUniformBufferBinding, i, &value);
-    EXPECT_EQ(value, 0) << "indexed uniform buffer binding " << i;
-  }
+  prt_test::expect_gl_bindings_cleared();
 
   // Read the whole buffer through GL itself: 12 bytes per vertex, RGB floats, nothing else.
-  auto bind = gl_function<BindBufferFn>("glBindBuffer");
-  auto get_sub_data = gl_function<GetBufferSubDataFn>("glGetBufferSubData");
-  auto get_parameter = gl_function<GetBufferParameterivFn>("glGetBufferParameteriv");
-  bind(kGlCopyReadBuffer, buffer);
   int size = 0;
-  get_parameter(kGlCopyReadBuffer, kGlBufferSize, &size);
+  const std::vector<float> rgb = prt_test::read_gl_buffer_floats(buffer, &size);
   ASSERT_EQ(size, int(12 * n));
-  std::vector<uint8_t> bytes(static_cast<size_t>(size));
-  get_sub_data(kGlCopyReadBuffer, 0, size, bytes.data());
-  bind(kGlCopyReadBuffer, 0);
-  std::vector<float> rgb(3 * size_t(n));
-  for (uint32_t v = 0; v < n; ++v)
-    for (uint32_t c = 0; c < 3; ++c) std::memcpy(&rgb[3 * v + c], &bytes[12 * v + 4 * c], 4);
   expect_matches(a.transfer, light, rgb.data(), 0, n);
   EXPECT_EQ(via_read, rgb) << "prt_gl_wavelet_read returns the buffer's bytes";
 }
 
 TEST(GlWavelet, ErrorsTheApplicationLeftPendingDoNotFailCreation) {
   PRT_REQUIRE_GL(gl);
-  auto bind = gl_function<BindBufferFn>("glBindBuffer");
-  auto get_error = gl_function<GetErrorFn>("glGetError");
-  bind(0x1234u, 0);  // not a buffer target: GL_INVALID_ENUM stays pending
+  prt_test::leave_gl_error_pending();
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 10, 5, 6));
   EXPECT_TRUE(create_shader(a, gl.gl));
-  EXPECT_EQ(get_error(), 0u) << "create cleared the pending error and raised none";
+  EXPECT_EQ(prt_test::take_gl_error(), 0u) << "create cleared the pending error and raised none";
 }
 
 TEST(GlWavelet, ManyVerticesSpanSeveralDispatches) {
@@ -269,8 +247,8 @@ TEST(GlWavelet, AssetWithoutVerticesShadesNothing) {
   required.required = true;
   w.add_section(prt_test::kWvltVPOS, nullptr, 0, 0, required);
   w.add_section(prt_test::kWvltWVLT, wvlt.data(), wvlt.size(), 0, required);
-  ContextPtr ctx(prt_test::make_context());
-  WvltAsset loaded(ctx.get(), w.finish());
+  const prt::ContextPtr ctx = prt_test::limited_context();
+  LoadedAsset loaded(ctx.get(), w.finish());
   ASSERT_EQ(loaded.result, PRT_OK) << prt_context_last_message(ctx.get());
   prt_gl_wavelet_shader* raw = nullptr;
   ASSERT_EQ(prt_gl_wavelet_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &raw),
@@ -285,15 +263,8 @@ TEST(GlWavelet, AssetWithoutVerticesShadesNothing) {
 
 TEST(GlWavelet, NoWvltSectionIsNotFound) {
   PRT_REQUIRE_GL(gl);
-  prt::format::BlobWriter w;
-  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  const uint32_t tri[3] = {0, 1, 2};
-  prt::format::SectionOptions required;
-  required.required = true;
-  w.add_section(prt_test::kWvltVPOS, positions, sizeof positions, 3, required);
-  w.add_section(prt_test::kWvltTRIS, tri, sizeof tri, 1, required);
-  ContextPtr ctx(prt_test::make_context());
-  WvltAsset loaded(ctx.get(), w.finish());
+  const prt::ContextPtr ctx = prt_test::limited_context();
+  LoadedAsset loaded(ctx.get(), prt_test::mesh_only_blob());
   ASSERT_EQ(loaded.result, PRT_OK);
   prt_gl_wavelet_shader* shader = reinterpret_cast<prt_gl_wavelet_shader*>(&loaded);
   EXPECT_EQ(prt_gl_wavelet_create(ctx.get(), loaded.asset, headless_gl_get_proc, gl.gl, &shader),
@@ -327,50 +298,31 @@ TEST(GlWavelet, CorruptRowsAtQuickValidationStayInBounds) {
   // Rows untouched by the corruption still shade exactly.
   expect_matches(t, light, rgb.data() + 3 * 1, 1, 2);
   // Full validation rejects the same bytes.
-  ContextPtr ctx(prt_test::make_context());
-  WvltAsset full(ctx.get(), blob, PRT_VALIDATE_FULL);
+  const prt::ContextPtr ctx = prt_test::limited_context();
+  LoadedAsset full(ctx.get(), blob, PRT_VALIDATE_FULL);
   EXPECT_NE(full.result, PRT_OK);
 }
 
 TEST(GlWavelet, MissingEntryPointIsUnsupportedAndNamed) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1));
-  for (const char* name : {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData",
-                           "glProgramUniform1ui", "glBufferSubData", "glGetError"}) {
-    prt_test::LoaderOverride loader;
-    loader.gl = gl.gl;
-    loader.hidden = name;
-    prt_gl_wavelet_shader* shader = nullptr;
-    EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), prt_test::LoaderOverride::get,
-                                    &loader, &shader),
-              PRT_ERROR_UNSUPPORTED_BACKEND)
-        << name;
-    EXPECT_EQ(shader, nullptr);
-    EXPECT_NE(a.message().find(name), std::string::npos) << a.message();
-  }
+  prt_test::expect_refused_without_entry_points(
+      try_create(a), a.context.get(), gl.gl,
+      {"glDispatchCompute", "glMemoryBarrier", "glGetBufferSubData", "glProgramUniform1ui",
+       "glBufferSubData", "glGetError"});
 }
 
 TEST(GlWavelet, ContextOlderThan43IsUnsupported) {
   PRT_REQUIRE_GL(gl);
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 8, 4, 1));
-  prt_gl_wavelet_shader* shader = nullptr;
-  char lie[] = "version";
-  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("3.3"), std::string::npos) << a.message();
+  prt_test::expect_refused_below_gl_43(try_create(a), a.context.get());
 }
 
 TEST(GlWavelet, AssetLargerThanTheSsboLimitIsUnsupported) {
   PRT_REQUIRE_GL(gl);
   // The light alone is 16 * 1536 bytes > 1024.
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 4, 4, 1));
-  prt_gl_wavelet_shader* shader = nullptr;
-  char lie[] = "ssbo";
-  EXPECT_EQ(prt_gl_wavelet_create(a.context.get(), a.asset(), lying_loader, lie, &shader),
-            PRT_ERROR_UNSUPPORTED_BACKEND);
-  EXPECT_EQ(shader, nullptr);
-  EXPECT_NE(a.message().find("1024"), std::string::npos) << a.message();
+  prt_test::expect_refused_above_ssbo_limit(try_create(a), a.context.get());
 }
 
 TEST(GlWavelet, BackendLimitBelowGlIsUnsupported) {
@@ -435,7 +387,7 @@ TEST(GlWavelet, NullArguments) {
 TEST(GlWavelet, ShaderComesFromTheAssetsAllocator) {
   PRT_REQUIRE_GL(gl);
   CountingAllocator counter;
-  const prt_allocator allocator = {CountingAllocator::alloc, CountingAllocator::free, &counter};
+  const prt_allocator allocator = counter.api();
   const GlAsset a(prt_test::wvlt_random(kCube, 16, 40, 30, 4), PRT_BACKEND_AUTO, false, &allocator);
   const int before = counter.live;
   prt_gl_wavelet_shader* shader = nullptr;

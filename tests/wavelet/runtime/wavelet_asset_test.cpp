@@ -53,13 +53,13 @@ class WaveletAsset : public ::testing::Test {
  protected:
   Context ctx;
 
-  std::vector<float> prepare(const WvltAsset& a, const std::vector<float>& light) {
+  std::vector<float> prepare(const LoadedAsset& a, const std::vector<float>& light) {
     std::vector<float> prepared(light.size());
     EXPECT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data(), nullptr), PRT_OK);
     return prepared;
   }
 
-  std::vector<float> shade_all(const WvltAsset& a, const WvltTransfer& t,
+  std::vector<float> shade_all(const LoadedAsset& a, const WvltTransfer& t,
                                const std::vector<float>& light) {
     const std::vector<float> prepared = prepare(a, light);
     std::vector<float> rgb(3 * size_t(t.vertices), -1.0f);
@@ -71,7 +71,7 @@ class WaveletAsset : public ::testing::Test {
 
   // Loads, checks the info, every decoded row (= q bs vs) and the shading of every vertex.
   void expect_round_trip(const WvltTransfer& t, bool zstd = false) {
-    WvltAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, zstd));
+    LoadedAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices, zstd));
     ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
     prt_wavelet_info info = prt::sized<prt_wavelet_info>();
     ASSERT_EQ(prt_wavelet_get_info(a.asset, &info), PRT_OK);
@@ -101,7 +101,7 @@ class WaveletAsset : public ::testing::Test {
   }
 };
 
-// THE DONE-WHEN TEST: a known row found in the blob's bytes by §7.2's offsets and decoded here.
+// The layout itself: a known row found in the blob's bytes by §7.2's offsets and decoded here.
 TEST_F(WaveletAsset, KnownRowDecodesByHandFromTheBlobBytes) {
   // Cube, S = 16: F = 6, 6 * 256 = 1536 coefficients, B = 6 blocks, log2 S + 1 = 5 bands/face.
   const uint32_t S = 16, V = 3, F = 6, B = 6, bands = 30;
@@ -152,7 +152,7 @@ TEST_F(WaveletAsset, KnownRowDecodesByHandFromTheBlobBytes) {
   EXPECT_EQ(at, pairs + 2 * size_t(end));
   EXPECT_EQ(decoded, known);
 
-  WvltAsset a(ctx.ctx, blob);
+  LoadedAsset a(ctx.ctx, blob);
   ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
   std::vector<float> row(3 * size_t(F) * S * S);
   ASSERT_EQ(prt_wavelet_decode_transfer(a.asset, 1, 1, row.data()), PRT_OK);
@@ -218,7 +218,7 @@ TEST_F(WaveletAsset, RowWithAllKeptValuesEqual) {
   const WvltTransfer t = wvlt_from_dense(PRT_WAVELET_PARAM_DUAL_PARABOLOID, S, dense, bs, vs);
   expect_round_trip(t);
   // Under a constant light every term is equal: 127 L vs times the count, exactly in double.
-  WvltAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), 1));
+  LoadedAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), 1));
   ASSERT_EQ(a.result, PRT_OK);
   std::vector<float> light(4 * size_t(t.coefficients()), 0.5f);
   const std::vector<float> rgb = shade_all(a, t, light);
@@ -231,7 +231,7 @@ TEST_F(WaveletAsset, AllZeroRowShadesToExactlyZero) {
   WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, 4, 50, 6);
   t.rows[2].clear();  // no pairs: every block count 0, rs[3] = rs[2]
   t.rows[0].clear();
-  WvltAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  LoadedAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
   ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx.ctx);
   std::vector<float> light(4 * size_t(t.coefficients()), 1e30f);
   const std::vector<float> rgb = shade_all(a, t, light);
@@ -247,7 +247,7 @@ TEST_F(WaveletAsset, AllZeroRowShadesToExactlyZero) {
 
 TEST_F(WaveletAsset, PrepareLightFoldsBandScalesInPlace) {
   const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 32, 2, 10, 7);
-  WvltAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  LoadedAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
   ASSERT_EQ(a.result, PRT_OK);
   std::vector<float> light = wvlt_random_light(t.coefficients(), 8);
   for (size_t j = 0; j < t.coefficients(); ++j) light[4 * j + 3] = 7.0f;  // padding is ignored
@@ -266,7 +266,7 @@ TEST_F(WaveletAsset, ZeroLightBlocksAreSkippedExactly) {
 
 TEST_F(WaveletAsset, VertexRangesAndThreadsGiveTheSameBits) {
   const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, 64, 120, 9);
-  WvltAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  LoadedAsset a(ctx.ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light = wvlt_random_light(t.coefficients(), 10);
   const std::vector<float> prepared = prepare(a, light);
@@ -309,7 +309,7 @@ TEST_F(WaveletAsset, AssetWithoutWvltIsNotFound) {
   const uint32_t tri[3] = {0, 1, 2};
   w.add_section(kWvltVPOS, positions, sizeof positions, 3);
   w.add_section(kWvltTRIS, tri, sizeof tri, 1);
-  WvltAsset a(ctx.ctx, w.finish());
+  LoadedAsset a(ctx.ctx, w.finish());
   ASSERT_EQ(a.result, PRT_OK);
   prt_wavelet_info info = prt::sized<prt_wavelet_info>();
   EXPECT_EQ(prt_wavelet_get_info(a.asset, &info), PRT_ERROR_NOT_FOUND);
@@ -443,7 +443,7 @@ TEST_P(WaveletCorruption, FullRejectsQuickStaysInBounds) {
         << msg;
     EXPECT_NE(std::string(msg).find(c.message), std::string::npos) << msg;
 
-    WvltAsset a(ctx.ctx, blob, PRT_VALIDATE_QUICK);
+    LoadedAsset a(ctx.ctx, blob, PRT_VALIDATE_QUICK);
     if (c.quick_load_fails) {
       EXPECT_EQ(a.result, PRT_ERROR_CORRUPT);
       EXPECT_EQ(a.asset, nullptr);

@@ -19,31 +19,14 @@
 #include <thread>
 #include <vector>
 
+#include "support/limited_context.hpp"
+#include "support/simd_dispatch.hpp"
 #include "wavelet/wavelet_blob_test_util.hpp"
 #include "wavelet/wavelet_skip_check.hpp"
 
 namespace {
 
 using namespace prt_test;
-
-// A context with the given limits (contexts ignore the environment by default).
-struct LimitedContext {
-  prt_context* ctx = nullptr;
-  LimitedContext(prt_backend backend_limit, prt_simd_isa isa_limit) {
-    prt_context_desc desc = prt::sized<prt_context_desc>();
-    desc.backend_limit = backend_limit;
-    desc.simd_isa_limit = isa_limit;
-    EXPECT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
-  }
-  ~LimitedContext() { prt_context_destroy(ctx); }
-  LimitedContext(const LimitedContext&) = delete;
-  LimitedContext& operator=(const LimitedContext&) = delete;
-};
-
-bool simd_usable(prt_context* ctx) {
-  prt_backend_info info = prt::sized<prt_backend_info>();
-  return prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info) == PRT_OK && info.usable;
-}
 
 // Higham's gamma_n = n u / (1 - n u), u = 2^-24.
 double gamma_n(double n) {
@@ -66,27 +49,12 @@ double simd_bound(const WvltTransfer& t, const std::vector<float>& prepared, uin
   return 2.0 * gamma_n(n + 1.0) * double(t.vertex_scale[3 * size_t(v) + c]) * magnitude;
 }
 
-std::string isa_test_name(const ::testing::TestParamInfo<prt_simd_isa>& info) {
-  return info.param == PRT_SIMD_ISA_AVX2 ? "avx2" : "sse41";
-}
-
 // One instruction set, forced by the context's ISA limit; skipped where the CPU lacks it.
-class WaveletSimd : public ::testing::TestWithParam<prt_simd_isa> {
+class WaveletSimd : public SimdIsaTest {
  protected:
-  LimitedContext limited{PRT_BACKEND_AUTO, GetParam()};
-  prt_context* ctx = limited.ctx;
-
-  void SetUp() override {
-    prt_backend_info info = prt::sized<prt_backend_info>();
-    ASSERT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info), PRT_OK);
-    if (!info.usable || info.isa != GetParam())
-      GTEST_SKIP() << "this CPU lacks " << prt_simd_isa_name(GetParam()) << " (" << info.note
-                   << ")";
-  }
-
   // SIMD vs scalar within simd_bound, and SIMD vs the double reference (unprepared light).
   void expect_simd_matches(const WvltTransfer& t, uint32_t light_seed) {
-    WvltAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+    LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
     ASSERT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx);
     const std::vector<float> light = wvlt_random_light(t.coefficients(), light_seed);
     std::vector<float> prepared(light.size());
@@ -142,7 +110,7 @@ TEST_P(WaveletSimd, ZeroLightBlocksAreSkippedExactly) {
 TEST_P(WaveletSimd, AllZeroRowIsExactlyZero) {
   WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, 3, 20, 19);
   t.rows[1].clear();
-  WvltAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light(4 * size_t(t.coefficients()), 3e30f);
   std::vector<float> rgb(9, -1.0f);
@@ -154,7 +122,7 @@ TEST_P(WaveletSimd, AllZeroRowIsExactlyZero) {
 
 TEST_P(WaveletSimd, RangesAndThreadsGiveTheSameBits) {
   const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 32, 96, 300, 20);
-  WvltAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light = wvlt_random_light(t.coefficients(), 21);
   std::vector<float> whole(3 * size_t(t.vertices)), threaded(whole.size()), part(3 * 7 + 1, -2.0f);
@@ -185,7 +153,7 @@ TEST_P(WaveletSimd, CorruptRowAtQuickValidationIsReported) {
   // Vertex 4's last block claims 200 more pairs than the section holds after it.
   const size_t at = wvlt_offsets(t).counts + 2 * (size_t(4) * t.blocks() + t.blocks() - 1);
   put_u16(section, at, uint16_t(prt_le_load_u16(section.data() + at) + 200));
-  WvltAsset a(ctx, wvlt_make_blob(section, t.vertices), PRT_VALIDATE_QUICK);
+  LoadedAsset a(ctx, wvlt_make_blob(section, t.vertices), PRT_VALIDATE_QUICK);
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light = wvlt_random_light(t.coefficients(), 23);
   std::vector<float> rgb(15);
@@ -195,8 +163,7 @@ TEST_P(WaveletSimd, CorruptRowAtQuickValidationIsReported) {
             PRT_ERROR_CORRUPT);
 }
 
-INSTANTIATE_TEST_SUITE_P(Isa, WaveletSimd, ::testing::Values(PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2),
-                         isa_test_name);
+INSTANTIATE_TEST_SUITE_P(Isa, WaveletSimd, kSimdIsas, isa_test_name);
 
 // --- Dispatch -------------------------------------------------------------------------------
 
@@ -206,68 +173,49 @@ struct Scene {
   Bytes blob = wvlt_make_blob(wvlt_encode(t), t.vertices);
 };
 
-std::vector<float> shade_on(const WvltAsset& a, prt_backend backend, const Scene& s,
-                            prt_result expected = PRT_OK) {
-  std::vector<float> out(3 * size_t(s.t.vertices));
-  EXPECT_EQ(
-      prt_wavelet_shade(a.asset, backend, s.light.data(), nullptr, 0, s.t.vertices, out.data()),
-      expected)
-      << prt_backend_name(backend);
-  return out;
+// Shades all of the scene's asset on a backend.
+ShadeAll shade_all(const Scene& s) {
+  return [&s](const prt_asset* asset, prt_backend backend, std::vector<float>* out) {
+    out->assign(3 * size_t(s.t.vertices), 0.0f);
+    return prt_wavelet_shade(asset, backend, s.light.data(), nullptr, 0, s.t.vertices, out->data());
+  };
 }
 
 TEST(WaveletSimdDispatch, AutoPicksSimdWhenUsable) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
-  if (!simd_usable(limited.ctx)) GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
+  if (!simd_usable(limited_context().get()))
+    GTEST_SKIP() << "SIMD not usable here (compiled out or no SSE4.1)";
   const Scene s;
-  WvltAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  const std::vector<float> simd = shade_on(a, PRT_BACKEND_SIMD, s);
-  EXPECT_EQ(std::memcmp(automatic.data(), simd.data(), simd.size() * 4), 0);
+  expect_auto_shades_as_simd(s.blob, shade_all(s));
 }
 
 TEST(WaveletSimdDispatch, ContextLimitedToCpuRefusesSimd) {
-  LimitedContext limited(PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  WvltAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  std::vector<float> reference(automatic.size());
-  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, s.light.data(), nullptr, 0, s.t.vertices,
-                              reference.data()),
-            PRT_OK);
-  EXPECT_EQ(std::memcmp(automatic.data(), reference.data(), reference.size() * 4), 0);
+  expect_cpu_limit_refuses_simd(s.blob, shade_all(s));
 }
 
 TEST(WaveletSimdDispatch, IsaLimitNoneRefusesSimd) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_NONE);
   const Scene s;
-  WvltAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
+  expect_isa_limit_none_refuses_simd(s.blob, shade_all(s));
 }
 
 TEST(WaveletSimdDispatch, CompiledOutSimdIsUnsupported) {
   if (PRT_TEST_SIMD_COMPILED) GTEST_SKIP() << "SIMD is compiled in (see the `scalar` preset)";
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  WvltAsset a(limited.ctx, s.blob);
-  ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_SIMD, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  const std::vector<float> automatic = shade_on(a, PRT_BACKEND_AUTO, s);
-  const std::vector<float> cpu = shade_on(a, PRT_BACKEND_CPU, s);
-  EXPECT_EQ(std::memcmp(automatic.data(), cpu.data(), cpu.size() * 4), 0);
+  expect_compiled_out_simd_unsupported(s.blob, shade_all(s));
 }
 
 TEST(WaveletSimdDispatch, GlAndUnknownBackendsAreNotShadedHere) {
-  LimitedContext limited(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AUTO);
   const Scene s;
-  WvltAsset a(limited.ctx, s.blob);
+  expect_gl_not_shaded_here(s.blob, shade_all(s));
+  // A value outside the enum, called directly (a std::function would load it as a prt_backend,
+  // which UBSan rightly reports).
+  const prt::ContextPtr context = limited_context();
+  LoadedAsset a(context.get(), s.blob);
   ASSERT_EQ(a.result, PRT_OK);
-  shade_on(a, PRT_BACKEND_GL, s, PRT_ERROR_UNSUPPORTED_BACKEND);
-  shade_on(a, prt_backend(77), s, PRT_ERROR_INVALID_ARGUMENT);
+  std::vector<float> out(3 * size_t(s.t.vertices));
+  EXPECT_EQ(prt_wavelet_shade(a.asset, prt_backend(77), s.light.data(), nullptr, 0, s.t.vertices,
+                              out.data()),
+            PRT_ERROR_INVALID_ARGUMENT);
 }
 
 // --- Timing (manual) ------------------------------------------------------------------------
@@ -310,9 +258,9 @@ void time_backends(const char* title, const WvltTransfer& t) {
       title, frame_bytes * 1e-6, 16e-3 * t.coefficients(), triad * 1e-9, 1e3 * frame_bytes / triad);
   const prt_simd_isa isas[] = {PRT_SIMD_ISA_NONE, PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2};
   for (prt_simd_isa isa : isas) {
-    LimitedContext limited(PRT_BACKEND_AUTO, isa);
-    if (isa != PRT_SIMD_ISA_NONE && !simd_usable(limited.ctx)) continue;
-    WvltAsset a(limited.ctx, blob);
+    const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, isa);
+    if (isa != PRT_SIMD_ISA_NONE && !simd_usable(limited.get())) continue;
+    LoadedAsset a(limited.get(), blob);
     ASSERT_EQ(a.result, PRT_OK);
     std::vector<float> prepared(light.size()), rgb(3 * size_t(t.vertices));
     ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), prepared.data(), nullptr), PRT_OK);
@@ -331,7 +279,7 @@ void time_backends(const char* title, const WvltTransfer& t) {
   }
 }
 
-// The bunny-sized case of the issue: 36k vertices, 1000 non-zeros each, N = 64 (random indices:
+// A bunny-sized case: 36k vertices, 1000 non-zeros each, N = 64 (random indices:
 // every light load a cache miss in L1), then the same pairs over an N = 16 cube whose 24 KB light
 // stays in L1, which shows what the scattered light loads cost.
 TEST(WaveletSimdTiming, DISABLED_BunnySizedTiming) {

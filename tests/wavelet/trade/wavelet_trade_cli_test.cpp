@@ -4,74 +4,25 @@
 // but the timings, the float/quantised relation, and clear errors for bad input.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <set>
-#include <sstream>
 #include <string>
-#include <vector>
+
+#include "support/trade_cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using prt_test::CommandResult;
+using Table = prt_test::CsvTable;
 
-CommandResult run_bake(const std::string& arguments, const fs::path& log) {
-  const std::string command =
-      std::string("\"") + PRT_BAKE_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
-  CommandResult r;
-  r.status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.output = text.str();
-  return r;
-}
-
-using Table = std::vector<std::map<std::string, std::string>>;
-
-Table read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::string> header;
-  Table rows;
-  auto split = [](const std::string& text) {
-    std::vector<std::string> fields;
-    std::stringstream s(text);
-    std::string field;
-    while (std::getline(s, field, ',')) fields.push_back(field);
-    if (!text.empty() && text.back() == ',') fields.push_back("");
-    return fields;
-  };
-  if (std::getline(in, line)) header = split(line);
-  while (std::getline(in, line)) {
-    const std::vector<std::string> fields = split(line);
-    EXPECT_EQ(fields.size(), header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < fields.size() && i < header.size(); ++i) row[header[i]] = fields[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-class WaveletTradeCli : public ::testing::Test {
+class WaveletTradeCli : public prt_test::TradeCliTest {
  protected:
   void SetUp() override {
-    // One folder per test: ctest may run the tests of this fixture at the same time.
-    dir_ = fs::path(::testing::TempDir()) /
-           (std::string("prt_wavelet_trade_cli_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    const CommandResult demo = run_bake("demo-scene \"" + dir_.string() + "\"", dir_ / "demo.log");
-    ASSERT_EQ(demo.status, 0) << demo.output;
-    sky_ = (dir_ / "demo_sky.hdr").string();
+    prt_test::TradeCliTest::SetUp();
+    if (HasFatalFailure()) return;
     scene_ = (dir_ / "box_on_ground.obj").string();
     write_box_on_ground(scene_);
   }
@@ -102,15 +53,14 @@ class WaveletTradeCli : public ::testing::Test {
       obj << "f " << o + 1 + f[0] << ' ' << o + 1 + f[2] << ' ' << o + 1 + f[3] << "\n";
     }
   }
-  std::string trade_arguments(const std::string& out, int threads) const {
-    return "--threads " + std::to_string(threads) + " trade wavelet \"" + scene_ + "\" --env \"" +
-           sky_ + "\" --out-dir \"" + out + "\" --cache-dir \"" + (dir_ / "cache").string() +
-           "\" --sizes 16 --base-size 16 --keeps 20,64 --base-keep 64 --light-terms 0,all"
+  std::string trade_arguments(const std::string& out, int threads) const override {
+    return "--threads " + std::to_string(threads) + " trade wavelet " + quoted(scene_) + " --env " +
+           quoted(sky_) + " --out-dir " + quoted(out) + " --cache-dir " + quoted(dir_ / "cache") +
+           " --sizes 16 --base-size 16 --keeps 20,64 --base-keep 64 --light-terms 0,all"
            " --paraboloid-sizes 16 --sh-orders 2,3 --sh-bits 8,16 --sh-rays 16 --ref-spp 16"
            " --frames 2 --albedo 0.8,0.8,0.8";
   }
-  fs::path dir_;
-  std::string scene_, sky_;
+  std::string scene_;
 };
 
 std::string key(const std::map<std::string, std::string>& row) {
@@ -119,29 +69,19 @@ std::string key(const std::map<std::string, std::string>& row) {
 }
 
 TEST_F(WaveletTradeCli, SweepsCachesAndRepeatsItself) {
-  const CommandResult first = run_bake(trade_arguments((dir_ / "a").string(), 2), dir_ / "a.log");
-  ASSERT_EQ(first.status, 0) << first.output;
-  EXPECT_NE(first.output.find("rendering"), std::string::npos) << first.output;
-  const Table a = read_csv(dir_ / "a" / "trade.csv");
-  EXPECT_TRUE(fs::exists(dir_ / "a" / "trade.md"));
+  const Table a = run_trade("a", 2, false);
+  ASSERT_FALSE(a.empty());
 
   // Cube 16 (96 blocks... 6 of 256): N sweep at K = 64 (default_wavelet_keep's floor), K sweep
   // {20, 64} x {float, vertex, band}, M sweep {0, all} at K 64 band, param at 16 (cube and
   // paraboloid); sh orders {2, 3} x {8, 16} bits. One map.
   // Every setting shades better than black (relative RMSE 1); more kept coefficients, more light
   // detail terms and a higher sh order are closer to the reference, by far more than its noise.
-  std::map<std::string, std::string> sweeps;
-  std::map<std::string, double> error;
-  for (const auto& row : a) {
-    sweeps[key(row)] = row.at("sweeps");
-    error[key(row)] = std::stod(row.at("rel_rmse"));
-    EXPECT_TRUE(error[key(row)] > 0.0 && error[key(row)] < 1.0)
-        << key(row) << ": " << error[key(row)];
-  }
-  EXPECT_LT(error["wavelet/cube/16/64/band/all/"], error["wavelet/cube/16/20/band/all/"]);
-  EXPECT_LT(error["wavelet/cube/16/64/float/all/"], error["wavelet/cube/16/20/float/all/"]);
-  EXPECT_LT(error["wavelet/cube/16/64/band/all/"], error["wavelet/cube/16/64/band/0/"]);
-  EXPECT_LT(error["sh////8-bit grey//3"], error["sh////8-bit grey//2"]);
+  const auto [sweeps, error] = swept(a, key);
+  EXPECT_LT(error.at("wavelet/cube/16/64/band/all/"), error.at("wavelet/cube/16/20/band/all/"));
+  EXPECT_LT(error.at("wavelet/cube/16/64/float/all/"), error.at("wavelet/cube/16/20/float/all/"));
+  EXPECT_LT(error.at("wavelet/cube/16/64/band/all/"), error.at("wavelet/cube/16/64/band/0/"));
+  EXPECT_LT(error.at("sh////8-bit grey//3"), error.at("sh////8-bit grey//2"));
   const std::map<std::string, std::string> expected = {
       {"wavelet/cube/16/20/float/all/", "K"},  {"wavelet/cube/16/20/vertex/all/", "K"},
       {"wavelet/cube/16/20/band/all/", "K"},   {"wavelet/cube/16/64/float/all/", "K"},
@@ -176,40 +116,30 @@ TEST_F(WaveletTradeCli, SweepsCachesAndRepeatsItself) {
   }
 
   // Second run, on one thread: references from the cache, the same numbers but for the timings.
-  const CommandResult second = run_bake(trade_arguments((dir_ / "b").string(), 1), dir_ / "b.log");
-  ASSERT_EQ(second.status, 0) << second.output;
-  EXPECT_EQ(second.output.find("rendering"), std::string::npos) << second.output;
-  EXPECT_NE(second.output.find("from the cache"), std::string::npos) << second.output;
-  const Table b = read_csv(dir_ / "b" / "trade.csv");
-  ASSERT_EQ(a.size(), b.size());
-  const std::set<std::string> timings = {"shade_cpu_ms", "shade_simd_ms", "light_update_ms",
-                                         "bake_seconds", "rays_per_second"};
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    for (const auto& [column, value] : a[i]) {
-      if (!timings.count(column)) {
-        EXPECT_EQ(value, b[i].at(column)) << column;
-      }
-    }
-  }
+  const Table b = run_trade("b", 1, true);
+  ASSERT_FALSE(b.empty());
+  expect_same_but_timings(
+      a, b,
+      {"shade_cpu_ms", "shade_simd_ms", "light_update_ms", "bake_seconds", "rays_per_second"});
 }
 
 TEST_F(WaveletTradeCli, BadInputGivesAClearError) {
   const std::string base =
-      "trade wavelet \"" + scene_ + "\" --out-dir \"" + (dir_ / "x").string() + "\" ";
+      "trade wavelet " + quoted(scene_) + " --out-dir " + quoted(dir_ / "x") + " ";
   const CommandResult missing_map = run_bake(base + "--env nothere.hdr", dir_ / "x.log");
-  EXPECT_NE(missing_map.status, 0);
+  EXPECT_NE(missing_map.exit_code, 0);
   EXPECT_NE(missing_map.output.find("nothere.hdr"), std::string::npos) << missing_map.output;
   const CommandResult bad_size =
-      run_bake(base + "--env \"" + sky_ + "\" --sizes 16,48", dir_ / "y.log");
-  EXPECT_NE(bad_size.status, 0);
+      run_bake(base + "--env " + quoted(sky_) + " --sizes 16,48", dir_ / "y.log");
+  EXPECT_NE(bad_size.exit_code, 0);
   EXPECT_NE(bad_size.output.find("--sizes: 48"), std::string::npos) << bad_size.output;
   const CommandResult bad_terms =
-      run_bake(base + "--env \"" + sky_ + "\" --light-terms 10,most", dir_ / "z.log");
-  EXPECT_NE(bad_terms.status, 0);
+      run_bake(base + "--env " + quoted(sky_) + " --light-terms 10,most", dir_ / "z.log");
+  EXPECT_NE(bad_terms.exit_code, 0);
   EXPECT_NE(bad_terms.output.find("'most'"), std::string::npos) << bad_terms.output;
   const CommandResult foreign =
-      run_bake(base + "--env \"" + sky_ + "\" --orders 2,3", dir_ / "w.log");
-  EXPECT_NE(foreign.status, 0);
+      run_bake(base + "--env " + quoted(sky_) + " --orders 2,3", dir_ / "w.log");
+  EXPECT_NE(foreign.exit_code, 0);
   EXPECT_NE(foreign.output.find("--orders"), std::string::npos) << foreign.output;
   EXPECT_FALSE(fs::exists(dir_ / "x" / "trade.csv"));
 }
@@ -218,7 +148,7 @@ TEST_F(WaveletTradeCli, BadInputGivesAClearError) {
 // samples, 10 frames), not sh's own trade flags.
 TEST_F(WaveletTradeCli, HelpListsWaveletSweepFlagsOnly) {
   const CommandResult help = run_bake("trade wavelet --help", dir_ / "help.log");
-  ASSERT_EQ(help.status, 0) << help.output;
+  ASSERT_EQ(help.exit_code, 0) << help.output;
   for (const char* flag : {"--sizes",          "--base-size",
                            "--keeps",          "--base-keep",
                            "--light-terms",    "--paraboloid-sizes",
