@@ -7,7 +7,8 @@
 # (formats/src/<technique>/, per function) and of the runtime's technique files (per file), from
 # libFuzzer's -print_coverage=1; the full coverage listing is kept in BUILD_DIR/fuzz/coverage.txt.
 # Exits non-zero if the fuzzer finds a crash, an over-read, undefined behaviour or a leak, or if
-# the coverage of the checkers is missing from its report.
+# a technique's checker (a folder of formats/src/ other than mesh/) has no covered edge after the
+# run: its golden blobs are missing from the seeds or never reach it.
 set -euo pipefail
 if [ $# -ne 2 ]; then
   echo "usage: $0 BUILD_DIR SECONDS" >&2
@@ -47,14 +48,17 @@ set -e
 # COVERED_FUNC: hits: N edges: covered/total NAME FILE:LINE (UNCOVERED_FUNC alike, 0 covered).
 # Static helpers inlined into a function count as its edges. The totals include the blocks of
 # the sanitizers' checks, which a run without undefined behaviour never enters.
+techniques=$(cd "$source_dir/formats/src" && find . -mindepth 1 -maxdepth 1 -type d ! -name mesh \
+  -printf '%f\n' | sort | paste -sd' ')
 echo "run_fuzz: edges covered by the golden blobs alone, and after the run"
-awk '
+awk -v techniques="$techniques" '
   /^(COVERED|UNCOVERED)_FUNC:/ {
     split($5, e, "/")
     file = $7
     sub(/:[0-9]+$/, "", file)
-    if (!match(file, /(formats|runtime)\/src\/(sh|wavelet)\/[^\/]+$/)) next
+    if (!match(file, /(formats|runtime)\/src\/[a-z0-9_]+\/[^\/]+$/)) next
     file = substr(file, RSTART)
+    if (file ~ /^formats\/src\/mesh\//) next
     n = 0
     if (file ~ /^formats\//) keys[++n] = file " " $6  # checkers: per function and per file
     keys[++n] = file " (file)"
@@ -68,7 +72,10 @@ awk '
         total[k] += e[2]
       }
     }
-    if (FILENAME != ARGV[1] && file ~ /^formats\//) checkers++
+    if (FILENAME != ARGV[1] && file ~ /^formats\//) {
+      split(file, dirs, "/")
+      checker_edges[dirs[3]] += e[1]
+    }
   }
   END {
     for (pass = 0; pass < 2; ++pass)
@@ -79,9 +86,12 @@ awk '
         printf "  %-40s %-20s seeds %4d, run %4d / %-4d edges (%5.1f %%)\n", part[1], part[2],
                seeds[k], covered[k], total[k], total[k] ? 100 * covered[k] / total[k] : 0
       }
-    if (!checkers) {
-      print "run_fuzz: no coverage of formats/src/sh or formats/src/wavelet in the report" > "/dev/stderr"
-      exit 1
-    }
+    n = split(techniques, names, " ")
+    for (i = 1; i <= n; ++i)
+      if (!checker_edges[names[i]]) {
+        print "run_fuzz: no covered edge of formats/src/" names[i] "/ in the report" > "/dev/stderr"
+        missing = 1
+      }
+    if (missing) exit 1
   }' "$seeds_log" "$log" || status=${status/#0/1}
 exit "$status"

@@ -70,8 +70,4 @@ inline void for_each_simd_isa(Summary& summary,
   }
 }
 
-// The cases of each technique (defined in its folder).
-std::vector<Case> sh_cases();
-std::vector<Case> wavelet_cases();
-
 }  // namespace prt_conformance

@@ -5,6 +5,12 @@
 
 #include "gl/conformance.hpp"
 
+// The cases of each technique, defined in its folder.
+namespace prt_conformance {
+std::vector<Case> sh_cases();
+std::vector<Case> wavelet_cases();
+}  // namespace prt_conformance
+
 namespace {
 
 struct TechniqueCases {
