@@ -6,6 +6,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <map>
@@ -19,10 +20,12 @@ namespace prt_test {
 class TradeCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    // One folder per test: ctest may run the tests of one fixture at the same time.
+    // One folder per test and process: ctest may run the tests of one fixture at the same time,
+    // and other builds of the tree may run the same test.
     const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = std::filesystem::path(::testing::TempDir()) /
-           (std::string("prt_trade_cli_") + test->test_suite_name() + "_" + test->name());
+           (std::string("prt_trade_cli_") + test->test_suite_name() + "_" + test->name() + "_" +
+            std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     const CommandResult demo = run_bake("demo-scene " + quoted(dir_), dir_ / "demo.log");
