@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "prt/io/envmap.hpp"
+#include "support/published_sh9.hpp"
 #include "support/test_files.hpp"
 
 namespace prt::io {
@@ -315,20 +316,6 @@ TEST(EnvMap, WarnsAboutTexelsAtTheLargestRgbeExponent) {
 
 using Sh9 = std::array<glm::dvec3, 9>;
 
-// Real SH basis in the frame of Ramamoorthi & Hanrahan's table (sh9_irradiance_envmaps.json):
-// order L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22.
-std::array<double, 9> sh9_basis(double x, double y, double z) {
-  return {0.282095,
-          0.488603 * y,
-          0.488603 * z,
-          0.488603 * x,
-          1.092548 * x * y,
-          1.092548 * y * z,
-          0.315392 * (3 * z * z - 1),
-          1.092548 * x * z,
-          0.546274 * (x * x - y * y)};
-}
-
 // Projects in the table's frame, which is (x, y, -z) of ours (its probe looks along +z).
 Sh9 project_sh9(const EnvMap& map) {
   Sh9 sh{};
@@ -337,7 +324,7 @@ Sh9 project_sh9(const EnvMap& map) {
       glm::vec3 d;
       float w = 0.0f;
       if (!map.texel(x, y, &d, &w)) continue;
-      const auto basis = sh9_basis(d.x, d.y, -d.z);
+      const auto basis = prt_test::published_sh9_basis_world(d.x, d.y, d.z);
       const glm::dvec3 radiance(map.texel_value(x, y));
       for (int k = 0; k < 9; ++k) sh[k] += radiance * (basis[k] * w);
     }

@@ -17,6 +17,7 @@
 #include "prt/baker/sh/env_sh.hpp"
 #include "sh/sh_test_util.hpp"
 #include "support/command.hpp"
+#include "support/published_sh9.hpp"
 
 namespace {
 
@@ -83,22 +84,6 @@ std::filesystem::path SharedAssets() {
   return std::filesystem::path(PRT_SHARED_DIR) / "assets";
 }
 
-// The published table's basis (the JSON's "basis" field), on its axes (x', y', z') = world
-// (X, Y, -Z) (the probe verification in the JSON: centre of the probe is z', image right x',
-// image up y'; SPEC §12: centre -Z, right +X, up +Y).
-std::array<double, 9> TableBasis(double wx, double wy, double wz) {
-  const double x = wx, y = wy, z = -wz;
-  return {0.282095,
-          0.488603 * y,
-          0.488603 * z,
-          0.488603 * x,
-          1.092548 * x * y,
-          1.092548 * y * z,
-          0.315392 * (3 * z * z - 1),
-          1.092548 * x * z,
-          0.546274 * (x * x - y * y)};
-}
-
 // The table's function f(w) = sum RH_lm Y'_lm(w), projected onto our basis by a quadrature
 // exact for band 2 (Gauss-Legendre in cos theta x uniform phi): an independent frame change.
 std::vector<double> TableInOurFrame(const std::vector<std::array<double, 3>>& table) {
@@ -109,7 +94,7 @@ std::vector<double> TableInOurFrame(const std::vector<std::array<double, 3>>& ta
     for (int b = 0; b < phi_steps; ++b) {
       const double z = gl.nodes[a], s = std::sqrt(1 - z * z), phi = 2 * kPi * (b + 0.5) / phi_steps;
       const double w[3] = {s * std::cos(phi), z, s * std::sin(phi)};  // any parametrisation
-      const auto rh = TableBasis(w[0], w[1], w[2]);
+      const auto rh = prt_test::published_sh9_basis_world(w[0], w[1], w[2]);
       const float wf[3] = {float(w[0]), float(w[1]), float(w[2])};
       float y[9];
       EXPECT_EQ(prt_sh_eval(3, wf, y), PRT_OK);
