@@ -426,7 +426,8 @@ class WaveletTrade final : public TechniqueTrade {
 
   OptionList options() override {
     OptionList list;
-    list.add("--sizes", &o_.sizes, "Cube sizes N of the N sweep (the bake time grows with N squared)");
+    list.add("--sizes", &o_.sizes,
+             "Cube sizes N of the N sweep (the bake time grows with N squared)");
     list.add("--base-size", &o_.base_size, "Cube size of the K and M sweeps");
     list.add("--keeps", &o_.keeps, "Kept coefficients K of the K sweep");
     list.add("--base-keep", &o_.base_keep, "K of the M sweep (0 = 4 % of the coefficients)");

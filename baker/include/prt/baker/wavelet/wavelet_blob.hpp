@@ -64,13 +64,13 @@ struct QuantizedWavelet {
 };
 
 QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& transfer,
-                                            WaveletQuantizer quantizer, std::uint32_t keep,
-                                            double band_percentile = 1.0);
+                                           WaveletQuantizer quantizer, std::uint32_t keep,
+                                           double band_percentile = 1.0);
 
 // The float transfer rebuilt from the quantised one (grey rows = q * step), to measure what
 // the quantisation costs with shade_wavelet_transfer.
 WaveletTransfer dequantize_wavelet_transfer(const QuantizedWavelet& quantized,
-                                              const WaveletTransfer& transfer);
+                                            const WaveletTransfer& transfer);
 
 // The raw bytes of the WVLT section (little-endian, zero-padded to a multiple of 4).
 std::vector<std::uint8_t> encode_wvlt_section(const QuantizedWavelet& quantized);
@@ -81,8 +81,8 @@ std::vector<std::uint8_t> build_wavelet_blob(const Scene& scene, const Quantized
                                              const std::string& info);
 
 // The baker's self-check: the blob loaded through the runtime at full validation; its header
-// as baked; prt_wavelet_decode_transfer of sample vertices equal to the quantised rows and within half
-// a step of the float ones; prt_wavelet_shade of a random light equal to a double dot product.
+// as baked; prt_wavelet_decode_transfer of sample vertices equal to the quantised rows and within
+// half a step of the float ones; prt_wavelet_shade of a random light equal to a double dot product.
 struct WaveletBlobCheck {
   bool passed = false;
   std::string message;

@@ -97,8 +97,8 @@ struct WaveletTransfer {
 // (stages "wavelet transfer: ..."); Error("cancelled") when the callback says stop, Error on
 // invalid settings. `rays` may be null (a scene is built); if given it must come from `scene`.
 WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
-                                           const WaveletTransferSettings& settings,
-                                           const Context& ctx);
+                                         const WaveletTransferSettings& settings,
+                                         const Context& ctx);
 
 // The texel values of one vertex before the transform (dense, faces * size^2 floats), with an
 // unoccluded hemisphere (no scene): for tests of the sampling and the horizon rule.
@@ -115,6 +115,6 @@ std::vector<std::uint32_t> select_wavelet_coefficients(const std::vector<float>&
 // `light_rgba` a light in Haar coefficients (prt_wavelet.h, 4 floats per coefficient), summed
 // in double. For measurements and as the self-check's independent product.
 std::vector<glm::vec3> shade_wavelet_transfer(const WaveletTransfer& transfer,
-                                               const std::vector<float>& light_rgba);
+                                              const std::vector<float>& light_rgba);
 
 }  // namespace prt::bake
