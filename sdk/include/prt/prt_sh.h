@@ -96,6 +96,34 @@ PRT_API float prt_sh_cosine_band_factor(uint32_t l);
 PRT_API prt_result prt_sh_convolve_cosine(uint32_t order, const float* in, float* out,
                                           uint32_t channels);
 
+/* The de-ringing strength that removes the dark far side of a point light (see
+ * prt_sh_dering_light). */
+#define PRT_SH_DERING_DEFAULT_STRENGTH 1.0f
+
+/* De-rings SH light: truncating a near-delta light (a small bright sun) to order n leaves negative
+ * lobes that darken surfaces facing away from it. This applies Sloan's window (Sloan 2008, "Stupid
+ * Spherical Harmonics (SH) Tricks", section on windowing) that minimises the squared error plus
+ * lambda times the squared Laplacian of the reconstruction: every coefficient (l, m) of band l
+ * is multiplied by
+ *     h_l = 1 / (1 + lambda l^2 (l+1)^2),   lambda = strength * lambda_n,
+ * with lambda_n the smallest lambda at which the irradiance of a delta light at this order,
+ * sum_l h_l A_l (2l+1)/(4 pi) P_l(cos angle), is non-negative at every normal (tabulated in
+ * double: 0.25 at order 2, 0.178-0.181 at orders 3-16; none needed at order 1). So strength is
+ * normalised: 0 leaves the light unchanged (a bit-exact copy); 1
+ * (PRT_SH_DERING_DEFAULT_STRENGTH) is the weakest window under which a point light, and so by
+ * linearity any non-negative light, gives no unoccluded diffuse normal a negative irradiance;
+ * larger blurs more, towards the mean alone. The mean (band 0, h_0 = 1) and so the average
+ * irradiance are kept, and because the window is per band it commutes with prt_sh_rotate. It
+ * trades accuracy for positivity: it blurs every light, not only the sun (at strength 1 band 1
+ * keeps about 58 % and band 2 about 13 %), and the light's own radiance, as opposed to its
+ * irradiance, needs 1.4 to 2 times the default strength to be non-negative.
+ * light_rgb and out_rgb hold order*order RGB coefficients, coefficient-major (as prt_sh_shade
+ * takes them); out_rgb == light_rgb is allowed. Returns PRT_ERROR_INVALID_ARGUMENT for NULL
+ * pointers, an order of 0 or above PRT_SH_MAX_ORDER, or a strength that is negative, NaN or
+ * infinite. */
+PRT_API prt_result prt_sh_dering_light(uint32_t order, float strength, const float* light_rgb,
+                                       float* out_rgb);
+
 #ifdef __cplusplus
 }
 #endif
