@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: MIT
 """The figure of `prt-bake trade sh` for scripts/plot_trade.py: error vs SH order (one line per
-map, log y), error vs blob size, shading time per frame vs order (CPU and SIMD backends) and bake
-time vs rays per vertex."""
+map, log y; dashed: the light de-ringed at the largest --dering strength, when the table has
+one), error vs blob size, shading time per frame vs order (CPU and SIMD backends) and bake time vs
+rays per vertex. Every other panel shows the light as projected (dering 0); tables written before
+the dering column count as dering 0."""
 from plot_trade import PERCENT_TICKS, in_sweep, plain_numbers
 
 COLUMNS = {"order": int, "rays": int, "bounces": int, "blob_bytes": int, "rel_rmse": float,
@@ -9,7 +11,19 @@ COLUMNS = {"order": int, "rays": int, "bounces": int, "blob_bytes": int, "rel_rm
            "bake_seconds": float, "rays_per_second": float}
 
 
-def plot_error_vs_order(ax, rows, maps):
+def dering(row):
+    """The row's de-ringing strength (0 for tables without the column)."""
+    return float(row.get("dering") or 0)
+
+
+def as_projected(rows):
+    """The rows shaded with the light as projected, not de-ringed."""
+    return [r for r in rows if dering(r) == 0]
+
+
+def plot_error_vs_order(ax, all_rows, maps):
+    rows = as_projected(all_rows)
+    strongest = max(dering(r) for r in all_rows)
     for i, name in enumerate(maps):
         sweep = sorted((r for r in rows if r["map"] == name and in_sweep(r, "order")),
                        key=lambda r: r["order"])
@@ -18,6 +32,11 @@ def plot_error_vs_order(ax, rows, maps):
                 color=colour, label=name)
         ax.plot([r["order"] for r in sweep], [100 * r["ref_noise"] for r in sweep], ":",
                 color=colour, linewidth=1)
+        if strongest > 0:
+            windowed = sorted((r for r in all_rows if r["map"] == name and in_sweep(r, "order")
+                               and dering(r) == strongest), key=lambda r: r["order"])
+            ax.plot([r["order"] for r in windowed], [100 * r["rel_rmse"] for r in windowed],
+                    "x--", color=colour, linewidth=1, label=f"{name}, dering {strongest:g}")
     ax.set_yscale("log")
     plain_numbers(ax.yaxis, PERCENT_TICKS)
     ax.set_xlabel("SH order n (n² coefficients)")
@@ -27,7 +46,8 @@ def plot_error_vs_order(ax, rows, maps):
     ax.legend(fontsize=8)
 
 
-def plot_error_vs_bytes(ax, rows, maps):
+def plot_error_vs_bytes(ax, all_rows, maps):
+    rows = as_projected(all_rows)
     for i, name in enumerate(maps):
         sweep = sorted((r for r in rows if r["map"] == name and in_sweep(r, "order")),
                        key=lambda r: r["blob_bytes"])
@@ -47,7 +67,8 @@ def plot_error_vs_bytes(ax, rows, maps):
     ax.legend(fontsize=8)
 
 
-def plot_shading_time(ax, rows, maps):
+def plot_shading_time(ax, all_rows, maps):
+    rows = as_projected(all_rows)
     sweep = sorted((r for r in rows if r["map"] == maps[0] and in_sweep(r, "order")),
                    key=lambda r: r["order"])
     vertices = int(sweep[0]["vertices"])
@@ -64,7 +85,8 @@ def plot_shading_time(ax, rows, maps):
     ax.legend(fontsize=8)
 
 
-def plot_bake_time(ax, rows, maps):
+def plot_bake_time(ax, all_rows, maps):
+    rows = as_projected(all_rows)
     sweep = sorted((r for r in rows if r["map"] == maps[0] and in_sweep(r, "rays")),
                    key=lambda r: r["rays"])
     ax.plot([r["rays"] for r in sweep], [r["bake_seconds"] for r in sweep], "o-", color="C3",

@@ -4,12 +4,15 @@
 // each setting is baked in-process, quantised, written to a blob and loaded through the runtime;
 // each map is projected to SH by the runtime and the blob shaded by the runtime on the CPU and
 // SIMD backends; the result is compared with the reference renderer's per-vertex radiance for the
-// same bounces (cached). Writes DIR/trade.csv and DIR/trade.md.
+// same bounces (cached). Each light is also measured de-ringed at each --dering strength
+// (prt_sh_dering_light; 0 = as projected). Writes DIR/trade.csv and DIR/trade.md.
 #include <prt/prt.h>
 #include <prt/prt_sh.h>
 #include <prt/prt_sh_asset.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
@@ -35,6 +38,7 @@ struct ShTradeSettings {
   std::vector<int> bounces{0, 1};
   std::uint32_t base_rays = 256, base_order = 6;
   int bits = 16;
+  std::vector<std::string> dering{"0"};  // strengths, parsed by dering_strengths
 };
 
 // One bake setting of the sweeps; `sweeps` names the sweeps it belongs to.
@@ -48,7 +52,9 @@ struct Row {
   std::string map, projection, sweeps;
   std::uint32_t order = 0, rays = 0;
   int bounces = 0;
+  float dering = 0.0f;  // de-ringing strength of the light
   double error = 0.0, ref_noise = 0.0, quant_shading_error = 0.0;
+  double negative_share = 0.0;           // vertices shaded below zero in some channel (ringing)
   double cpu_ms = -1.0, simd_ms = -1.0;  // < 0: backend not available
   std::size_t blob_bytes = 0;
   double bake_seconds = 0.0, rays_traced = 0.0;
@@ -82,6 +88,26 @@ std::vector<Setting> sweep_settings(const ShTradeSettings& o) {
   return settings;
 }
 
+// The --dering strengths: each a finite number >= 0, as prt_sh_dering_light takes.
+std::vector<float> dering_strengths(const ShTradeSettings& o) {
+  std::vector<float> strengths;
+  for (const std::string& text : o.dering) {
+    char* end = nullptr;
+    const float value = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value) || value < 0.0f)
+      throw Error("--dering: '" + text + "' is not a strength (a number >= 0)");
+    strengths.push_back(value);
+  }
+  if (strengths.empty()) throw Error("trade: --dering needs at least one value");
+  return strengths;
+}
+
+std::string joined_strengths(const std::vector<float>& strengths) {
+  std::string text;
+  for (float s : strengths) text += (text.empty() ? "" : ",") + format("%g", s);
+  return text;
+}
+
 void check_settings(const ShTradeSettings& o) {
   if (o.orders.empty() || o.rays.empty() || o.bounces.empty())
     throw Error("trade: --orders, --rays and --bounces need at least one value each");
@@ -98,6 +124,7 @@ void check_settings(const ShTradeSettings& o) {
   for (int b : o.bounces) {
     if (b < 0 || b > 64) throw Error("--bounces: every value must be in 0..64");
   }
+  dering_strengths(o);
 }
 
 // --- one setting --------------------------------------------------------------------------------
@@ -127,10 +154,26 @@ Baked bake_setting(const Scene& scene, const EmbreeScene& rays, const Setting& s
   return baked;
 }
 
+// The light at the setting's order, windowed by prt_sh_dering_light at `dering`.
+std::vector<float> dering_light(const ShLight& light, std::uint32_t order, float dering) {
+  std::vector<float> l = light.at_order(order);
+  if (prt_sh_dering_light(order, dering, l.data(), l.data()) != PRT_OK)
+    throw Error("trade: prt_sh_dering_light refused strength " + format("%g", dering));
+  return l;
+}
+
+// The share of vertices with a negative channel: radiance never is, SH ringing makes it so.
+double negative_share(const std::vector<glm::vec3>& radiance) {
+  const auto negative = std::count_if(radiance.begin(), radiance.end(), [](const glm::vec3& c) {
+    return c.r < 0.0f || c.g < 0.0f || c.b < 0.0f;
+  });
+  return radiance.empty() ? 0.0 : static_cast<double>(negative) / radiance.size();
+}
+
 Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const ShLight& light,
-            const Reference& ref, int frames) {
+            float dering, const Reference& ref, int frames) {
   const std::uint32_t vertices = static_cast<std::uint32_t>(baked.transfer.vertex_count);
-  const std::vector<float> l = light.at_order(s.order);
+  const std::vector<float> l = dering_light(light, s.order, dering);
   Row row;
   row.map = light.name;
   row.projection = light.projection;
@@ -138,12 +181,14 @@ Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const 
   row.order = s.order;
   row.rays = s.rays;
   row.bounces = s.bounces;
+  row.dering = dering;
   std::vector<float> shaded, simd_shaded;
   row.simd_ms = time_sh_shading(asset, PRT_BACKEND_SIMD, l, vertices, frames, &simd_shaded);
   row.cpu_ms = time_sh_shading(asset, PRT_BACKEND_CPU, l, vertices, frames, &shaded);
   const std::vector<glm::vec3> radiance = as_vec3(shaded);
   row.error = io::relative_rmse(radiance, ref.radiance);
   row.ref_noise = ref.noise;
+  row.negative_share = negative_share(radiance);
   // What 16/8-bit storage costs in radiance: runtime shading vs the float transfer's.
   row.quant_shading_error =
       io::relative_rmse(radiance, shade_sh_transfer(baked.transfer, as_vec3(l)));
@@ -165,6 +210,7 @@ const std::vector<std::string> kCsvColumns = {"scene",
                                               "order",
                                               "rays",
                                               "bounces",
+                                              "dering",
                                               "transfer",
                                               "bits",
                                               "vertices",
@@ -181,7 +227,8 @@ const std::vector<std::string> kCsvColumns = {"scene",
                                               "quant_max_abs",
                                               "quant_rms_abs",
                                               "transfer_max_abs",
-                                              "quant_shading_rel_rmse"};
+                                              "quant_shading_rel_rmse",
+                                              "negative_vertex_share"};
 
 std::vector<std::string> csv_cells(const Row& r, const ShTradeSettings& o, const TradeInput& input,
                                    std::size_t vertices) {
@@ -192,6 +239,7 @@ std::vector<std::string> csv_cells(const Row& r, const ShTradeSettings& o, const
           std::to_string(r.order),
           std::to_string(r.rays),
           std::to_string(r.bounces),
+          format("%g", r.dering),
           r.bounces > 0 ? "interreflected" : "shadowed",
           std::to_string(o.bits),
           std::to_string(vertices),
@@ -208,7 +256,8 @@ std::vector<std::string> csv_cells(const Row& r, const ShTradeSettings& o, const
           format("%.4g", r.quant_max_abs),
           format("%.4g", r.quant_rms_abs),
           format("%.4g", r.transfer_max_abs),
-          format("%.4g", r.quant_shading_error)};
+          format("%.4g", r.quant_shading_error),
+          format("%.4g", r.negative_share)};
 }
 
 void write_csv(const std::string& path, const std::vector<Row>& rows, const ShTradeSettings& o,
@@ -223,6 +272,7 @@ const std::vector<Column> kMarkdownColumns = {{"sweep", false},
                                               {"order"},
                                               {"rays"},
                                               {"bounces"},
+                                              {"dering"},
                                               {"error %"},
                                               {"ref noise %"},
                                               {"error, noise removed %"},
@@ -231,13 +281,15 @@ const std::vector<Column> kMarkdownColumns = {{"sweep", false},
                                               {"blob KiB"},
                                               {"bake s"},
                                               {"Mrays/s"},
-                                              {"quant. %"}};
+                                              {"quant. %"},
+                                              {"negative vertices %"}};
 
 std::vector<std::string> markdown_cells(const Row& r) {
   return {r.sweeps,
           std::to_string(r.order),
           std::to_string(r.rays),
           std::to_string(r.bounces),
+          format("%g", r.dering),
           format("%.2f", 100 * r.error),
           format("%.2f", 100 * r.ref_noise),
           format("%.2f", 100 * r.clean_error()),
@@ -246,7 +298,8 @@ std::vector<std::string> markdown_cells(const Row& r) {
           format("%.0f", r.blob_bytes / 1024.0),
           format("%.2f", r.bake_seconds),
           format("%.1f", 1e-6 * r.rays_per_second()),
-          format("%.3f", 100 * r.quant_shading_error)};
+          format("%.3f", 100 * r.quant_shading_error),
+          format("%.2f", 100 * r.negative_share)};
 }
 
 void write_markdown(const std::string& path, const std::vector<Row>& rows,
@@ -260,8 +313,10 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
      << joined(o.rays) << " at order " << o.base_order << ", shadowed; bounces";
   for (int b : o.bounces) md << ' ' << b;
   md << " at order " << o.base_order << ", " << o.base_rays
-     << " rays (0 = shadowed, more = interreflected). Reference: " << input.ref_spp
-     << " samples per vertex, the same bounces; seed " << input.seed << ".\n\n";
+     << " rays (0 = shadowed, more = interreflected). Light de-ringed at strengths "
+     << joined_strengths(dering_strengths(o))
+     << " (prt_sh_dering_light: 0 = as projected, 1 = the default window). Reference: "
+     << input.ref_spp << " samples per vertex, the same bounces; seed " << input.seed << ".\n\n";
   md << "Error = relative RMSE of per-vertex RGB radiance against the reference, "
         "sqrt(mean |x - ref|^2) / sqrt(mean |ref|^2); ref noise = the reference's own estimate "
         "of the same figure; "
@@ -269,7 +324,9 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
         "independent noise taken out. Shading time = median of "
      << input.frames << " frames of prt_sh_shade over all vertices, one thread. "
      << "Quant. = the relative RMSE that " << o.bits
-     << "-bit storage adds to the shading (runtime vs float transfer).\n\n";
+     << "-bit storage adds to the shading (runtime vs float transfer). Negative vertices = "
+        "the share of vertices shaded below zero in some channel (SH ringing; light never is "
+        "negative).\n\n";
   md << "Machine: " << machine_description(threads) << ".\n";
   for (const ShLight& light : lights) {
     md << "\n## " << light.name << " (" << io::env_mapping_name(light.map->mapping()) << ", "
@@ -303,6 +360,9 @@ class ShTrade final : public TechniqueTrade {
         .range(1, 1u << 24);
     list.add("--base-order", &o_.base_order, "Order of the ray and bounce sweeps");
     list.add("--bits", &o_.bits, "Quantisation bits: 8 or 16").choices({8, 16});
+    list.add("--dering", &o_.dering,
+             "De-ringing strengths of the light, each measured at every setting "
+             "(prt_sh_dering_light: 0 = none, 1 = the default window)");
     return list;
   }
 
@@ -311,6 +371,7 @@ class ShTrade final : public TechniqueTrade {
   // The maps at the largest order swept, then a reference per map and bounce count.
   void prepare(const Scene& scene, const TradeInput& input, const Context& ctx) override {
     settings_ = sweep_settings(o_);
+    dering_ = dering_strengths(o_);
     std::uint32_t max_order = 0;
     std::set<int> bounce_counts;
     for (const Setting& s : settings_) {
@@ -338,11 +399,14 @@ class ShTrade final : public TechniqueTrade {
       const Baked baked = bake_setting(scene, rays, s, o_, input, ctx);
       const RuntimeAsset runtime = load_runtime_asset(baked.blob);
       for (const ShLight& light : lights_) {
-        rows.push_back(measure(baked, runtime.asset.get(), s, light,
-                               references_.at({light.name, s.bounces}), input.frames));
-        const Row& r = rows.back();
-        ctx.info("  " + light.name + format(": error %.3f %%", 100 * r.error) +
-                 format(", CPU %.3f ms", r.cpu_ms) + ", SIMD " + ms_text(r.simd_ms) + " ms");
+        for (float dering : dering_) {
+          rows.push_back(measure(baked, runtime.asset.get(), s, light, dering,
+                                 references_.at({light.name, s.bounces}), input.frames));
+          const Row& r = rows.back();
+          ctx.info("  " + light.name + (dering > 0 ? format(", dering %g", dering) : "") +
+                   format(": error %.3f %%", 100 * r.error) + format(", CPU %.3f ms", r.cpu_ms) +
+                   ", SIMD " + ms_text(r.simd_ms) + " ms");
+        }
       }
     }
     write_csv(input.out_dir + "/trade.csv", rows, o_, input, scene.vertex_count());
@@ -353,6 +417,7 @@ class ShTrade final : public TechniqueTrade {
  private:
   ShTradeSettings o_;
   std::vector<Setting> settings_;
+  std::vector<float> dering_;
   std::vector<ShLight> lights_;
   std::map<std::pair<std::string, int>, Reference> references_;
 };
