@@ -10,7 +10,8 @@
 //            [--frame-bounds X0,Y0,Z0,X1,Y1,Z1] [--turn-frames N (--out with %d)]
 //            [--technique NAME] [technique options, e.g. --light-coefficients M] ...
 //   prt-view BLOB --env MAP --headless --radiance-in V.npy --out IMG.png ...  (given radiance)
-//   prt-view --montage OUT.png --montage-columns N IMG.png...   (tiles PNGs, for the demo)
+//   prt-view --montage OUT.png --montage-columns N [--montage-labels A,B] [--montage-caption T]
+//            IMG.png...   (tiles PNGs, for the demo)
 //   prt-view --animation OUT.png --montage-columns N [--frame-ms MS] IMG.png...  (an APNG)
 #include <prt/prt.h>
 #include <CLI/CLI.hpp>
@@ -43,6 +44,7 @@ struct Options {
   std::vector<std::string> inputs;  // the blob, or the montage's images
   std::string env, env_mapping = "auto", backend = "auto", out, vertex_out, size = "640x480";
   std::string reference, error_out, montage, animation, radiance_in, frame_bounds;
+  std::string labels, caption;  // --montage-labels, --montage-caption
   double rotate_degrees = 0.0;
   bool headless = false, exposure_given = false;
   float exposure_ev = 0.0f, error_scale = 0.25f;
@@ -221,11 +223,60 @@ void write_turning(const Options& options, const BlobScene& scene, ViewTechnique
   }
 }
 
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  return parts;
+}
+
+// The montage with a row of column labels above the tiles and the caption below, white on
+// black, in text a tenth of the tile height or larger than 2 font pixels.
+prt::io::Rgb8Image labelled(const prt::io::Rgb8Image& tiles, int tile_width, int tile_height,
+                            int gap, const Options& options) {
+  const int scale = std::max(2, tile_height / 90);
+  const std::vector<std::string> labels = split(options.labels, ',');
+  const int label_strip = labels.empty() ? 0 : 12 * scale;
+  const int caption_strip =
+      options.caption.empty() ? 0 : prt::io::text_height(options.caption, scale) + 6 * scale;
+  prt::io::Rgb8Image out;
+  out.width = tiles.width;
+  out.height = label_strip + tiles.height + caption_strip;
+  out.rgb.assign(static_cast<std::size_t>(out.width) * out.height * 3, 0);
+  std::copy(tiles.rgb.begin(), tiles.rgb.end(),
+            out.rgb.begin() + static_cast<std::ptrdiff_t>(label_strip) * out.width * 3);
+  const std::uint8_t white[3] = {255, 255, 255};
+  for (std::size_t c = 0; c < labels.size(); ++c) {
+    const int centre = static_cast<int>(c) * (tile_width + gap) + tile_width / 2;
+    prt::io::draw_text(out, centre - prt::io::text_width(labels[c], scale) / 2, 3 * scale, scale,
+                       labels[c], white);
+  }
+  if (!options.caption.empty()) {
+    prt::io::draw_text(out, 3 * scale, label_strip + tiles.height + 3 * scale, scale,
+                       options.caption, white);
+  }
+  return out;
+}
+
+void write_montage(const Options& options) {
+  constexpr int kGap = 4;
+  if (options.labels.empty() && options.caption.empty()) {
+    prt::io::write_montage(options.montage, options.inputs, options.montage_columns, kGap);
+  } else {
+    std::vector<prt::io::Rgb8Image> tiles;
+    for (const std::string& path : options.inputs) tiles.push_back(prt::io::read_rgb8(path));
+    const prt::io::Rgb8Image grid = prt::io::tile_rgb8(tiles, options.montage_columns, kGap);
+    prt::io::write_rgb8_png(options.montage,
+                            labelled(grid, tiles[0].width, tiles[0].height, kGap, options));
+  }
+  std::printf("wrote %s (%zu images, %d per row)\n", options.montage.c_str(), options.inputs.size(),
+              options.montage_columns);
+}
+
 int run(const Options& options, const ViewTechniques& techniques, const CLI::App& app) {
   if (!options.montage.empty()) {
-    prt::io::write_montage(options.montage, options.inputs, options.montage_columns, 4);
-    std::printf("wrote %s (%zu images, %d per row)\n", options.montage.c_str(),
-                options.inputs.size(), options.montage_columns);
+    write_montage(options);
     return 0;
   }
   if (!options.animation.empty()) {
@@ -320,6 +371,15 @@ void add_options(CLI::App& app, Options& o) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   app.add_option("--montage", o.montage, "Tile the INPUT PNGs into this PNG and exit");
+  app.add_option("--montage-labels", o.labels,
+                 "Comma-separated labels written above the columns of --montage");
+  app.add_option("--montage-caption", o.caption,
+                 "Text written below --montage (\\n in the text starts a line)")
+      ->transform([](std::string text) {
+        for (std::size_t at; (at = text.find("\\n")) != std::string::npos;)
+          text.replace(at, 2, "\n");
+        return text;
+      });
   app.add_option("--animation", o.animation,
                  "Write an animated PNG of the INPUT PNGs and exit: each --montage-columns of "
                  "them side by side make one frame");

@@ -7,6 +7,7 @@
 #include <stb_image.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -202,6 +203,37 @@ TEST(Apng, TilesSideBySideWithAGap) {
     }
     EXPECT_EQ(tiled.rgb[(y * 17 + 8) * 3], 0);  // the gap is black
   }
+}
+
+TEST(Rgb8Text, DrawsWithinTheSizeItReportsInTheColourGiven) {
+  Rgb8Image image;
+  image.width = 200;
+  image.height = 60;
+  image.rgb.assign(200 * 60 * 3, 0);
+  const std::uint8_t colour[3] = {250, 120, 10};
+  const int x = 7, y = 9, scale = 3;
+  draw_text(image, x, y, scale, "sh 8.2 %", colour);
+  const int width = text_width("sh 8.2 %", scale), height = text_height("sh 8.2 %", scale);
+  ASSERT_GT(width, 0);
+  ASSERT_LT(x + width, image.width);
+  int lo_x = image.width, hi_x = -1, lo_y = image.height, hi_y = -1;
+  for (int py = 0; py < image.height; ++py) {
+    for (int px = 0; px < image.width; ++px) {
+      const std::uint8_t* p = &image.rgb[(py * image.width + px) * 3];
+      if (p[0] == 0 && p[1] == 0 && p[2] == 0) continue;
+      ASSERT_EQ(std::memcmp(p, colour, 3), 0) << px << "," << py;
+      lo_x = std::min(lo_x, px), hi_x = std::max(hi_x, px);
+      lo_y = std::min(lo_y, py), hi_y = std::max(hi_y, py);
+    }
+  }
+  ASSERT_GE(hi_x, 0) << "nothing drawn";
+  EXPECT_GE(lo_x, x);
+  EXPECT_LT(hi_x, x + width);
+  EXPECT_GE(lo_y, y);
+  EXPECT_LT(hi_y, y + height);
+  EXPECT_GT(hi_x - lo_x, width / 2) << "the text spans most of its width";
+  // Off the image it is clipped, not written out of bounds.
+  draw_text(image, 190, 55, 4, "clipped", colour);
 }
 
 }  // namespace

@@ -385,4 +385,44 @@ TEST(PrtViewPixels, AnimationTilesEachGroupOfInputsIntoOneFrame) {
   EXPECT_EQ(odd.exit_code, 1) << odd.output;
 }
 
+TEST(PrtViewPixels, MontageLabelsAboveTheColumnsAndCaptionBelow) {
+  const std::string blob =
+      flat_blob("label.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, {0.2f, 0.2f, 0.2f});
+  const std::string tile = scratch().file("label_tile.png");
+  const prt_test::CommandResult made = run_view(quote(blob) + " --env " + quote(constant_map()) +
+                                                    " --headless --size 90x60 --out " + quote(tile),
+                                                "label_tile");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const std::string out = scratch().file("labelled.png");
+  const prt_test::CommandResult run =
+      run_view("--montage " + quote(out) + " --montage-columns 2 --montage-labels left,right " +
+                   "--montage-caption 'one\\ntwo' " + quote(tile) + " " + quote(tile),
+               "labelled");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Png png = read_png(out), single = read_png(tile);
+  ASSERT_EQ(png.width, 90 + 4 + 90);
+  // Text 2 font pixels per pixel: a label row of 24, then the tiles, then two caption lines.
+  const int top = 24;
+  ASSERT_GT(png.height, top + 60 + 2 * 2 * 10);
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 90; ++x) ASSERT_EQ(png.at(94 + x, top + y), single.at(x, y));
+  // White label pixels over each column's middle third, black elsewhere in the label row.
+  for (int column = 0; column < 2; ++column) {
+    int white = 0, other = 0;
+    for (int y = 0; y < top; ++y) {
+      for (int x = column * 94; x < column * 94 + 90; ++x) {
+        const std::array<int, 3> p = png.at(x, y);
+        const bool in_middle = x >= column * 94 + 20 && x < column * 94 + 70;
+        if (p == std::array<int, 3>{255, 255, 255}) (in_middle ? white : other) += 1;
+      }
+    }
+    EXPECT_GT(white, 20) << "column " << column;
+    EXPECT_EQ(other, 0) << "column " << column;
+  }
+  int caption = 0;
+  for (int y = top + 60; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) caption += png.at(x, y)[0] == 255 ? 1 : 0;
+  EXPECT_GT(caption, 20);
+}
+
 }  // namespace

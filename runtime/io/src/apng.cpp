@@ -5,6 +5,7 @@
 // (dispose none, blend source), so each decodes on its own.
 #include "prt/io/apng.hpp"
 
+#include <stb_easy_font.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -166,6 +167,46 @@ void write_apng(const std::string& path, const std::vector<Rgb8Image>& frames, i
   file.write(reinterpret_cast<const char*>(bytes.data()),
              static_cast<std::streamsize>(bytes.size()));
   if (!file.flush()) throw Error(path + ": cannot write the file");
+}
+
+void write_rgb8_png(const std::string& path, const Rgb8Image& image) {
+  if (!stbi_write_png(path.c_str(), image.width, image.height, 3, image.rgb.data(),
+                      image.width * 3)) {
+    throw Error(path + ": cannot write the PNG file");
+  }
+}
+
+void draw_text(Rgb8Image& image, int x, int y, int scale, const std::string& text,
+               const std::uint8_t (&colour)[3]) {
+  // stb_easy_font writes 4 vertices of 16 bytes (x, y, z, colour) per quad, in font pixels.
+  std::vector<char> quads(text.size() * 270 + 1024);
+  std::string copy = text;
+  const int count = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, quads.data(),
+                                        static_cast<int>(quads.size()));
+  for (int q = 0; q < count; ++q) {
+    float corner[2][2];  // top left and bottom right vertices
+    std::memcpy(corner[0], quads.data() + q * 64, 8);
+    std::memcpy(corner[1], quads.data() + q * 64 + 32, 8);
+    const int x0 = std::max(0, x + static_cast<int>(corner[0][0] * scale));
+    const int y0 = std::max(0, y + static_cast<int>(corner[0][1] * scale));
+    const int x1 = std::min(image.width, x + static_cast<int>(corner[1][0] * scale));
+    const int y1 = std::min(image.height, y + static_cast<int>(corner[1][1] * scale));
+    for (int py = y0; py < y1; ++py) {
+      for (int px = x0; px < x1; ++px) {
+        std::memcpy(&image.rgb[(static_cast<std::size_t>(py) * image.width + px) * 3], colour, 3);
+      }
+    }
+  }
+}
+
+int text_width(const std::string& text, int scale) {
+  std::string copy = text;
+  return stb_easy_font_width(copy.data()) * scale;
+}
+
+int text_height(const std::string& text, int scale) {
+  std::string copy = text;
+  return stb_easy_font_height(copy.data()) * scale;
 }
 
 Rgb8Image read_rgb8(const std::string& path) {
