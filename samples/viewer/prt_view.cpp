@@ -231,15 +231,40 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-// The montage with a row of column labels above the tiles and the caption below, white on
-// black, in text a tenth of the tile height or larger than 2 font pixels.
+// `text` with its lines broken at spaces so each fits `width` pixels at `scale`.
+std::string wrapped(const std::string& text, int width, int scale) {
+  std::string out;
+  for (const std::string& line : split(text, '\n')) {
+    std::string current;
+    for (const std::string& word : split(line, ' ')) {
+      const std::string longer = current.empty() ? word : current + " " + word;
+      if (!current.empty() && prt::io::text_width(longer, scale) > width) {
+        out += current + "\n";
+        current = word;
+      } else {
+        current = longer;
+      }
+    }
+    out += current + "\n";
+  }
+  if (!out.empty()) out.pop_back();
+  return out;
+}
+
+// The montage with a row of column labels above the tiles and the caption below (wrapped to the
+// montage's width), white on black; a font pixel is 1/90 of the tile height, at least 1 pixel.
 prt::io::Rgb8Image labelled(const prt::io::Rgb8Image& tiles, int tile_width, int tile_height,
                             int gap, const Options& options) {
-  const int scale = std::max(2, tile_height / 90);
+  const int scale = std::max(1, tile_height / 90);
   const std::vector<std::string> labels = split(options.labels, ',');
-  const int label_strip = labels.empty() ? 0 : 12 * scale;
-  const int caption_strip =
-      options.caption.empty() ? 0 : prt::io::text_height(options.caption, scale) + 6 * scale;
+  int label_scale = scale;  // smaller where a label would be wider than its column
+  for (const std::string& label : labels) {
+    while (label_scale > 1 && prt::io::text_width(label, label_scale) > tile_width - 2)
+      --label_scale;
+  }
+  const int label_strip = labels.empty() ? 0 : 12 * label_scale;
+  const std::string caption = wrapped(options.caption, tiles.width - 6 * scale, scale);
+  const int caption_strip = caption.empty() ? 0 : prt::io::text_height(caption, scale) + 6 * scale;
   prt::io::Rgb8Image out;
   out.width = tiles.width;
   out.height = label_strip + tiles.height + caption_strip;
@@ -249,13 +274,12 @@ prt::io::Rgb8Image labelled(const prt::io::Rgb8Image& tiles, int tile_width, int
   const std::uint8_t white[3] = {255, 255, 255};
   for (std::size_t c = 0; c < labels.size(); ++c) {
     const int centre = static_cast<int>(c) * (tile_width + gap) + tile_width / 2;
-    prt::io::draw_text(out, centre - prt::io::text_width(labels[c], scale) / 2, 3 * scale, scale,
-                       labels[c], white);
+    prt::io::draw_text(out, centre - prt::io::text_width(labels[c], label_scale) / 2,
+                       3 * label_scale, label_scale, labels[c], white);
   }
-  if (!options.caption.empty()) {
-    prt::io::draw_text(out, 3 * scale, label_strip + tiles.height + 3 * scale, scale,
-                       options.caption, white);
-  }
+  if (!caption.empty())
+    prt::io::draw_text(out, 3 * scale, label_strip + tiles.height + 3 * scale, scale, caption,
+                       white);
   return out;
 }
 

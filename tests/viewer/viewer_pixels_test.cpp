@@ -389,9 +389,10 @@ TEST(PrtViewPixels, MontageLabelsAboveTheColumnsAndCaptionBelow) {
   const std::string blob =
       flat_blob("label.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, {0.2f, 0.2f, 0.2f});
   const std::string tile = scratch().file("label_tile.png");
-  const prt_test::CommandResult made = run_view(quote(blob) + " --env " + quote(constant_map()) +
-                                                    " --headless --size 90x60 --out " + quote(tile),
-                                                "label_tile");
+  const prt_test::CommandResult made =
+      run_view(quote(blob) + " --env " + quote(constant_map()) +
+                   " --headless --size 90x180 --out " + quote(tile),
+               "label_tile");
   ASSERT_EQ(made.exit_code, 0) << made.output;
   const std::string out = scratch().file("labelled.png");
   const prt_test::CommandResult run =
@@ -401,10 +402,11 @@ TEST(PrtViewPixels, MontageLabelsAboveTheColumnsAndCaptionBelow) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const Png png = read_png(out), single = read_png(tile);
   ASSERT_EQ(png.width, 90 + 4 + 90);
-  // Text 2 font pixels per pixel: a label row of 24, then the tiles, then two caption lines.
+  // Text at 2 pixels per font pixel (a 180-pixel tile): a label row of 24, then the tiles, then two
+  // caption lines.
   const int top = 24;
-  ASSERT_GT(png.height, top + 60 + 2 * 2 * 10);
-  for (int y = 0; y < 60; ++y)
+  ASSERT_GT(png.height, top + 180 + 2 * 2 * 10);
+  for (int y = 0; y < 180; ++y)
     for (int x = 0; x < 90; ++x) ASSERT_EQ(png.at(94 + x, top + y), single.at(x, y));
   // White label pixels over each column's middle third, black elsewhere in the label row.
   for (int column = 0; column < 2; ++column) {
@@ -420,7 +422,7 @@ TEST(PrtViewPixels, MontageLabelsAboveTheColumnsAndCaptionBelow) {
     EXPECT_EQ(other, 0) << "column " << column;
   }
   int caption = 0;
-  for (int y = top + 60; y < png.height; ++y)
+  for (int y = top + 180; y < png.height; ++y)
     for (int x = 0; x < png.width; ++x) caption += png.at(x, y)[0] == 255 ? 1 : 0;
   EXPECT_GT(caption, 20);
 }
