@@ -134,25 +134,6 @@ void compare_with_reference(const Options& options, const std::vector<glm::vec3>
       options.error_out.c_str(), options.error_scale);
 }
 
-// Tiles each run of --montage-columns inputs into one frame of an animated PNG.
-void write_animation(const Options& options) {
-  const std::size_t per_frame = static_cast<std::size_t>(options.montage_columns);
-  if (options.inputs.size() % per_frame != 0) {
-    throw ViewerError(options.animation + ": " + std::to_string(options.inputs.size()) +
-                      " images do not make whole frames of " + std::to_string(per_frame));
-  }
-  std::vector<prt::io::Rgb8Image> frames;
-  for (std::size_t first = 0; first < options.inputs.size(); first += per_frame) {
-    std::vector<prt::io::Rgb8Image> tiles;
-    for (std::size_t i = first; i < first + per_frame; ++i)
-      tiles.push_back(prt::io::read_rgb8(options.inputs[i]));
-    frames.push_back(prt::io::tile_rgb8(tiles, options.montage_columns, 4));
-  }
-  prt::io::write_apng(options.animation, frames, options.frame_ms);
-  std::printf("wrote %s (%zu frames of %dx%d, %d ms each)\n", options.animation.c_str(),
-              frames.size(), frames[0].width, frames[0].height, options.frame_ms);
-}
-
 prt::io::Camera frame_camera(const Options& options, const RasterMesh& mesh) {
   const float aspect = static_cast<float>(options.width) / options.height;
   if (!options.frame_bounds.empty()) {
@@ -252,17 +233,17 @@ std::string wrapped(const std::string& text, int width, int scale) {
 }
 
 // The montage with a row of column labels above the tiles and the caption below (wrapped to the
-// montage's width), white on black; a font pixel is 1/90 of the tile height, at least 1 pixel.
+// montage's width), white on black; a font pixel is 1/90 of the tile height (at least 1 pixel),
+// or less where a label would not fit its column.
 prt::io::Rgb8Image labelled(const prt::io::Rgb8Image& tiles, int tile_width, int tile_height,
                             int gap, const Options& options) {
-  const int scale = std::max(1, tile_height / 90);
   const std::vector<std::string> labels = split(options.labels, ',');
-  int label_scale = scale;  // smaller where a label would be wider than its column
+  // One text size, smaller where a label would be wider than its column.
+  int scale = std::max(1, tile_height / 90);
   for (const std::string& label : labels) {
-    while (label_scale > 1 && prt::io::text_width(label, label_scale) > tile_width - 2)
-      --label_scale;
+    while (scale > 1 && prt::io::text_width(label, scale) > tile_width - 2) --scale;
   }
-  const int label_strip = labels.empty() ? 0 : 12 * label_scale;
+  const int label_strip = labels.empty() ? 0 : 12 * scale;
   const std::string caption = wrapped(options.caption, tiles.width - 6 * scale, scale);
   const int caption_strip = caption.empty() ? 0 : prt::io::text_height(caption, scale) + 6 * scale;
   prt::io::Rgb8Image out;
@@ -274,8 +255,8 @@ prt::io::Rgb8Image labelled(const prt::io::Rgb8Image& tiles, int tile_width, int
   const std::uint8_t white[3] = {255, 255, 255};
   for (std::size_t c = 0; c < labels.size(); ++c) {
     const int centre = static_cast<int>(c) * (tile_width + gap) + tile_width / 2;
-    prt::io::draw_text(out, centre - prt::io::text_width(labels[c], label_scale) / 2,
-                       3 * label_scale, label_scale, labels[c], white);
+    prt::io::draw_text(out, centre - prt::io::text_width(labels[c], scale) / 2, 3 * scale, scale,
+                       labels[c], white);
   }
   if (!caption.empty())
     prt::io::draw_text(out, 3 * scale, label_strip + tiles.height + 3 * scale, scale, caption,
@@ -283,8 +264,9 @@ prt::io::Rgb8Image labelled(const prt::io::Rgb8Image& tiles, int tile_width, int
   return out;
 }
 
+constexpr int kGap = 4;  // black pixels between tiles
+
 void write_montage(const Options& options) {
-  constexpr int kGap = 4;
   if (options.labels.empty() && options.caption.empty()) {
     prt::io::write_montage(options.montage, options.inputs, options.montage_columns, kGap);
   } else {
@@ -296,6 +278,28 @@ void write_montage(const Options& options) {
   }
   std::printf("wrote %s (%zu images, %d per row)\n", options.montage.c_str(), options.inputs.size(),
               options.montage_columns);
+}
+
+// Tiles each run of --montage-columns inputs into one frame of an animated PNG, labelled and
+// captioned as a montage.
+void write_animation(const Options& options) {
+  const std::size_t per_frame = static_cast<std::size_t>(options.montage_columns);
+  if (options.inputs.size() % per_frame != 0) {
+    throw ViewerError(options.animation + ": " + std::to_string(options.inputs.size()) +
+                      " images do not make whole frames of " + std::to_string(per_frame));
+  }
+  std::vector<prt::io::Rgb8Image> frames;
+  for (std::size_t first = 0; first < options.inputs.size(); first += per_frame) {
+    std::vector<prt::io::Rgb8Image> tiles;
+    for (std::size_t i = first; i < first + per_frame; ++i)
+      tiles.push_back(prt::io::read_rgb8(options.inputs[i]));
+    const prt::io::Rgb8Image grid = prt::io::tile_rgb8(tiles, options.montage_columns, kGap);
+    const bool text = !options.labels.empty() || !options.caption.empty();
+    frames.push_back(text ? labelled(grid, tiles[0].width, tiles[0].height, kGap, options) : grid);
+  }
+  prt::io::write_apng(options.animation, frames, options.frame_ms);
+  std::printf("wrote %s (%zu frames of %dx%d, %d ms each)\n", options.animation.c_str(),
+              frames.size(), frames[0].width, frames[0].height, options.frame_ms);
 }
 
 int run(const Options& options, const ViewTechniques& techniques, const CLI::App& app) {
@@ -396,9 +400,9 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--montage", o.montage, "Tile the INPUT PNGs into this PNG and exit");
   app.add_option("--montage-labels", o.labels,
-                 "Comma-separated labels written above the columns of --montage");
+                 "Comma-separated labels written above the columns of --montage or --animation");
   app.add_option("--montage-caption", o.caption,
-                 "Text written below --montage (\\n in the text starts a line)")
+                 "Text written below --montage or each --animation frame (\\n starts a line)")
       ->transform([](std::string text) {
         for (std::size_t at; (at = text.find("\\n")) != std::string::npos;)
           text.replace(at, 2, "\n");

@@ -383,6 +383,19 @@ TEST(PrtViewPixels, AnimationTilesEachGroupOfInputsIntoOneFrame) {
   const prt_test::CommandResult odd =
       run_view("--animation " + quote(apng) + " --montage-columns 3" + inputs, "anim_odd");
   EXPECT_EQ(odd.exit_code, 1) << odd.output;
+
+  // Labelled like a montage: a label row above every frame (30-pixel tiles: 12 rows at 1 pixel
+  // per font pixel), the tiles unchanged below it.
+  const std::string labelled = scratch().file("anim_labelled.png");
+  const prt_test::CommandResult with_labels = run_view(
+      "--animation " + quote(labelled) + " --montage-columns 2 --montage-labels a,b" + inputs,
+      "anim_labelled");
+  ASSERT_EQ(with_labels.exit_code, 0) << with_labels.output;
+  EXPECT_NE(with_labels.output.find("2 frames of 84x42"), std::string::npos) << with_labels.output;
+  const Png first = read_png(labelled);
+  ASSERT_EQ(first.height, 42);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) ASSERT_EQ(first.at(x, 12 + y), left.at(x, y)) << x << "," << y;
 }
 
 TEST(PrtViewPixels, MontageLabelsAboveTheColumnsAndCaptionBelow) {
