@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // prt-view's pixels, read back with stb (not the viewer's code): the tone mapping of a known
-// radiance and the heat map's colours at known errors.
+// radiance (shaded, or given with --radiance-in) and the heat map's colours at known errors; box
+// framing, the turning light's frames and the animated PNG of tiled frames.
 //
 // The blobs are flat quads facing the camera (+Z) whose every vertex has the same order-1 `sh`
 // transfer t (offset t, scale 0), lit by a constant map m: the radiance is t * L00 with
@@ -79,6 +80,20 @@ double srgb_encode(double linear) {
 int display_byte(double radiance, double exposure_ev) {
   return static_cast<int>(
       std::lround(srgb_encode(aces_narkowicz(radiance * std::exp2(exposure_ev))) * 255.0));
+}
+
+// float32 [V, 3] .npy, format 1.0, written here; returns the path.
+std::string write_npy(const std::string& name, const std::vector<float>& rgb) {
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                       std::to_string(rgb.size() / 3) + ", 3), }";
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
+  bytes += char(header.size() & 0xFF);
+  bytes += char(header.size() >> 8);
+  bytes += header;
+  bytes.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * 4);
+  return scratch().write(name, bytes);
 }
 
 struct Png {
@@ -196,19 +211,7 @@ TEST(PrtViewPixels, HeatMapShowsTheDocumentedRampAtKnownErrors) {
   for (std::size_t i = 0; i < shaded.size(); ++i)
     reference[i] = float(1.0 + sigma * ramp_at[i / 12]) * shaded[i];  // 12 floats per quad
   const std::string reference_path = scratch().file("heat_reference.npy");
-  {
-    // float32 [V, 3] .npy, format 1.0, written here.
-    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                         std::to_string(reference.size() / 3) + ", 3), }";
-    while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-    header += '\n';
-    std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
-    bytes += char(header.size() & 0xFF);
-    bytes += char(header.size() >> 8);
-    bytes += header;
-    bytes.append(reinterpret_cast<const char*>(reference.data()), reference.size() * 4);
-    scratch().write("heat_reference.npy", bytes);
-  }
+  write_npy("heat_reference.npy", reference);
   char scale[32];
   std::snprintf(scale, sizeof scale, "%.9g", sigma / (1.0 + mean_s));
   const std::string heat = scratch().file("heat.png");
@@ -232,6 +235,209 @@ TEST(PrtViewPixels, HeatMapShowsTheDocumentedRampAtKnownErrors) {
     expect_block(png, x - 3, png.height / 2 - 3, x + 4, png.height / 2 + 4, ramp_byte(ramp_at[k]),
                  "quad " + std::to_string(k) + " at ramp position " + std::to_string(ramp_at[k]));
   }
+}
+
+TEST(PrtViewPixels, RadianceInDrawsTheGivenRadianceLikeShading) {
+  const std::string blob = flat_blob("given.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, {0, 0, 0});
+  const std::array<float, 3> given = {0.4f, 1.1f, 2.5f};
+  std::vector<float> rgb;
+  for (int v = 0; v < 4; ++v) rgb.insert(rgb.end(), given.begin(), given.end());
+  const std::string npy = write_npy("given.npy", rgb);
+  const std::string png_path = scratch().file("given.png");
+  const std::string common = quote(blob) + " --env " + quote(constant_map()) +
+                             " --headless --size 200x200 --exposure -0.5 --out " + quote(png_path) +
+                             " --radiance-in ";
+  const prt_test::CommandResult run = run_view(common + quote(npy), "given");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("shading:"), std::string::npos) << "no runtime shading";
+  const Png png = read_png(png_path);
+  ASSERT_EQ(png.width, 200);
+  std::array<int, 3> surface, background;
+  for (int c = 0; c < 3; ++c) {
+    surface[c] = display_byte(given[c], -0.5);
+    background[c] = display_byte(kConstant[c], -0.5);
+  }
+  expect_block(png, 80, 80, 120, 120, surface, "the quad");
+  expect_block(png, 0, 0, 10, 10, background, "a corner");
+
+  rgb.resize(3 * 3);  // one vertex short
+  const prt_test::CommandResult short_run =
+      run_view(common + quote(write_npy("short.npy", rgb)), "given_short");
+  EXPECT_EQ(short_run.exit_code, 1) << short_run.output;
+  EXPECT_NE(short_run.output.find("3 vertices, the blob has 4"), std::string::npos)
+      << short_run.output;
+}
+
+// The share of the middle image column a surface covers (pixels that are not the background).
+double covered_rows(const Png& png, const std::array<int, 3>& background) {
+  int covered = 0;
+  for (int y = 0; y < png.height; ++y) {
+    const std::array<int, 3> p = png.at(png.width / 2, y);
+    int diff = 0;
+    for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(p[c] - background[c]));
+    covered += diff > 2 ? 1 : 0;
+  }
+  return double(covered) / png.height;
+}
+
+TEST(PrtViewPixels, FrameBoundsFramesTheGivenBoxNotTheWholeMesh) {
+  // A unit square at the origin and a large rectangle far to the side, as objects beside a
+  // large ground plane are.
+  const std::string blob =
+      flat_blob("framed.prtk", {{-0.5f, -0.5f, 0.5f, 0.5f}, {20.0f, -10.0f, 60.0f, 10.0f}},
+                {0.3f, 0.3f, 0.3f});
+  const std::string map = constant_map();
+  std::array<int, 3> background;
+  for (int c = 0; c < 3; ++c) background[c] = display_byte(kConstant[c], 0.0);
+  double share[2] = {0.0, 0.0};
+  for (int framed = 0; framed < 2; ++framed) {
+    const std::string png_path = scratch().file("framed" + std::to_string(framed) + ".png");
+    const prt_test::CommandResult run =
+        run_view(quote(blob) + " --env " + quote(map) +
+                     " --headless --backend cpu --size 200x200 " + "--exposure 0 --out " +
+                     quote(png_path) + (framed ? " --frame-bounds -0.5,-0.5,0,0.5,0.5,0" : ""),
+                 "framed" + std::to_string(framed));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    share[framed] = covered_rows(read_png(png_path), background);
+  }
+  // Framed, the square spans the height but for the 5 % margins (its far edge is seen a little
+  // smaller); framed with the whole mesh, it is a small patch.
+  EXPECT_GT(share[1], 0.8);
+  EXPECT_LT(share[1], 0.95);
+  EXPECT_LT(share[0], 0.4);
+
+  const prt_test::CommandResult bad =
+      run_view(quote(blob) + " --env " + quote(map) + " --headless --out x.png --frame-bounds " +
+                   "1,0,0,0,1,1",
+               "framed_bad");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+}
+
+// A lat-long map bright in one half of the azimuths, so turning it changes the background.
+std::string half_bright_map() {
+  std::vector<float> rgb;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) rgb.insert(rgb.end(), 3, x < 32 ? 2.0f : 0.1f);
+  return write_hdr("half.hdr", 64, 32, rgb);
+}
+
+TEST(PrtViewPixels, TurnFramesMatchSingleImagesAtTheSameTurns) {
+  const std::string blob = flat_blob("turn.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, {0.2f, 0.2f, 0.2f});
+  const std::string map = half_bright_map();
+  const std::string common =
+      quote(blob) + " --env " + quote(map) + " --headless --backend cpu --size 64x48 ";
+  // One exposure for all frames (given here: a metered one is printed rounded).
+  const std::string ev = "0.25";
+  const prt_test::CommandResult run =
+      run_view(common + "--rotate 30 --exposure " + ev + " --turn-frames 4 --out " +
+                   quote(scratch().file("turn_%03d.png")),
+               "turn");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::vector<Png> frames;
+  for (int k = 0; k < 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "turn_%03d.png", k);
+    frames.push_back(read_png(scratch().file(name)));
+    const std::string single = scratch().file("single" + std::to_string(k) + ".png");
+    const prt_test::CommandResult one =
+        run_view(common + "--rotate " + std::to_string(30 + 90 * k) + " --exposure " + ev +
+                     " --out " + quote(single),
+                 "single" + std::to_string(k));
+    ASSERT_EQ(one.exit_code, 0) << one.output;
+    EXPECT_EQ(frames[k].rgb, read_png(single).rgb) << "frame " << k;
+  }
+  EXPECT_NE(frames[0].rgb, frames[2].rgb) << "the light turned half a circle";
+
+  const prt_test::CommandResult no_pattern =
+      run_view(common + "--turn-frames 4 --out " + quote(scratch().file("turn.png")), "turn_bad");
+  EXPECT_EQ(no_pattern.exit_code, 2) << no_pattern.output;
+}
+
+TEST(PrtViewPixels, AnimationTilesEachGroupOfInputsIntoOneFrame) {
+  const std::string blob = flat_blob("anim.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, {0.2f, 0.2f, 0.2f});
+  const std::string map = half_bright_map();
+  const prt_test::CommandResult frames =
+      run_view(quote(blob) + " --env " + quote(map) + " --headless --backend cpu --size 40x30 " +
+                   "--turn-frames 4 --out " + quote(scratch().file("anim_%d.png")),
+               "anim_frames");
+  ASSERT_EQ(frames.exit_code, 0) << frames.output;
+  std::string inputs;
+  for (int k = 0; k < 4; ++k)
+    inputs += " " + quote(scratch().file("anim_" + std::to_string(k) + ".png"));
+  const std::string apng = scratch().file("anim.png");
+  const prt_test::CommandResult run = run_view(
+      "--animation " + quote(apng) + " --montage-columns 2 --frame-ms 40" + inputs, "anim");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("2 frames of 84x30, 40 ms each"), std::string::npos) << run.output;
+  // The default image is the first frame: inputs 0 and 1 side by side, 4 black columns between.
+  const Png still = read_png(apng);
+  ASSERT_EQ(still.width, 84);
+  const Png left = read_png(scratch().file("anim_0.png")),
+            right = read_png(scratch().file("anim_1.png"));
+  for (int y = 0; y < 30; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      ASSERT_EQ(still.at(x, y), left.at(x, y)) << x << "," << y;
+      ASSERT_EQ(still.at(44 + x, y), right.at(x, y)) << x << "," << y;
+    }
+  }
+  const prt_test::CommandResult odd =
+      run_view("--animation " + quote(apng) + " --montage-columns 3" + inputs, "anim_odd");
+  EXPECT_EQ(odd.exit_code, 1) << odd.output;
+
+  // Labelled like a montage: a label row above every frame (30-pixel tiles: 12 rows at 1 pixel
+  // per font pixel), the tiles unchanged below it.
+  const std::string labelled = scratch().file("anim_labelled.png");
+  const prt_test::CommandResult with_labels = run_view(
+      "--animation " + quote(labelled) + " --montage-columns 2 --montage-labels a,b" + inputs,
+      "anim_labelled");
+  ASSERT_EQ(with_labels.exit_code, 0) << with_labels.output;
+  EXPECT_NE(with_labels.output.find("2 frames of 84x42"), std::string::npos) << with_labels.output;
+  const Png first = read_png(labelled);
+  ASSERT_EQ(first.height, 42);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) ASSERT_EQ(first.at(x, 12 + y), left.at(x, y)) << x << "," << y;
+}
+
+TEST(PrtViewPixels, MontageLabelsAboveTheColumnsAndCaptionBelow) {
+  const std::string blob =
+      flat_blob("label.prtk", {{-1.0f, -1.0f, 1.0f, 1.0f}}, {0.2f, 0.2f, 0.2f});
+  const std::string tile = scratch().file("label_tile.png");
+  const prt_test::CommandResult made =
+      run_view(quote(blob) + " --env " + quote(constant_map()) +
+                   " --headless --size 90x180 --out " + quote(tile),
+               "label_tile");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const std::string out = scratch().file("labelled.png");
+  const prt_test::CommandResult run =
+      run_view("--montage " + quote(out) + " --montage-columns 2 --montage-labels left,right " +
+                   "--montage-caption 'one\\ntwo' " + quote(tile) + " " + quote(tile),
+               "labelled");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Png png = read_png(out), single = read_png(tile);
+  ASSERT_EQ(png.width, 90 + 4 + 90);
+  // Text at 2 pixels per font pixel (a 180-pixel tile): a label row of 24, then the tiles, then two
+  // caption lines.
+  const int top = 24;
+  ASSERT_GT(png.height, top + 180 + 2 * 2 * 10);
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 90; ++x) ASSERT_EQ(png.at(94 + x, top + y), single.at(x, y));
+  // White label pixels over each column's middle third, black elsewhere in the label row.
+  for (int column = 0; column < 2; ++column) {
+    int white = 0, other = 0;
+    for (int y = 0; y < top; ++y) {
+      for (int x = column * 94; x < column * 94 + 90; ++x) {
+        const std::array<int, 3> p = png.at(x, y);
+        const bool in_middle = x >= column * 94 + 20 && x < column * 94 + 70;
+        if (p == std::array<int, 3>{255, 255, 255}) (in_middle ? white : other) += 1;
+      }
+    }
+    EXPECT_GT(white, 20) << "column " << column;
+    EXPECT_EQ(other, 0) << "column " << column;
+  }
+  int caption = 0;
+  for (int y = top + 180; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) caption += png.at(x, y)[0] == 255 ? 1 : 0;
+  EXPECT_GT(caption, 20);
 }
 
 }  // namespace

@@ -21,6 +21,11 @@ struct Camera {
   // above (elevation ~17 degrees), at the sphere's centre.
   static Camera auto_frame(const glm::vec3& lo, const glm::vec3& hi, float aspect,
                            float vertical_fov_degrees = 40.0f);
+  // Frames the box [lo, hi] itself, from the direction auto_frame looks: at the box's centre,
+  // as close as keeps all eight corners inside the view with a 5 % margin. A wide, flat box
+  // fills the frame, where its bounding sphere leaves it small.
+  static Camera frame_box(const glm::vec3& lo, const glm::vec3& hi, float aspect,
+                          float vertical_fov_degrees = 40.0f);
 
   // Unit direction of the ray through image point (sx, sy), both in [0,1], (0,0) = top left.
   glm::vec3 direction(float sx, float sy) const;
