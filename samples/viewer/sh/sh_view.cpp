@@ -41,6 +41,7 @@ class GlShShader : public GlVertexShader {
   prt_result read(std::uint32_t first, std::uint32_t count, float* rgb) override {
     return prt_gl_sh_read(shader_.get(), first, count, rgb);
   }
+  std::uint32_t output_buffer() const override { return prt_gl_sh_output_buffer(shader_.get()); }
 
  private:
   prt::GlShShaderPtr shader_;
@@ -51,7 +52,6 @@ class ShView : public ViewTechnique {
  public:
   prt_technique technique() const override { return PRT_TECHNIQUE_SH; }
   std::uint32_t section_tag() const override { return PRT_SECTION_SHTR; }
-  void add_options(CLI::App&, const std::string&) override {}
 
   std::uint32_t open(const BlobScene& scene) override {
     const prt_result result = prt_sh_get_info(scene.asset(), &info_);
@@ -69,6 +69,7 @@ class ShView : public ViewTechnique {
   void prepare_light(const BlobScene&, const LightRequest& request) override {
     const prt::io::EnvMap& map = *request.map;
     light_ = project_and_rotate(map, info_.order, request.rotate_degrees);
+    if (!request.describe) return;
     std::printf(
         "%s: %dx%d %s map, projected to order %u by the runtime (prt_sh_project, %s), rotated "
         "%g deg about +Y\n",
