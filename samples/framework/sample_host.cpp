@@ -77,7 +77,7 @@ void add_host_options(CLI::App& app, HostOptions& o) {
       ->check(CLI::Range(1, 1000000))
       ->group(group);
   app.add_option("--screenshot,--out", o.screenshot,
-                 "PNG the last of --frames is written to (and where P / F12 write)")
+                 "PNG the last of --frames is written to (P / F12 write <app>-NNN.png)")
       ->group(group);
   app.add_flag("--screenshot-ui", o.screenshot_ui,
                "Screenshots include the overlay (default: the tone-mapped scene only)")
@@ -133,7 +133,8 @@ void add_host_options(CLI::App& app, HostOptions& o) {
 
 void check_host_options(HostOptions& o) {
   parse_size(o.size, &o.width, &o.height);
-  if (o.headless && o.frames == 0) o.frames = 1;
+  // ImGui lays a new window out on its first frame and draws it from the second.
+  if (o.headless && o.frames == 0) o.frames = o.screenshot_ui ? 2 : 1;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -219,7 +220,7 @@ class Host : public Sample, public InputSink {
   void query_backends();
   void draw_frame(bool last_frame);
   void write_screenshot(const std::string& path, bool with_ui);
-  std::string next_screenshot_path();
+  std::string key_screenshot_path();
   OverlayState overlay_state();
 };
 
@@ -267,8 +268,7 @@ void Host::key(const std::string& name) {
   if (name == "ESCAPE") presenter_->request_close();
 }
 
-std::string Host::next_screenshot_path() {
-  if (!options_.screenshot.empty() && screenshots_ == 0) return options_.screenshot;
+std::string Host::key_screenshot_path() {
   char path[64];
   std::snprintf(path, sizeof path, "%s-%03d.png", name_, screenshots_);
   return path;
@@ -351,11 +351,17 @@ void Host::draw_frame(bool last_frame) {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output);
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, output);
-  const bool shoot = screenshot_requested_ || (last_frame && !options_.screenshot.empty());
-  if (shoot && !options_.screenshot_ui) write_screenshot(next_screenshot_path(), false);
+  // The key's screenshots are numbered in the working folder; the last of --frames goes to
+  // --screenshot.
+  std::vector<std::string> shots;
+  if (screenshot_requested_) shots.push_back(key_screenshot_path());
+  if (last_frame && !options_.screenshot.empty()) shots.push_back(options_.screenshot);
+  if (!options_.screenshot_ui)
+    for (const std::string& path : shots) write_screenshot(path, false);
   glBindFramebuffer(GL_FRAMEBUFFER, output);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (shoot && options_.screenshot_ui) write_screenshot(next_screenshot_path(), true);
+  if (options_.screenshot_ui)
+    for (const std::string& path : shots) write_screenshot(path, true);
   screenshot_requested_ = false;
   presenter_->present();
 }

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// Input drives prt-viewer as a person's would: replayed events (--input-script, fed into the
+// handlers the GLFW callbacks call) move the camera as the options that say the same thing do,
+// `F` frames the scene again, and files dropped on the window are opened. The technique's live
+// parameter (wavelet M) changes the picture through the same interface its option uses.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "samples/viewer_app_test_util.hpp"
+
+namespace {
+
+using namespace prt_viewer_app_test;
+
+// Two frames (screenshot()'s --frames 2): events of frame 0, then of frame 1, which is drawn and
+// written.
+const char* const kFixed = "--backend cpu --exposure 0";
+
+std::string script(const std::string& name, const std::string& text) {
+  return scratch().write(name, text);
+}
+
+Picture run(const std::string& blob, const std::string& map, const std::string& name,
+            const std::string& extra, bool windowed = false) {
+  return screenshot(blob, map, name, std::string(kFixed) + " " + extra, windowed);
+}
+
+// A left-drag of (60, 40) pixels turns the camera by 0.25 degrees a pixel: yaw -15, pitch +10
+// (from the first view's atan 0.3 = 16.699 degrees).
+void expect_drag_equals_options(bool windowed) {
+  const std::string blob = sphere_sh_blob("input_sphere.prtk");
+  const std::string map = sun_at_plus_x_map();
+  const std::string drag = script("drag.txt",
+                                  "0 move 100 100\n"
+                                  "0 press left\n"
+                                  "1 move 130 120\n"
+                                  "1 move 160 140\n"
+                                  "1 release left\n");
+  const Picture dragged = run(blob, map, "dragged", "--input-script " + quote(drag), windowed);
+  const Picture turned = run(blob, map, "turned", "--yaw -15 --pitch 26.699244", windowed);
+  const Picture still = run(blob, map, "still", "", windowed);
+  const Difference same = difference(dragged, turned), moved = difference(dragged, still);
+  std::printf("drag vs --yaw/--pitch: largest %d; drag vs no drag: %zu pixels differ\n",
+              same.largest, moved.pixels);
+  EXPECT_LE(same.largest, 1);
+  EXPECT_GT(moved.pixels, 1000u) << "the drag should have turned the camera";
+}
+
+TEST(PrtViewerInput, ReplayedDragTurnsTheCameraAsYawAndPitchDo) {
+  expect_drag_equals_options(false);
+}
+
+TEST(PrtViewerInput, ReplayedDragInAWindowTurnsTheCameraAsYawAndPitchDo) {
+  PRT_SKIP_WITHOUT_WINDOWS();
+  expect_drag_equals_options(true);
+}
+
+TEST(PrtViewerInput, WheelZoomsAndFFramesTheSceneAgain) {
+  const std::string blob = sphere_sh_blob("input_sphere.prtk");
+  const std::string map = sun_at_plus_x_map();
+  const Picture still = run(blob, map, "zoom_still", "");
+  const Picture zoomed =
+      run(blob, map, "zoomed", "--input-script " + quote(script("zoom.txt", "0 scroll 3\n")));
+  const Picture reframed =
+      run(blob, map, "reframed",
+          "--input-script " + quote(script("frame.txt", "0 scroll 3\n1 key F\n")));
+  // Three steps of 10 % closer: the sphere grows by 1 / 0.9^3 = 1.37, so more of the middle is
+  // covered.
+  EXPECT_GT(centre_coverage(zoomed), centre_coverage(still) + 0.05);
+  EXPECT_LE(difference(reframed, still).largest, 1) << "F frames the scene as on load";
+}
+
+TEST(PrtViewerInput, DroppedBlobAndMapAreOpened) {
+  const std::string sphere = sphere_sh_blob("input_sphere.prtk");
+  const std::string map = sun_at_plus_x_map();
+  const std::string sky = prt_view_test::write_test_sky();
+  const std::string quad = prt_view_test::golden("sh_quad.prtk");
+  // A blob dropped on the window replaces the first and is framed as if opened directly.
+  const Picture dropped_blob =
+      run(sphere, map, "dropped_blob",
+          "--input-script " + quote(script("drop_blob.txt", "1 drop " + quad + "\n")));
+  const Picture direct_blob = run(quad, map, "direct_blob", "");
+  EXPECT_LE(difference(dropped_blob, direct_blob).largest, 1);
+  // A map dropped on the window is added and picked.
+  const Picture dropped_map =
+      run(sphere, map, "dropped_map",
+          "--input-script " + quote(script("drop_map.txt", "1 drop " + sky + "\n")));
+  const Picture direct_map = run(sphere, sky, "direct_map", "");
+  EXPECT_LE(difference(dropped_map, direct_map).largest, 1);
+  EXPECT_GT(difference(dropped_map, run(sphere, map, "undropped", "")).pixels, 1000u);
+}
+
+TEST(PrtViewerInput, DroppingAFileThatIsNotABlobIsReportedAndFailsAScriptedRun) {
+  const std::string map = sun_at_plus_x_map();
+  const std::string bad = scratch().write("not_a_blob.prtk", "hello");
+  const std::string png = scratch().file("bad_drop.png");
+  const prt_test::CommandResult result =
+      run_viewer(quote(sphere_sh_blob("input_sphere.prtk")) + " --env " + quote(map) +
+                     " --frames 3 --size 160x120 --screenshot " + quote(png) + " --input-script " +
+                     quote(script("drop_bad.txt", "1 drop " + bad + "\n")),
+                 "bad_drop");
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("not_a_blob.prtk"), std::string::npos) << result.output;
+}
+
+// wavelet's light coefficients M, a live parameter: the option sets it as the slider does.
+TEST(PrtViewerLiveParameters, WaveletLightCoefficientsChangeThePicture) {
+  const std::string sky = prt_view_test::write_test_sky();
+  const std::string blob = prt_view_test::golden("wavelet_quad.prtk");
+  const Picture all = run(blob, sky, "m_all", "");
+  const Picture few = run(blob, sky, "m_0", "--light-coefficients 0");
+  const Picture same = run(blob, sky, "m_big", "--light-coefficients 100000");
+  EXPECT_GT(difference(all, few).pixels, 100u) << "keeping no detail coefficient blurs the light";
+  EXPECT_LE(difference(all, same).largest, 0) << "M beyond the count keeps all";
+}
+
+}  // namespace
