@@ -60,7 +60,7 @@ void picture(const OverlayState& s) {
 
 void draw_overlay(const OverlayState& state, const std::function<void()>& app_panel) {
   ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360.0f, 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380.0f, 0.0f), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.75f);
   if (ImGui::Begin("prtkit")) {
     figures(state);

@@ -87,7 +87,7 @@ class ViewerApp : public prt::sample::SampleApp {
       views.push_back(view(*slots_[0], a, {}, {}));
     } else if (error) {
       rmse_ = error_view_->update(slots_[0]->radiance(), error_scale_);
-      views.push_back(view(*slots_[0], a, prt::sample::FrameRect(), left_half()));
+      views.push_back(view(*slots_[0], a, left_half(), left_half()));
       View heat;
       heat.mesh = &error_view_->mesh();
       heat.colour_buffer = error_view_->mesh().own_colours();

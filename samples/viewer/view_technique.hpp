@@ -53,7 +53,7 @@ class GlVertexShader {
 // is the one given, unchecked).
 struct LiveParameter {
   enum class Kind { Int, Float, Bool };
-  std::string label;   // what the control shows, e.g. "light coefficients M"
+  std::string label;   // what the control shows, e.g. "light terms M"
   std::string option;  // the command-line option, e.g. "--light-coefficients"
   std::string help;    // the option's help text
   Kind kind = Kind::Int;

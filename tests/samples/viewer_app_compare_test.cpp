@@ -89,7 +89,7 @@ TEST(PrtViewerCompare, ErrorModePrintsTheRelativeRmseAgainstTheReference) {
   const std::string png = scratch().file("error.png");
   const prt_test::CommandResult run =
       run_viewer(quote(blob) + " --env " + quote(sky) + " --reference " + quote(reference) +
-                     " --backend cpu --size 320x240 --screenshot " + quote(png),
+                     " --backend cpu --exposure 0 --size 320x240 --screenshot " + quote(png),
                  "error");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   std::smatch match;
@@ -103,6 +103,15 @@ TEST(PrtViewerCompare, ErrorModePrintsTheRelativeRmseAgainstTheReference) {
   EXPECT_EQ(corner[0], 64);
   EXPECT_EQ(corner[1], 64);
   EXPECT_EQ(corner[2], 64);
+  // The left half is the blob as a half-frame view shows it.
+  const Picture single =
+      screenshot(blob, sky, "error_single", "--backend cpu --exposure 0", false, "160x240");
+  Picture left;
+  left.width = 160, left.height = 240;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 160; ++x)
+      for (int c = 0; c < 3; ++c) left.rgb.push_back(p.at(x, y)[c]);
+  EXPECT_LE(difference(left, single).largest, 1);
 }
 
 }  // namespace

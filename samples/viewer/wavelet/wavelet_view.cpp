@@ -39,7 +39,7 @@ class WaveletView : public ViewTechnique {
 
   std::vector<LiveParameter> live_parameters() override {
     LiveParameter m;
-    m.label = "light coefficients M";
+    m.label = "light terms M";
     m.option = "--light-coefficients";
     m.help =
         "Light detail coefficients kept per frame by area-weighted selection (default: all); the "
