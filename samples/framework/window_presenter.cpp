@@ -11,6 +11,21 @@
 
 #include "presenter.hpp"
 
+// Under AddressSanitizer, glfwTerminate closes the X display, which unloads the Mesa driver, and
+// LeakSanitizer then reports the driver's allocations from an unknown module, which no
+// suppression can match (as eglTerminate does, samples/common/headless_gl.c); so sanitizer builds
+// leave GLFW initialised (the process ends soon after anyway).
+#if defined(__SANITIZE_ADDRESS__)
+#define PRT_SAMPLE_KEEP_GLFW 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PRT_SAMPLE_KEEP_GLFW 1
+#endif
+#endif
+#ifndef PRT_SAMPLE_KEEP_GLFW
+#define PRT_SAMPLE_KEEP_GLFW 0
+#endif
+
 namespace prt::sample {
 namespace {
 
@@ -74,7 +89,7 @@ class WindowPresenter : public Presenter {
 
   ~WindowPresenter() override {
     glfwDestroyWindow(window_);
-    glfwTerminate();
+    if (!PRT_SAMPLE_KEEP_GLFW) glfwTerminate();
   }
 
   void framebuffer_size(int* width, int* height) const override {
