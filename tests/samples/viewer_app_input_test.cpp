@@ -72,6 +72,24 @@ TEST(PrtViewerInput, WheelZoomsAndFFramesTheSceneAgain) {
   EXPECT_LE(difference(reframed, still).largest, 1) << "F frames the scene as on load";
 }
 
+// A right-drag of 40 pixels turns the light by 10 degrees (0.25 a pixel), as --rotate 10 does;
+// auto-spin turns it by its speed times 1/60 s a frame in a scripted run: 90 deg/s over two
+// frames is --rotate 3.
+TEST(PrtViewerInput, RightDragAndAutoSpinTurnTheLightAsRotateDoes) {
+  const std::string blob = sphere_sh_blob("input_sphere.prtk");
+  const std::string map = sun_at_plus_x_map();
+  const std::string drag =
+      script("right_drag.txt", "0 move 100 100\n0 press right\n1 move 140 100\n1 release right\n");
+  const Picture dragged = run(blob, map, "light_dragged", "--input-script " + quote(drag));
+  const Picture rotated = run(blob, map, "light_rotated", "--rotate 10");
+  const Picture still = run(blob, map, "light_still", "");
+  EXPECT_LE(difference(dragged, rotated).largest, 1);
+  EXPECT_GT(difference(dragged, still).pixels, 1000u);
+  const Picture spun = run(blob, map, "light_spun", "--spin 90");
+  EXPECT_LE(difference(spun, run(blob, map, "light_rotated_3", "--rotate 3")).largest, 1);
+  EXPECT_GT(difference(spun, still).pixels, 100u);
+}
+
 TEST(PrtViewerInput, DroppedBlobAndMapAreOpened) {
   const std::string sphere = sphere_sh_blob("input_sphere.prtk");
   const std::string map = sun_at_plus_x_map();
