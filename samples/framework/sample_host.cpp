@@ -380,15 +380,20 @@ int Host::run() {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;
   ImGui::StyleColorsDark();
-  if (options_.headless) {
-    presenter_ = make_headless_presenter(options_.width, options_.height);
-  } else {
-    WindowRequest request;
-    request.width = options_.width, request.height = options_.height;
-    request.title = name_;
-    request.egl = options_.window_api == "egl";
-    request.vsync = !scripted;
-    presenter_ = make_window_presenter(request, *this);
+  try {
+    if (options_.headless) {
+      presenter_ = make_headless_presenter(options_.width, options_.height);
+    } else {
+      WindowRequest request;
+      request.width = options_.width, request.height = options_.height;
+      request.title = name_;
+      request.egl = options_.window_api == "egl";
+      request.vsync = !scripted;
+      presenter_ = make_window_presenter(request, *this);
+    }
+  } catch (...) {
+    ImGui::DestroyContext();
+    throw;
   }
   ImGui_ImplOpenGL3_Init("#version 430 core");
   renderer_name_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));

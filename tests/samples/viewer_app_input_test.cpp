@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "samples/viewer_app_test_util.hpp"
@@ -121,6 +122,39 @@ TEST(PrtViewerInput, DroppingAFileThatIsNotABlobIsReportedAndFailsAScriptedRun) 
                  "bad_drop");
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("not_a_blob.prtk"), std::string::npos) << result.output;
+}
+
+// In a split screen, a left-drag that starts on the divider moves it instead of the camera.
+TEST(PrtViewerInput, DraggingTheDividerMovesIt) {
+  const std::string sky = prt_view_test::write_test_sky();
+  const std::string sh = prt_view_test::golden("sh_quad.prtk");
+  const std::string split = quote(prt_view_test::golden("wavelet_quad.prtk")) + " --compare split ";
+  const std::string drag =
+      script("divider.txt", "0 move 160 120\n0 press left\n1 move 80 100\n1 release left\n");
+  const Picture dragged = run(sh, sky, "divider_dragged", split + "--input-script " + quote(drag));
+  const Picture quarter = run(sh, sky, "divider_quarter", split + "--divider 0.25");
+  const Picture half = run(sh, sky, "divider_half", split);
+  EXPECT_LE(difference(dragged, quarter).largest, 1);
+  EXPECT_GT(difference(dragged, half).pixels, 100u);
+}
+
+// P (or F12) writes a numbered screenshot in the working folder.
+TEST(PrtViewerInput, ScreenshotKeyWritesANumberedPicture) {
+  const std::string folder = scratch().file("key_shot");
+  std::filesystem::create_directories(folder);
+  const std::string command = "cd " + quote(folder) + " && " + quote(PRT_VIEWER_EXE) +
+                              " --headless " + quote(sphere_sh_blob("input_sphere.prtk")) +
+                              " --env " + quote(sun_at_plus_x_map()) +
+                              " --size 160x120 --frames 2 --input-script " +
+                              quote(script("key_p.txt", "0 key P\n1 key F12\n"));
+  const prt_test::CommandResult result =
+      prt_test::run_command("/bin/sh", "-c " + quote(command), scratch().file("key_shot.log"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const char* name : {"prt-viewer-000.png", "prt-viewer-001.png"}) {
+    const Picture p = read_picture(folder + "/" + name);
+    EXPECT_EQ(p.width, 160) << name;
+    EXPECT_GT(centre_coverage(p), 0.5) << name;
+  }
 }
 
 // wavelet's light coefficients M, a live parameter: the option sets it as the slider does.
