@@ -72,7 +72,8 @@ void draw_overlay(const OverlayState& state, const std::function<void()>& app_pa
     app_panel();
     ImGui::Separator();
     ImGui::TextDisabled("drag: orbit  right-drag: light  wheel: zoom");
-    ImGui::TextDisabled("F: frame  P/F12: screenshot  H: overlay  drop .prtk/.hdr");
+    ImGui::TextDisabled("F: frame  P/F12: shot  H: overlay  Esc: quit");
+    ImGui::TextDisabled("drop a .prtk or an .hdr on the window");
   }
   ImGui::End();
 }
