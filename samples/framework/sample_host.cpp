@@ -94,7 +94,10 @@ void add_host_options(CLI::App& app, HostOptions& o) {
       ->group(group);
 
   const std::string look = "Light and picture";
-  app.add_option("--env", o.envs, "Environment map(s) (.hdr; lat-long, vertical cross or probe)")
+  // One map per --env, so a blob named after it is not taken for another map.
+  app.add_option("--env", o.envs,
+                 "Environment map (.hdr; lat-long, vertical cross or probe); repeat for more")
+      ->allow_extra_args(false)
       ->group(look);
   app.add_option("--env-mapping", o.env_mapping, "auto|latlong|cross|probe")
       ->check(CLI::IsMember({"auto", "latlong", "cross", "probe"}))

@@ -59,7 +59,9 @@ class WindowPresenter : public Presenter {
  public:
   WindowPresenter(const WindowRequest& request, InputSink& sink) : sink_(sink) {
     glfwSetErrorCallback(record_glfw_error);
-    if (!glfwInit()) throw std::runtime_error("no window: glfwInit failed: " + glfw_error());
+    if (!glfwInit())
+      throw std::runtime_error("no window: glfwInit failed: " + glfw_error() +
+                               " (without a display, use --headless or run under xvfb-run)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

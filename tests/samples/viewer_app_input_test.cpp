@@ -111,6 +111,19 @@ TEST(PrtViewerInput, DroppedBlobAndMapAreOpened) {
   EXPECT_GT(difference(dropped_map, run(sphere, map, "undropped", "")).pixels, 1000u);
 }
 
+// Each --env names one map (before or after the blob); the first is lit with.
+TEST(PrtViewerInput, EveryEnvOptionAddsOneMapAndTheFirstIsCurrent) {
+  const std::string sphere = sphere_sh_blob("input_sphere.prtk");
+  const std::string map = sun_at_plus_x_map(), sky = prt_view_test::write_test_sky();
+  const std::string png = scratch().file("two_maps.png");
+  const prt_test::CommandResult result = run_viewer(
+      "--env " + quote(map) + " " + quote(sphere) + " --env " + quote(sky) +
+          " --backend cpu --exposure 0 --size 320x240 --frames 2 --screenshot " + quote(png),
+      "two_maps");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_LE(difference(read_picture(png), run(sphere, map, "one_map", "")).largest, 1);
+}
+
 TEST(PrtViewerInput, DroppingAFileThatIsNotABlobIsReportedAndFailsAScriptedRun) {
   const std::string map = sun_at_plus_x_map();
   const std::string bad = scratch().write("not_a_blob.prtk", "hello");
