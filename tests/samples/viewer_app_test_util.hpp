@@ -10,6 +10,7 @@
 #include <prt/format/blob_writer.hpp>
 #include <prt/prt.hpp>
 
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,14 +27,17 @@ using prt_view_test::kPi;
 using prt_view_test::quote;
 using prt_view_test::scratch;
 
-// How a windowed run is started: directly with a display, under xvfb-run without one; empty
-// when neither works (the test then skips).
+// How a windowed run is started: directly with a display, under xvfb-run without one, "none"
+// when neither works (the test then skips). xvfb-run -a looks for a free display from -n on;
+// starting the search at a number of this process's own keeps parallel tests from racing for
+// the same one.
 inline std::string window_launcher() {
   const char* display = std::getenv("DISPLAY");
   if (display && *display) return "";
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") == 0)
-    return "xvfb-run -a -s '-screen 0 1280x720x24' ";
-  return "none";
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return "none";
+  static int runs = 0;
+  const int first = 100 + int((getpid() * 16 + runs++) % 20000);
+  return "xvfb-run -a -n " + std::to_string(first) + " -s '-screen 0 1280x720x24' ";
 }
 
 #define PRT_SKIP_WITHOUT_WINDOWS()                                                           \
