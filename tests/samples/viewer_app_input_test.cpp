@@ -5,6 +5,8 @@
 // parameter (wavelet M) changes the picture through the same interface its option uses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -179,6 +181,39 @@ TEST(PrtViewerLiveParameters, WaveletLightCoefficientsChangeThePicture) {
   const Picture same = run(blob, sky, "m_big", "--light-coefficients 100000");
   EXPECT_GT(difference(all, few).pixels, 100u) << "keeping no detail coefficient blurs the light";
   EXPECT_LE(difference(all, same).largest, 0) << "M beyond the count keeps all";
+}
+
+// sh's de-ringing, a live parameter: under a sun alone, order-3 SH light rings, and the sphere's
+// far side gets negative radiance; prt_sh_dering_light at strength 1 is the weakest window that
+// keeps a point light's irradiance non-negative (prt_sh.h), so with --dering no vertex is
+// negative. prt-view and prt-viewer take the option from the same LiveParameter.
+TEST(PrtViewerLiveParameters, ShDeRingingRemovesTheNegativeFarSide) {
+  const std::string sphere = sphere_sh_blob("input_sphere.prtk");
+  const std::string sun = prt_view_test::write_hdr(
+      "sun_only.hdr", 64, 32,
+      prt_view_test::latlong_map(
+          [](const double d[3], float rgb[3]) {
+            const float v = d[0] > std::cos(10.0 * kPi / 180.0) ? 400.0f : 0.0f;
+            rgb[0] = rgb[1] = rgb[2] = v;
+          },
+          64, 32));
+  auto extremes = [](const std::vector<float>& rgb) {
+    const auto [lo, hi] = std::minmax_element(rgb.begin(), rgb.end());
+    return std::pair<float, float>{*lo, *hi};
+  };
+  const auto ringing =
+      extremes(prt_view_test::view_vertices(sphere, sun, "ringing", "--backend cpu"));
+  const auto dering =
+      extremes(prt_view_test::view_vertices(sphere, sun, "dering", "--backend cpu --dering"));
+  std::printf("radiance without de-ringing [%g, %g], with [%g, %g]\n", ringing.first,
+              ringing.second, dering.first, dering.second);
+  EXPECT_LT(ringing.first, -0.01f * ringing.second) << "SH of a lone sun rings";
+  EXPECT_GE(dering.first, -1e-5f * dering.second) << "de-ringed light gives no negative radiance";
+  const Picture plain = run(sphere, sun, "dering_off", "");
+  const Picture windowed = run(sphere, sun, "dering_on", "--dering");
+  const Picture stronger = run(sphere, sun, "dering_strong", "--dering --dering-strength 2");
+  EXPECT_GT(difference(plain, windowed).pixels, 1000u);
+  EXPECT_GT(difference(windowed, stronger).pixels, 1000u);
 }
 
 }  // namespace
