@@ -9,8 +9,10 @@
 #include <prt/prt.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "blob_scene.hpp"
 #include "prt/io/envmap.hpp"
@@ -27,6 +29,7 @@ struct LightRequest {
   const prt::io::EnvMap* map = nullptr;
   std::string map_path;
   double rotate_degrees = 0.0;
+  bool describe = true;  // prepare_light prints how it made the light
 };
 
 // A technique's GPU shading of one asset, made on the GL context current on this thread; holds
@@ -38,6 +41,25 @@ class GlVertexShader {
   virtual prt_result shade(std::uint32_t first, std::uint32_t count) = 0;
   // Reads the shaded RGB of vertices [first, first+count) back (count*3 floats).
   virtual prt_result read(std::uint32_t first, std::uint32_t count, float* rgb) = 0;
+  // The GL buffer the shading writes: RGB float triples, 12-byte stride, one per vertex
+  // (prt_gl_<t>_output_buffer), which a renderer binds as a vertex attribute.
+  virtual std::uint32_t output_buffer() const = 0;
+};
+
+// A setting of the technique's light that a viewer may change while it runs (a slider or a
+// check box in prt-viewer, an option of prt-view): a value of one kind in [min, max], read and
+// written through get and set. set stores the value; it takes effect the next time the viewer
+// calls prepare_light. The range is known once the blob is open (before, max is 0 and the value
+// is the one given, unchecked).
+struct LiveParameter {
+  enum class Kind { Int, Float, Bool };
+  std::string label;   // what the control shows, e.g. "light terms M"
+  std::string option;  // the command-line option, e.g. "--light-coefficients"
+  std::string help;    // the option's help text
+  Kind kind = Kind::Int;
+  double min = 0.0, max = 0.0;
+  std::function<double()> get;
+  std::function<void(double)> set;
 };
 
 class ViewTechnique {
@@ -46,8 +68,12 @@ class ViewTechnique {
 
   virtual prt_technique technique() const = 0;
 
-  // Adds the technique's own options to `app`, each in the help section `group`.
-  virtual void add_options(CLI::App& app, const std::string& group) = 0;
+  // Adds the technique's own options that are not live parameters to `app`, each in the help
+  // section `group` (ViewTechniques adds the live parameters' options beside them).
+  virtual void add_options(CLI::App&, const std::string& /*group*/) {}
+
+  // The live parameters of the open blob's technique (none by default).
+  virtual std::vector<LiveParameter> live_parameters() { return {}; }
 
   // The technique's section tag (a PRT_TAG), for messages.
   virtual std::uint32_t section_tag() const = 0;

@@ -34,7 +34,50 @@ void ViewTechniques::add_options(CLI::App& app) {
                  "Which technique of the blob to draw (" + this->names() +
                      "); default: the first of these the blob holds")
       ->check(CLI::IsMember(names));
-  for (Entry& entry : entries_) entry.view->add_options(app, options_group(entry.name));
+  for (Entry& entry : entries_) {
+    const std::string group = options_group(entry.name);
+    entry.view->add_options(app, group);
+    for (const LiveParameter& parameter : entry.view->live_parameters())
+      add_live_parameter_option(app, group, parameter);
+  }
+}
+
+void add_live_parameter_option(CLI::App& app, const std::string& group,
+                               const LiveParameter& parameter) {
+  const std::function<void(double)> set = parameter.set;
+  switch (parameter.kind) {
+    case LiveParameter::Kind::Bool:
+      app.add_flag_function(
+             parameter.option, [set](std::int64_t count) { set(count > 0 ? 1.0 : 0.0); },
+             parameter.help)
+          ->group(group);
+      break;
+    case LiveParameter::Kind::Int:
+      app.add_option_function<std::uint32_t>(
+             parameter.option, [set](const std::uint32_t& value) { set(double(value)); },
+             parameter.help)
+          ->group(group);
+      break;
+    case LiveParameter::Kind::Float:
+      app.add_option_function<double>(
+             parameter.option, [set](const double& value) { set(value); }, parameter.help)
+          ->group(group);
+      break;
+  }
+}
+
+void copy_live_parameters(ViewTechnique& from, ViewTechnique& to) {
+  if (from.technique() != to.technique()) return;
+  std::vector<LiveParameter> source = from.live_parameters();
+  for (const LiveParameter& target : to.live_parameters())
+    for (const LiveParameter& given : source)
+      if (given.option == target.option) target.set(given.get());
+}
+
+ViewTechnique* ViewTechniques::find(prt_technique technique) const {
+  for (const Entry& entry : entries_)
+    if (entry.view->technique() == technique) return entry.view.get();
+  return nullptr;
 }
 
 std::string ViewTechniques::names() const {

@@ -23,6 +23,15 @@ using MakeViewTechnique = std::unique_ptr<ViewTechnique> (*)();
 // The table: techniques.cpp, its only definition.
 const std::vector<MakeViewTechnique>& view_technique_table();
 
+// The command-line option of a live parameter, in the help section `group`: a flag for a bool,
+// an option taking a number otherwise; given, it calls the parameter's set.
+void add_live_parameter_option(CLI::App& app, const std::string& group,
+                               const LiveParameter& parameter);
+
+// Gives `to` the values of `from`'s live parameters (matched by option), when both are the same
+// technique: how a viewer hands the command line's values to another instance.
+void copy_live_parameters(ViewTechnique& from, ViewTechnique& to);
+
 class ViewTechniques {
  public:
   // One instance of every technique in the table; its name is the runtime's
@@ -43,6 +52,9 @@ class ViewTechniques {
 
   // The techniques' names in table order, comma-separated, for messages and help.
   std::string names() const;
+
+  // This registry's instance of `technique`, or nullptr.
+  ViewTechnique* find(prt_technique technique) const;
 
  private:
   struct Entry {

@@ -3,6 +3,7 @@
 
 #include <prt/prt.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -41,6 +42,7 @@ class GlShShader : public GlVertexShader {
   prt_result read(std::uint32_t first, std::uint32_t count, float* rgb) override {
     return prt_gl_sh_read(shader_.get(), first, count, rgb);
   }
+  std::uint32_t output_buffer() const override { return prt_gl_sh_output_buffer(shader_.get()); }
 
  private:
   prt::GlShShaderPtr shader_;
@@ -51,7 +53,6 @@ class ShView : public ViewTechnique {
  public:
   prt_technique technique() const override { return PRT_TECHNIQUE_SH; }
   std::uint32_t section_tag() const override { return PRT_SECTION_SHTR; }
-  void add_options(CLI::App&, const std::string&) override {}
 
   std::uint32_t open(const BlobScene& scene) override {
     const prt_result result = prt_sh_get_info(scene.asset(), &info_);
@@ -66,15 +67,46 @@ class ShView : public ViewTechnique {
                 info_.order, transfer_kind(info_.kind), info_.channels);
   }
 
+  std::vector<LiveParameter> live_parameters() override {
+    LiveParameter dering;
+    dering.label = "de-ringing";
+    dering.option = "--dering";
+    dering.help =
+        "De-ring the SH light (prt_sh_dering_light, Sloan's window): no dark far side under a "
+        "bright sun, at the cost of blur";
+    dering.kind = LiveParameter::Kind::Bool;
+    dering.max = 1.0;
+    dering.get = [this] { return dering_ ? 1.0 : 0.0; };
+    dering.set = [this](double value) { dering_ = value != 0.0; };
+    LiveParameter strength;
+    strength.label = "de-ringing strength";
+    strength.option = "--dering-strength";
+    strength.help =
+        "With --dering: the window's strength (1: the weakest that keeps a point light's "
+        "irradiance non-negative; 0: none)";
+    strength.kind = LiveParameter::Kind::Float;
+    strength.max = 4.0;
+    strength.get = [this] { return double(dering_strength_); };
+    strength.set = [this](double value) { dering_strength_ = float(std::max(value, 0.0)); };
+    return {dering, strength};
+  }
+
   void prepare_light(const BlobScene&, const LightRequest& request) override {
     const prt::io::EnvMap& map = *request.map;
     light_ = project_and_rotate(map, info_.order, request.rotate_degrees);
+    if (dering_)
+      check_runtime(
+          prt_sh_dering_light(info_.order, dering_strength_, light_.data(), light_.data()),
+          "prt_sh_dering_light");
+    if (!request.describe) return;
     std::printf(
         "%s: %dx%d %s map, projected to order %u by the runtime (prt_sh_project, %s), rotated "
-        "%g deg about +Y\n",
+        "%g deg about +Y",
         request.map_path.c_str(), map.width(), map.height(),
         prt::io::env_mapping_name(map.mapping()), info_.order,
         environment_image_layout(map).c_str(), request.rotate_degrees);
+    if (dering_) std::printf(", de-ringed at strength %g (prt_sh_dering_light)", dering_strength_);
+    std::printf("\n");
   }
 
   const char* shade_function() const override { return "prt_sh_shade"; }
@@ -95,6 +127,8 @@ class ShView : public ViewTechnique {
  private:
   prt_sh_info info_ = prt::sized<prt_sh_info>();
   std::vector<float> light_;  // order² RGB coefficients
+  bool dering_ = false;
+  float dering_strength_ = PRT_SH_DERING_DEFAULT_STRENGTH;
 };
 
 }  // namespace

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "wavelet/wavelet_view.hpp"
 
-#include <CLI/CLI.hpp>
 #include <prt/prt.hpp>
 
 #include <algorithm>
@@ -24,6 +23,9 @@ class GlWaveletShader : public GlVertexShader {
   prt_result read(std::uint32_t first, std::uint32_t count, float* rgb) override {
     return prt_gl_wavelet_read(shader_.get(), first, count, rgb);
   }
+  std::uint32_t output_buffer() const override {
+    return prt_gl_wavelet_output_buffer(shader_.get());
+  }
 
  private:
   prt::GlWaveletShaderPtr shader_;
@@ -35,11 +37,23 @@ class WaveletView : public ViewTechnique {
   prt_technique technique() const override { return PRT_TECHNIQUE_WAVELET; }
   std::uint32_t section_tag() const override { return PRT_SECTION_WVLT; }
 
-  void add_options(CLI::App& app, const std::string& group) override {
-    app.add_option("--light-coefficients", light_coefficients_,
-                   "Light detail coefficients kept per frame by area-weighted selection "
-                   "(default: all); the faces' scaling coefficients are always kept")
-        ->group(group);
+  std::vector<LiveParameter> live_parameters() override {
+    LiveParameter m;
+    m.label = "light terms M";
+    m.option = "--light-coefficients";
+    m.help =
+        "Light detail coefficients kept per frame by area-weighted selection (default: all); the "
+        "faces' scaling coefficients are always kept";
+    m.kind = LiveParameter::Kind::Int;
+    m.max = detail_coefficients();
+    m.get = [this] {
+      return info_.coefficient_count ? double(std::min(light_coefficients_, detail_coefficients()))
+                                     : double(light_coefficients_);
+    };
+    m.set = [this](double value) {
+      light_coefficients_ = static_cast<std::uint32_t>(std::clamp(value, 0.0, 4294967295.0));
+    };
+    return {m};
   }
 
   std::uint32_t open(const BlobScene& scene) override {
@@ -62,8 +76,9 @@ class WaveletView : public ViewTechnique {
 
   void prepare_light(const BlobScene& scene, const LightRequest& request) override {
     const prt::io::EnvMap& map = *request.map;
-    const std::uint32_t kept = std::min(light_coefficients_, info_.coefficient_count - info_.faces);
+    const std::uint32_t kept = std::min(light_coefficients_, detail_coefficients());
     build_light(scene, map, request.rotate_degrees, kept);
+    if (!request.describe) return;
     std::printf(
         "%s: %dx%d %s map, resampled onto the blob's %u coefficients by the runtime, rotated %g "
         "deg about +Y, %u + %u light coefficients kept (area-weighted)\n",
@@ -94,6 +109,8 @@ class WaveletView : public ViewTechnique {
   std::uint32_t light_coefficients_ = 0xFFFFFFFFu;  // detail coefficients kept (all)
   std::vector<float> light_;                        // coefficient_count prepared RGBA quadruples
   std::vector<std::uint8_t> zero_blocks_;           // block_count bytes, 1 = all-zero light
+
+  std::uint32_t detail_coefficients() const { return info_.coefficient_count - info_.faces; }
 
   // The map resampled onto the asset's parameterisation turned by `degrees` about +Y
   // (prt_wavelet_resample of the same environment image prt_sh_project takes), Haar-transformed,
