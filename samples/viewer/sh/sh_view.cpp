@@ -79,7 +79,7 @@ class ShView : public ViewTechnique {
     dering.get = [this] { return dering_ ? 1.0 : 0.0; };
     dering.set = [this](double value) { dering_ = value != 0.0; };
     LiveParameter strength;
-    strength.label = "de-ringing strength";
+    strength.label = "strength";
     strength.option = "--dering-strength";
     strength.help =
         "With --dering: the window's strength (1: the weakest that keeps a point light's "
