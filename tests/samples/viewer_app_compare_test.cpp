@@ -74,16 +74,8 @@ TEST(PrtViewerCompare, ErrorModePrintsTheRelativeRmseAgainstTheReference) {
   std::vector<float> radiance = prt_view_test::view_vertices(blob, sky, "error_x", "--backend cpu");
   ASSERT_FALSE(radiance.empty());
   for (float& v : radiance) v *= 1.25f;
-  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                       std::to_string(radiance.size() / 3) + ", 3), }";
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
-  bytes += char(header.size() & 0xFF);
-  bytes += char(header.size() >> 8);
-  bytes += header;
-  bytes.append(reinterpret_cast<const char*>(radiance.data()), radiance.size() * 4);
-  const std::string reference = scratch().write("error_reference.npy", bytes);
+  const std::string reference =
+      scratch().write("error_reference.npy", prt_test::npy_f32_bytes(radiance, 3));
 
   const std::string png = scratch().file("error.png");
   const prt_test::CommandResult run =

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-#include <stb_image.h>
 #include <prt/format/blob_writer.hpp>
 #include <prt/prt.hpp>
 
@@ -19,6 +18,8 @@
 #include <vector>
 
 #include "sh/sh_blob_test_util.hpp"
+#include "support/command.hpp"
+#include "support/picture.hpp"
 #include "viewer/viewer_test_util.hpp"
 
 namespace prt_viewer_app_test {
@@ -56,28 +57,8 @@ inline prt_test::CommandResult run_viewer(const std::string& arguments, const st
       scratch().file(name + ".log"));
 }
 
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  std::array<int, 3> at(int x, int y) const {
-    const unsigned char* p = &rgb[(std::size_t(y) * width + x) * 3];
-    return {p[0], p[1], p[2]};
-  }
-  double luminance(int x, int y) const {
-    const std::array<int, 3> p = at(x, y);
-    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-  }
-};
-
-inline Picture read_picture(const std::string& path) {
-  Picture picture;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &picture.width, &picture.height, &channels, 3);
-  EXPECT_NE(data, nullptr) << path;
-  if (data) picture.rgb.assign(data, data + std::size_t(picture.width) * picture.height * 3);
-  stbi_image_free(data);
-  return picture;
-}
+using prt_test::Picture;
+using prt_test::read_picture;
 
 // Renders `blob` under `map` headless (or windowed) with `extra` options at `size` and returns
 // the screenshot; a failed run fails the test and gives an empty picture.

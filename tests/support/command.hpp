@@ -117,4 +117,20 @@ inline NpyArray read_npy_f32(const std::filesystem::path& path) {
   return array;
 }
 
+// The bytes of a float32 [rows, columns] .npy (format 1.0, little-endian, C order), written
+// here from the format's definition rather than by the code under test.
+inline std::string npy_f32_bytes(const std::vector<float>& values, std::size_t columns) {
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                       std::to_string(values.size() / columns) + ", " + std::to_string(columns) +
+                       "), }";
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
+  bytes += char(header.size() & 0xFF);
+  bytes += char(header.size() >> 8);
+  bytes += header;
+  bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * 4);
+  return bytes;
+}
+
 }  // namespace prt_test

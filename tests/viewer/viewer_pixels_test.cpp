@@ -9,7 +9,6 @@
 // shows m. The expected bytes are worked out here from the published formulas: exposure 2^EV,
 // the ACES filmic fit of K. Narkowicz (2015) and the sRGB transfer function (IEC 61966-2-1).
 #include <gtest/gtest.h>
-#include <stb_image.h>
 #include <prt/format/blob_writer.hpp>
 
 #include <algorithm>
@@ -20,6 +19,8 @@
 #include <vector>
 
 #include "sh/sh_blob_test_util.hpp"
+#include "support/command.hpp"
+#include "support/picture.hpp"
 #include "viewer/viewer_test_util.hpp"
 
 namespace {
@@ -84,35 +85,13 @@ int display_byte(double radiance, double exposure_ev) {
 
 // float32 [V, 3] .npy, format 1.0, written here; returns the path.
 std::string write_npy(const std::string& name, const std::vector<float>& rgb) {
-  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                       std::to_string(rgb.size() / 3) + ", 3), }";
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
-  bytes += char(header.size() & 0xFF);
-  bytes += char(header.size() >> 8);
-  bytes += header;
-  bytes.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * 4);
-  return scratch().write(name, bytes);
+  return scratch().write(name, prt_test::npy_f32_bytes(rgb, 3));
 }
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  std::array<int, 3> at(int x, int y) const {
-    const unsigned char* p = &rgb[(std::size_t(y) * width + x) * 3];
-    return {p[0], p[1], p[2]};
-  }
-};
+using Png = prt_test::Picture;
 
 Png read_png(const std::string& path) {
-  Png png;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
-  EXPECT_NE(data, nullptr) << path;
-  if (data) png.rgb.assign(data, data + std::size_t(png.width) * png.height * 3);
-  stbi_image_free(data);
-  return png;
+  return prt_test::read_picture(path);
 }
 
 // Every pixel of the block [x0, x1) x [y0, y1) within one 8-bit step of `expected`.
