@@ -13,18 +13,12 @@ namespace {
 
 class HeadlessPresenter : public Presenter {
  public:
-  HeadlessPresenter(int width, int height) : width_(width), height_(height) {
+  HeadlessPresenter(int width, int height) {
     char error[1024] = {0};
     gl_ = headless_gl_create(error, sizeof error);
     if (!gl_) throw std::runtime_error(std::string("no headless GL context: ") + error);
-    colour_ = make_texture();
-    glBindTexture(GL_TEXTURE_2D, colour_.get());
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
-    glBindTexture(GL_TEXTURE_2D, 0);
     framebuffer_ = make_framebuffer();
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_.get(), 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    resize(width, height);
   }
   ~HeadlessPresenter() override {
     framebuffer_.reset();
@@ -34,6 +28,17 @@ class HeadlessPresenter : public Presenter {
 
   void framebuffer_size(int* width, int* height) const override {
     *width = width_, *height = height_;
+  }
+  // A new colour texture (its storage is immutable) attached to the same framebuffer.
+  void resize(int width, int height) override {
+    width_ = width, height_ = height;
+    colour_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, colour_.get());
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_.get(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   double pixel_ratio() const override { return 1.0; }
   bool should_close() const override { return close_; }
@@ -53,7 +58,7 @@ class HeadlessPresenter : public Presenter {
 
  private:
   headless_gl* gl_ = nullptr;
-  int width_, height_;
+  int width_ = 0, height_ = 0;
   bool close_ = false;
   GlTexture colour_;
   GlFramebuffer framebuffer_;

@@ -60,6 +60,10 @@ std::vector<InputEvent> read_input_script(const std::string& path) {
       event.kind = InputEvent::Kind::Drop;
       while (in >> word) event.paths.push_back(word);
       ok = !event.paths.empty();
+    } else if (verb == "resize") {
+      event.kind = InputEvent::Kind::Resize;
+      ok = static_cast<bool>(in >> event.x >> event.y) && event.x >= 1 && event.y >= 1 &&
+           event.x <= 16384 && event.y <= 16384;
     } else {
       throw std::runtime_error(where + ": unknown event '" + verb + "'");
     }
@@ -88,6 +92,9 @@ void replay(const std::vector<InputEvent>& events, long frame, InputSink& sink) 
         break;
       case InputEvent::Kind::Drop:
         sink.drop(event.paths);
+        break;
+      case InputEvent::Kind::Resize:
+        sink.resize(int(event.x), int(event.y));
         break;
     }
   }

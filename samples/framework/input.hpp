@@ -13,6 +13,8 @@
 //   FRAME key NAME            a key is pressed and released (a letter, a digit, F1..F12,
 //                             escape, space)
 //   FRAME drop PATH...        files dropped on the window (paths without spaces)
+//   FRAME resize W H          the window (or the headless frame) is resized to W x H pixels, as
+//                             a user dragging its border would
 #pragma once
 
 #include <string>
@@ -30,12 +32,13 @@ struct InputSink {
   virtual void scroll(double steps) = 0;
   virtual void key(const std::string& name) = 0;
   virtual void drop(const std::vector<std::string>& paths) = 0;
+  virtual void resize(int width, int height) = 0;
 };
 
 struct InputEvent {
-  enum class Kind { Move, Press, Release, Scroll, Key, Drop } kind = Kind::Move;
+  enum class Kind { Move, Press, Release, Scroll, Key, Drop, Resize } kind = Kind::Move;
   long frame = 0;
-  double x = 0.0, y = 0.0;  // Move: the cursor; Scroll: steps in x
+  double x = 0.0, y = 0.0;  // Move: the cursor; Scroll: steps in x; Resize: the size
   MouseButton button = MouseButton::Left;
   std::string key;
   std::vector<std::string> paths;

@@ -19,6 +19,8 @@ class Presenter {
   virtual ~Presenter() = default;
   // The frame's size in pixels.
   virtual void framebuffer_size(int* width, int* height) const = 0;
+  // Resizes the window (as its user would) or the headless frame to width x height pixels.
+  virtual void resize(int width, int height) = 0;
   // Framebuffer pixels per window coordinate (1 unless the display scales).
   virtual double pixel_ratio() const = 0;
   virtual bool should_close() const = 0;

@@ -193,6 +193,7 @@ class Host : public Sample, public InputSink {
   void scroll(double steps) override { camera_.scroll(float(steps)); }
   void key(const std::string& name) override;
   void drop(const std::vector<std::string>& paths) override { app_.drop(*this, paths); }
+  void resize(int width, int height) override { presenter_->resize(width, height); }
 
  private:
   const char* name_;

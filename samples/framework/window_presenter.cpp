@@ -97,6 +97,10 @@ class WindowPresenter : public Presenter {
   void framebuffer_size(int* width, int* height) const override {
     glfwGetFramebufferSize(window_, width, height);
   }
+  void resize(int width, int height) override {
+    const double ratio = pixel_ratio();
+    glfwSetWindowSize(window_, int(width / ratio), int(height / ratio));
+  }
   double pixel_ratio() const override {
     int fw = 0, fh = 0, ww = 0, wh = 0;
     glfwGetFramebufferSize(window_, &fw, &fh);

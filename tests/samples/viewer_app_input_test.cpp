@@ -60,6 +60,31 @@ TEST(PrtViewerInput, ReplayedDragInAWindowTurnsTheCameraAsYawAndPitchDo) {
   expect_drag_equals_options(true);
 }
 
+// Resizing the window (or the headless frame) mid-run, as a user dragging its border: the
+// next frame is drawn at the new size and framed for its aspect, as a run started at that size.
+void expect_resize_equals_size_option(bool windowed) {
+  const std::string blob = sphere_sh_blob("input_sphere.prtk");
+  const std::string map = sun_at_plus_x_map();
+  const Picture resized =
+      run(blob, map, windowed ? "resized_window" : "resized",
+          "--input-script " + quote(script("resize.txt", "0 resize 200 300\n")), windowed);
+  const Picture direct =
+      screenshot(blob, map, windowed ? "sized_window" : "sized", kFixed, windowed, "200x300");
+  ASSERT_EQ(resized.width, 200);
+  ASSERT_EQ(resized.height, 300);
+  EXPECT_LE(difference(resized, direct).largest, 1);
+  EXPECT_GT(centre_coverage(resized), 0.5) << "the sphere should fill the middle";
+}
+
+TEST(PrtViewerInput, ResizedFrameIsDrawnAsOneStartedAtThatSize) {
+  expect_resize_equals_size_option(false);
+}
+
+TEST(PrtViewerInput, ResizedWindowIsDrawnAsOneStartedAtThatSize) {
+  PRT_SKIP_WITHOUT_WINDOWS();
+  expect_resize_equals_size_option(true);
+}
+
 TEST(PrtViewerInput, WheelZoomsAndFFramesTheSceneAgain) {
   const std::string blob = sphere_sh_blob("input_sphere.prtk");
   const std::string map = sun_at_plus_x_map();
