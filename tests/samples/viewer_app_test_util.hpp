@@ -6,7 +6,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-#include <prt/format/blob_writer.hpp>
 #include <prt/prt.hpp>
 
 #include <unistd.h>
@@ -19,6 +18,7 @@
 
 #include "sh/sh_blob_test_util.hpp"
 #include "support/command.hpp"
+#include "support/mesh_blob.hpp"
 #include "support/picture.hpp"
 #include "viewer/viewer_test_util.hpp"
 
@@ -211,15 +211,8 @@ inline std::string sphere_sh_blob(const std::string& name, int rings = 16, int s
     for (std::uint32_t j = 0; j < coefficients; ++j)
       t.q.push_back(
           t.scale[j] > 0.0f ? std::uint32_t(std::lround((row[j] - t.offset[j]) / t.scale[j])) : 0u);
-  const prt_test::Bytes shtr = prt_test::encode(t);
-  prt::format::BlobWriter writer;
-  prt::format::SectionOptions required;
-  required.required = true;
-  writer.add_section(PRT_BLOB_TAG_VPOS, positions.data(), positions.size() * 4, vertices, required);
-  writer.add_section(PRT_BLOB_TAG_TRIS, triangles.data(), triangles.size() * 4,
-                     std::uint32_t(triangles.size() / 3), required);
-  writer.add_section(PRT_BLOB_TAG_SHTR, shtr.data(), shtr.size(), vertices, required);
-  return prt_view_test::write_blob(name, writer.finish());
+  return prt_view_test::write_blob(
+      name, prt_test::mesh_blob(positions, triangles, PRT_BLOB_TAG_SHTR, prt_test::encode(t)));
 }
 
 }  // namespace prt_viewer_app_test

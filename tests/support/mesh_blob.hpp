@@ -33,6 +33,21 @@ inline Bytes mesh_blob(uint32_t tag, const Bytes& section, uint32_t vertex_count
   return w.finish();
 }
 
+// The given mesh (x,y,z per vertex; three indices per triangle) and `section` under `tag`, one
+// element per vertex.
+inline Bytes mesh_blob(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
+                       uint32_t tag, const Bytes& section) {
+  prt::format::BlobWriter w;
+  const uint32_t vertex_count = uint32_t(positions.size() / 3);
+  prt::format::SectionOptions required;
+  required.required = true;
+  w.add_section(PRT_BLOB_TAG_VPOS, positions.data(), positions.size() * 4, vertex_count, required);
+  w.add_section(PRT_BLOB_TAG_TRIS, triangles.data(), triangles.size() * 4,
+                uint32_t(triangles.size() / 3), required);
+  w.add_section(tag, section.data(), section.size(), vertex_count, required);
+  return w.finish();
+}
+
 // A blob of one triangle and nothing else (no technique's section).
 inline Bytes mesh_only_blob() {
   prt::format::BlobWriter w;

@@ -9,7 +9,6 @@
 // shows m. The expected bytes are worked out here from the published formulas: exposure 2^EV,
 // the ACES filmic fit of K. Narkowicz (2015) and the sRGB transfer function (IEC 61966-2-1).
 #include <gtest/gtest.h>
-#include <prt/format/blob_writer.hpp>
 
 #include <algorithm>
 #include <array>
@@ -20,6 +19,7 @@
 
 #include "sh/sh_blob_test_util.hpp"
 #include "support/command.hpp"
+#include "support/mesh_blob.hpp"
 #include "support/picture.hpp"
 #include "viewer/viewer_test_util.hpp"
 
@@ -50,15 +50,8 @@ std::string flat_blob(const std::string& name, const std::vector<Rect>& rects,
   transfer.offset.assign(t.begin(), t.end());
   transfer.scale.assign(3, 0.0f);
   transfer.q.assign(3u * vertices, 0u);
-  const prt_test::Bytes shtr = prt_test::encode(transfer);
-  prt::format::BlobWriter writer;
-  prt::format::SectionOptions required;
-  required.required = true;
-  writer.add_section(PRT_BLOB_TAG_VPOS, positions.data(), positions.size() * 4, vertices, required);
-  writer.add_section(PRT_BLOB_TAG_TRIS, triangles.data(), triangles.size() * 4,
-                     static_cast<std::uint32_t>(triangles.size() / 3), required);
-  writer.add_section(PRT_BLOB_TAG_SHTR, shtr.data(), shtr.size(), vertices, required);
-  return write_blob(name, writer.finish());
+  return write_blob(name, prt_test::mesh_blob(positions, triangles, PRT_BLOB_TAG_SHTR,
+                                              prt_test::encode(transfer)));
 }
 
 // A constant lat-long map (64 x 32) of `m`; RGBE stores these values exactly.
