@@ -48,14 +48,14 @@ inline std::string window_launcher() {
 
 // LeakSanitizer's exit scan of a windowed run can crash in its own tracer ("Tracer caught
 // signal 11"): it walks the dynamic TLS table, and a window's GL driver leaves a stale entry
-// there, seen under load. use_tls=0 skips that walk; it can only add leak reports, never hide
-// one (the loader's own allocation it then reports is suppressed by name), and the headless runs
-// of the same drawing code keep the full scan.
+// there, seen under load. use_tls=0 skips that walk, which only removes roots; what it then
+// reports of the loader's own records is suppressed (window.lsan.supp), which also hides any leak
+// whose stack passes through ld.so. The headless runs of the same drawing code keep the full scan.
 inline std::string window_sanitizer_options() {
   const char* lsan = std::getenv("LSAN_OPTIONS");
-  const std::string options = std::string(lsan && *lsan ? lsan : "use_tls=1") +
-                              ":use_tls=0:suppressions=" PRT_WINDOW_LSAN_SUPPRESSIONS;
-  return "LSAN_OPTIONS=" + quote(options) + " ";
+  const std::string inherited = lsan && *lsan ? std::string(lsan) + ":" : "";
+  return "LSAN_OPTIONS=" +
+         quote(inherited + "use_tls=0:suppressions=" PRT_WINDOW_LSAN_SUPPRESSIONS) + " ";
 }
 
 // Runs prt-viewer with `arguments`; `windowed` opens a real window (GLX unless the arguments
