@@ -19,36 +19,42 @@ PRT_KERNEL_INLINE __m128 fold_halves(__m256 x) {
   return _mm_add_ps(_mm256_castps256_ps128(x), _mm256_extractf128_ps(x, 1));
 }
 
-/* (sum r, sum g, sum b, sum b) of the channels' runs starting at pr, pg, pb (equal for grey
- * transfer, where the compiler shares the loads). */
-PRT_KERNEL_INLINE __m128 shade_runs(const prt_sh_simd_job* job, const uint8_t* pr,
-                                    const uint8_t* pg, const uint8_t* pb, int bits) {
+/* For each of the n vertices, (sum r, sum g, sum b, sum b) of its channel runs (the contract in
+ * sh_shade_x86.h). Each weight block is loaded once for all n vertices; the block of four, if
+ * any, is taken after the blocks of eight so that its accumulators need no registers meanwhile. */
+PRT_KERNEL_INLINE void shade_runs(const prt_sh_simd_job* job, const uint8_t* const run[][3], int n,
+                                  int bits, __m128 sums[]) {
   const size_t size = (size_t)bits / 8u;
-  const float* wr = job->weight[0];
-  const float* wg = job->weight[1];
-  const float* wb = job->weight[2];
   const uint32_t blocks8 = job->padded / 8u * 8u; /* the rest, if any, is one block of 4 */
-  __m128 r, g, b;
+  __m128 acc[PRT_SH_X86_GROUP][3];
   uint32_t k;
-  if (blocks8 < job->padded) {
-    r = _mm_mul_ps(load4(pr + size * blocks8, bits), _mm_loadu_ps(wr + blocks8));
-    g = _mm_mul_ps(load4(pg + size * blocks8, bits), _mm_loadu_ps(wg + blocks8));
-    b = _mm_mul_ps(load4(pb + size * blocks8, bits), _mm_loadu_ps(wb + blocks8));
-  } else {
-    r = g = b = _mm_setzero_ps();
-  }
+  int j, c;
+  for (j = 0; j < n; ++j)
+    for (c = 0; c < 3; ++c) acc[j][c] = _mm_setzero_ps();
   if (blocks8 > 0) { /* skipped for orders 1 and 2, where folding 8 lanes would be wasted */
-    __m256 r8 = _mm256_setzero_ps(), g8 = _mm256_setzero_ps(), b8 = _mm256_setzero_ps();
+    __m256 acc8[PRT_SH_X86_GROUP][3];
+    for (j = 0; j < n; ++j)
+      for (c = 0; c < 3; ++c) acc8[j][c] = _mm256_setzero_ps();
     for (k = 0; k < blocks8; k += 8) {
-      r8 = _mm256_fmadd_ps(load8(pr + size * k, bits), _mm256_loadu_ps(wr + k), r8);
-      g8 = _mm256_fmadd_ps(load8(pg + size * k, bits), _mm256_loadu_ps(wg + k), g8);
-      b8 = _mm256_fmadd_ps(load8(pb + size * k, bits), _mm256_loadu_ps(wb + k), b8);
+      const __m256 w[3] = {_mm256_loadu_ps(job->weight[0] + k), _mm256_loadu_ps(job->weight[1] + k),
+                           _mm256_loadu_ps(job->weight[2] + k)};
+      for (j = 0; j < n; ++j)
+        for (c = 0; c < 3; ++c)
+          acc8[j][c] = _mm256_fmadd_ps(load8(run[j][c] + size * k, bits), w[c], acc8[j][c]);
     }
-    r = _mm_add_ps(r, fold_halves(r8));
-    g = _mm_add_ps(g, fold_halves(g8));
-    b = _mm_add_ps(b, fold_halves(b8));
+    for (j = 0; j < n; ++j)
+      for (c = 0; c < 3; ++c) acc[j][c] = fold_halves(acc8[j][c]);
   }
-  return _mm_hadd_ps(_mm_hadd_ps(r, g), _mm_hadd_ps(b, b));
+  if (blocks8 < job->padded) {
+    const __m128 w[3] = {_mm_loadu_ps(job->weight[0] + blocks8),
+                         _mm_loadu_ps(job->weight[1] + blocks8),
+                         _mm_loadu_ps(job->weight[2] + blocks8)};
+    for (j = 0; j < n; ++j)
+      for (c = 0; c < 3; ++c)
+        acc[j][c] = _mm_fmadd_ps(load4(run[j][c] + size * blocks8, bits), w[c], acc[j][c]);
+  }
+  for (j = 0; j < n; ++j)
+    sums[j] = _mm_hadd_ps(_mm_hadd_ps(acc[j][0], acc[j][1]), _mm_hadd_ps(acc[j][2], acc[j][2]));
 }
 
 #define PRT_SH_KERNEL_NAME prt_sh_shade_avx2

@@ -9,19 +9,24 @@ PRT_KERNEL_INLINE __m128 horizontal_sums(__m128 r, __m128 g, __m128 b) {
   return _mm_hadd_ps(_mm_hadd_ps(r, g), _mm_hadd_ps(b, b));
 }
 
-/* (sum r, sum g, sum b, sum b) of the channels' runs starting at pr, pg, pb (equal for grey
- * transfer, where the compiler shares the loads). */
-PRT_KERNEL_INLINE __m128 shade_runs(const prt_sh_simd_job* job, const uint8_t* pr,
-                                    const uint8_t* pg, const uint8_t* pb, int bits) {
+/* For each of the n vertices, (sum r, sum g, sum b, sum b) of its channel runs (the contract in
+ * sh_shade_x86.h). Each weight block is loaded once for all n vertices. */
+PRT_KERNEL_INLINE void shade_runs(const prt_sh_simd_job* job, const uint8_t* const run[][3], int n,
+                                  int bits, __m128 sums[]) {
   const size_t size = (size_t)bits / 8u;
-  __m128 r = _mm_setzero_ps(), g = _mm_setzero_ps(), b = _mm_setzero_ps();
+  __m128 acc[PRT_SH_X86_GROUP][3];
   uint32_t k;
+  int j, c;
+  for (j = 0; j < n; ++j)
+    for (c = 0; c < 3; ++c) acc[j][c] = _mm_setzero_ps();
   for (k = 0; k < job->padded; k += 4) {
-    r = _mm_add_ps(r, _mm_mul_ps(load4(pr + size * k, bits), _mm_loadu_ps(job->weight[0] + k)));
-    g = _mm_add_ps(g, _mm_mul_ps(load4(pg + size * k, bits), _mm_loadu_ps(job->weight[1] + k)));
-    b = _mm_add_ps(b, _mm_mul_ps(load4(pb + size * k, bits), _mm_loadu_ps(job->weight[2] + k)));
+    const __m128 w[3] = {_mm_loadu_ps(job->weight[0] + k), _mm_loadu_ps(job->weight[1] + k),
+                         _mm_loadu_ps(job->weight[2] + k)};
+    for (j = 0; j < n; ++j)
+      for (c = 0; c < 3; ++c)
+        acc[j][c] = _mm_add_ps(acc[j][c], _mm_mul_ps(load4(run[j][c] + size * k, bits), w[c]));
   }
-  return horizontal_sums(r, g, b);
+  for (j = 0; j < n; ++j) sums[j] = horizontal_sums(acc[j][0], acc[j][1], acc[j][2]);
 }
 
 #define PRT_SH_KERNEL_NAME prt_sh_shade_sse41
