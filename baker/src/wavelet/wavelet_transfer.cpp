@@ -12,6 +12,7 @@
 #include <string>
 
 #include "../render/parallel_tasks.hpp"
+#include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
 #include "wavelet_grid.hpp"
 
@@ -89,21 +90,27 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
   }
 }
 
-// Texel values of one vertex: the visible samples' weights; `rays` null = unoccluded. Returns
+// Texel values of one vertex: the visible samples' weights; `batch` null = unoccluded. Returns
 // the rays traced.
 std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
-                          const glm::vec3& origin, const EmbreeScene* rays,
-                          std::uint32_t vertex_key, std::uint32_t samples, float* row) {
+                          const glm::vec3& origin, RayBatch* batch, std::uint32_t vertex_key,
+                          std::uint32_t samples, float* row) {
   std::vector<double> sum(grid.count(), 0.0);
+  std::vector<std::uint32_t> texel;
+  std::vector<double> weight;
+  std::vector<glm::vec3> direction;
+  for_each_sample(grid, n, vertex_key, samples, [&](std::uint32_t j, const glm::vec3& w, double x) {
+    texel.push_back(j);
+    direction.push_back(w);
+    weight.push_back(x);
+  });
+  std::vector<unsigned char> visible(texel.size(), 1);
   std::uint64_t traced = 0;
-  for_each_sample(grid, n, vertex_key, samples,
-                  [&](std::uint32_t j, const glm::vec3& w, double weight) {
-                    if (rays) {
-                      ++traced;
-                      if (rays->occluded(origin, w)) return;
-                    }
-                    sum[j] += weight;
-                  });
+  // Every sample is above the horizon (cosine > 0), so the batch casts all of them.
+  if (batch) traced = batch->cast(origin, n, direction.data(), direction.size(), visible.data());
+  for (std::size_t i = 0; i < texel.size(); ++i) {
+    if (visible[i]) sum[texel[i]] += weight[i];
+  }
   // The samples' weights integrate over the texel; the transfer is the texel's mean (§14).
   for (std::uint32_t j = 0; j < grid.count(); ++j) {
     row[j] = sum[j] == 0.0 ? 0.0f : static_cast<float>(sum[j] / grid.solid_angle(j));
@@ -231,8 +238,8 @@ WaveletTransfer gather_rows(const std::vector<TaskRows>& task_rows, std::size_t 
 // wavelet domain and returns the rays it traced; rows are truncated by the settings.
 template <typename RowOf>
 WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const VertexTable& vertices,
-                          std::uint32_t count, const WaveletTransferSettings& s,
-                          const Context& ctx, const std::string& stage, RowOf row_of) {
+                         std::uint32_t count, const WaveletTransferSettings& s, const Context& ctx,
+                         const std::string& stage, RowOf row_of) {
   const std::size_t tasks = (todo.size() + kVerticesPerTask - 1) / kVerticesPerTask;
   std::vector<TaskRows> task_rows(tasks);
   render::parallel_tasks(tasks, ctx, stage, [&](std::size_t task) {
@@ -369,8 +376,8 @@ std::vector<float> unoccluded_wavelet_texels(std::uint32_t param, std::uint32_t 
 }
 
 WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
-                                           const WaveletTransferSettings& settings,
-                                           const Context& ctx) {
+                                         const WaveletTransferSettings& settings,
+                                         const Context& ctx) {
   validate(settings);
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<EmbreeScene> own_rays;
@@ -386,8 +393,9 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
       run_pass(todo, vertices, grid.count(), settings, ctx, "wavelet transfer: direct",
                [&](std::uint32_t v, std::vector<float>& row) {
                  const glm::vec3 n = vertices.normal[v];
+                 RayBatch batch(*rays);
                  const std::uint64_t traced = bake_texels(
-                     grid, n, rays->offset_origin(vertices.position[v], n), rays,
+                     grid, n, rays->offset_origin(vertices.position[v], n), &batch,
                      hash_key(settings.seed, v, kJitterTag), settings.samples, row.data());
                  transform_faces(grid, row.data());
                  return traced;
@@ -424,7 +432,7 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
 }
 
 std::vector<glm::vec3> shade_wavelet_transfer(const WaveletTransfer& transfer,
-                                               const std::vector<float>& light_rgba) {
+                                              const std::vector<float>& light_rgba) {
   if (light_rgba.size() != std::size_t(transfer.coefficient_count) * 4) {
     throw Error("wavelet shading: the light has " + std::to_string(light_rgba.size() / 4) +
                 " coefficients, the transfer " + std::to_string(transfer.coefficient_count));
