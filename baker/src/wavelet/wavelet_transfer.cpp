@@ -59,6 +59,10 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
                      std::uint32_t samples, Visit visit) {
   const std::uint32_t size = grid.size(),
                       k = static_cast<std::uint32_t>(std::lround(std::sqrt(samples)));
+  // A texel's samples, computed once for both the Jacobian total and the visits.
+  std::vector<glm::vec3> w(samples);
+  std::vector<double> jacobian(samples);
+  std::vector<unsigned char> on_grid(samples);
   for (std::uint32_t j = 0; j < grid.count(); ++j) {
     if (grid.below_horizon(j, n)) continue;
     const std::uint32_t face = j / (size * size), x = j % size, y = (j / size) % size;
@@ -67,25 +71,26 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
       *u = float(x) + (float(i % k) + (float(h & 0xFFFFu) + 0.5f) / 65536.0f) / float(k);
       *v = float(y) + (float(i / k) + (float(h >> 16) + 0.5f) / 65536.0f) / float(k);
     };
-    glm::vec3 w;
-    double jacobian, total = 0.0;
+    double total = 0.0;
     float u, v;
     for (std::uint32_t i = 0; i < samples; ++i) {
       position(i, &u, &v);
-      if (grid.sample(face, u, v, &w, &jacobian)) total += jacobian;
+      on_grid[i] = grid.sample(face, u, v, &w[i], &jacobian[i]);
+      if (on_grid[i]) total += jacobian[i];
     }
     const double scale = grid.solid_angle(j) * kInvPi;
     if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
-      grid.sample(face, x + 0.5f, y + 0.5f, &w, &jacobian);
-      const float cosine = glm::dot(n, w);
-      if (cosine > 0.0f) visit(j, w, scale * cosine);
+      glm::vec3 centre;
+      double ignored;
+      grid.sample(face, x + 0.5f, y + 0.5f, &centre, &ignored);
+      const float cosine = glm::dot(n, centre);
+      if (cosine > 0.0f) visit(j, centre, scale * cosine);
       continue;
     }
     for (std::uint32_t i = 0; i < samples; ++i) {
-      position(i, &u, &v);
-      if (!grid.sample(face, u, v, &w, &jacobian)) continue;
-      const float cosine = glm::dot(n, w);
-      if (cosine > 0.0f) visit(j, w, scale * jacobian * cosine / total);
+      if (!on_grid[i]) continue;
+      const float cosine = glm::dot(n, w[i]);
+      if (cosine > 0.0f) visit(j, w[i], scale * jacobian[i] * cosine / total);
     }
   }
 }
