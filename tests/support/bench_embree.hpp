@@ -16,10 +16,10 @@
 #include <random>
 #include <vector>
 
-#include "support/bench_triad.hpp"
 #include "prt/baker/embree_scene.hpp"
 #include "prt/baker/sampling.hpp"
 #include "prt/baker/scene.hpp"
+#include "support/bench_triad.hpp"
 
 namespace prt_bench {
 
@@ -124,5 +124,79 @@ inline Rate raw_occluded_rate(benchmark::State& state, const RawEmbree& raw,
   state.counters["occluded"] = double(occluded) / double(traced);
   return {double(traced) / seconds, double(traced) / cpu_seconds};
 }
+
+// The same rays through rtcOccluded4/8/16: consecutive rays of one vertex (per_vertex is a
+// multiple of the width) in one packet, every lane valid. Packet and Ray are RTCRayN, RTCRayN's
+// call the matching rtcOccludedN.
+template <int Width, typename Packet, typename Call>
+Rate raw_occluded_packet_rate(benchmark::State& state, const RawEmbree& raw, const VertexRays& rays,
+                              Call call) {
+  set_ftz_daz();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) int valid[Width];
+  for (int k = 0; k < Width; ++k) valid[k] = -1;
+  std::size_t next = 0, occluded = 0;
+  std::int64_t traced = 0;
+  double seconds = 0.0, cpu_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = thread_cpu_seconds();
+    for (int i = 0; i < 4096; i += Width) {
+      alignas(64) Packet packet;
+      for (int k = 0; k < Width; ++k, next = (next + 1) % rays.directions.size()) {
+        const glm::vec3 o = rays.origins[next / rays.per_vertex], d = rays.directions[next];
+        packet.org_x[k] = o.x;
+        packet.org_y[k] = o.y;
+        packet.org_z[k] = o.z;
+        packet.tnear[k] = 0.0f;
+        packet.dir_x[k] = d.x;
+        packet.dir_y[k] = d.y;
+        packet.dir_z[k] = d.z;
+        packet.time[k] = 0.0f;
+        packet.tfar[k] = INFINITY;
+        packet.mask[k] = 0xFFFFFFFFu;
+        packet.id[k] = 0;
+        packet.flags[k] = 0;
+      }
+      call(valid, raw.scene, &context, &packet);
+      for (int k = 0; k < Width; ++k) occluded += packet.tfar[k] < 0.0f;
+    }
+    cpu_seconds += thread_cpu_seconds() - cpu_start;
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    traced += 4096;
+  }
+  benchmark::DoNotOptimize(occluded);
+  state.counters["rays/s"] = benchmark::Counter(double(traced), benchmark::Counter::kIsRate);
+  state.counters["occluded"] = double(occluded) / double(traced);
+  return {double(traced) / seconds, double(traced) / cpu_seconds};
+}
+
+// Raw rtcOccludedN for N = 1, 4, 8 or 16 over the bake-like rays.
+inline Rate raw_occluded_rate_width(benchmark::State& state, const RawEmbree& raw,
+                                    const VertexRays& rays, int width) {
+  switch (width) {
+    case 4:
+      return raw_occluded_packet_rate<4, RTCRay4>(state, raw, rays, rtcOccluded4);
+    case 8:
+      return raw_occluded_packet_rate<8, RTCRay8>(state, raw, rays, rtcOccluded8);
+    case 16:
+      return raw_occluded_packet_rate<16, RTCRay16>(state, raw, rays, rtcOccluded16);
+    default:
+      return raw_occluded_rate(state, raw, rays);
+  }
+}
+
+// The best of the raw calls measured so far (by CPU time, and by wall clock), and its width.
+struct BestRaw {
+  Rate rate{0.0, 0.0};
+  int width = 0;
+  void offer(const Rate& r, int w) {
+    if (r.cpu > rate.cpu) {
+      rate = r;
+      width = w;
+    }
+  }
+};
 
 }  // namespace prt_bench

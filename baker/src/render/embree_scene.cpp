@@ -7,17 +7,14 @@
 #include <limits>
 #include <string>
 
+#include "embree_scene_impl.hpp"
+
 namespace prt::bake {
 namespace {
 
 bool finite(const glm::vec3& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
-
-// Collected by Embree's error callback; read after each call that can fail.
-struct DeviceErrors {
-  std::string first;
-};
 
 void on_embree_error(void* user, RTCError code, const char* message) {
   auto* errors = static_cast<DeviceErrors*>(user);
@@ -59,22 +56,6 @@ bool is_degenerate_triangle(const Mesh& mesh, std::size_t triangle) {
   // Zero area up to float rounding: the vertices are collinear or coincide.
   return !(twice_area > 1e-7 * longest);
 }
-
-struct EmbreeScene::Impl {
-  DeviceErrors errors;
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  std::vector<std::uint32_t> geometry_mesh;                // geomID -> mesh index
-  std::vector<std::vector<std::uint32_t>> geometry_prims;  // geomID, primID -> triangle index
-
-  ~Impl() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-  void check(const char* what) const {
-    if (!errors.first.empty()) throw Error(std::string(what) + ": " + errors.first);
-  }
-};
 
 EmbreeScene::EmbreeScene(const Scene& scene, const Context& ctx) : impl_(std::make_unique<Impl>()) {
   Impl& im = *impl_;

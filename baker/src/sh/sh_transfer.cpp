@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../render/parallel_tasks.hpp"
+#include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
 
 namespace prt::bake {
@@ -98,22 +99,27 @@ class TransferBaker {
     render::parallel_tasks(tasks_, ctx, "sh transfer: direct", [&](std::size_t task) {
       std::vector<double> sum(coeffs_);
       std::vector<float> y(coeffs_);
+      std::vector<glm::vec3> w(settings_.rays);
+      std::vector<unsigned char> visible(settings_.rays);
+      std::unique_ptr<RayBatch> batch;
+      if (shadowed) batch = std::make_unique<RayBatch>(*rays_);
       std::uint64_t traced = 0;
       for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
-        const glm::vec3 origin =
-            shadowed ? rays_->offset_origin(vertices_.position[v], n) : glm::vec3(0.0f);
         const VertexDirections directions(settings_.seed, v, n);
+        for (std::uint32_t i = 0; i < settings_.rays; ++i) w[i] = directions(i);
+        if (shadowed) {
+          // Directions on the horizon get no weight; the batch marks them not visible.
+          traced += batch->cast(rays_->offset_origin(vertices_.position[v], n), n, w.data(),
+                                w.size(), visible.data());
+        } else {
+          for (std::uint32_t i = 0; i < settings_.rays; ++i) visible[i] = glm::dot(n, w[i]) > 0.0f;
+        }
         std::fill(sum.begin(), sum.end(), 0.0);
         for (std::uint32_t i = 0; i < settings_.rays; ++i) {
-          const glm::vec3 w = directions(i);
-          if (!(glm::dot(n, w) > 0.0f)) continue;  // on the horizon: no weight
-          if (shadowed) {
-            ++traced;
-            if (rays_->occluded(origin, w)) continue;
-          }
-          prt_sh_eval(settings_.order, &w.x, y.data());
+          if (!visible[i]) continue;
+          prt_sh_eval(settings_.order, &w[i].x, y.data());
           for (std::size_t k = 0; k < coeffs_; ++k) sum[k] += y[k];
         }
         store(v, sum, 0, &out);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "../render/parallel_tasks.hpp"
+#include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
 #include "wavelet_grid.hpp"
 
@@ -58,6 +59,10 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
                      std::uint32_t samples, Visit visit) {
   const std::uint32_t size = grid.size(),
                       k = static_cast<std::uint32_t>(std::lround(std::sqrt(samples)));
+  // A texel's samples, computed once for both the Jacobian total and the visits.
+  std::vector<glm::vec3> w(samples);
+  std::vector<double> jacobian(samples);
+  std::vector<unsigned char> on_grid(samples);
   for (std::uint32_t j = 0; j < grid.count(); ++j) {
     if (grid.below_horizon(j, n)) continue;
     const std::uint32_t face = j / (size * size), x = j % size, y = (j / size) % size;
@@ -66,44 +71,51 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
       *u = float(x) + (float(i % k) + (float(h & 0xFFFFu) + 0.5f) / 65536.0f) / float(k);
       *v = float(y) + (float(i / k) + (float(h >> 16) + 0.5f) / 65536.0f) / float(k);
     };
-    glm::vec3 w;
-    double jacobian, total = 0.0;
+    double total = 0.0;
     float u, v;
     for (std::uint32_t i = 0; i < samples; ++i) {
       position(i, &u, &v);
-      if (grid.sample(face, u, v, &w, &jacobian)) total += jacobian;
+      on_grid[i] = grid.sample(face, u, v, &w[i], &jacobian[i]);
+      if (on_grid[i]) total += jacobian[i];
     }
     const double scale = grid.solid_angle(j) * kInvPi;
     if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
-      grid.sample(face, x + 0.5f, y + 0.5f, &w, &jacobian);
-      const float cosine = glm::dot(n, w);
-      if (cosine > 0.0f) visit(j, w, scale * cosine);
+      glm::vec3 centre;
+      double ignored;
+      grid.sample(face, x + 0.5f, y + 0.5f, &centre, &ignored);
+      const float cosine = glm::dot(n, centre);
+      if (cosine > 0.0f) visit(j, centre, scale * cosine);
       continue;
     }
     for (std::uint32_t i = 0; i < samples; ++i) {
-      position(i, &u, &v);
-      if (!grid.sample(face, u, v, &w, &jacobian)) continue;
-      const float cosine = glm::dot(n, w);
-      if (cosine > 0.0f) visit(j, w, scale * jacobian * cosine / total);
+      if (!on_grid[i]) continue;
+      const float cosine = glm::dot(n, w[i]);
+      if (cosine > 0.0f) visit(j, w[i], scale * jacobian[i] * cosine / total);
     }
   }
 }
 
-// Texel values of one vertex: the visible samples' weights; `rays` null = unoccluded. Returns
+// Texel values of one vertex: the visible samples' weights; `batch` null = unoccluded. Returns
 // the rays traced.
 std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
-                          const glm::vec3& origin, const EmbreeScene* rays,
-                          std::uint32_t vertex_key, std::uint32_t samples, float* row) {
+                          const glm::vec3& origin, RayBatch* batch, std::uint32_t vertex_key,
+                          std::uint32_t samples, float* row) {
   std::vector<double> sum(grid.count(), 0.0);
+  std::vector<std::uint32_t> texel;
+  std::vector<double> weight;
+  std::vector<glm::vec3> direction;
+  for_each_sample(grid, n, vertex_key, samples, [&](std::uint32_t j, const glm::vec3& w, double x) {
+    texel.push_back(j);
+    direction.push_back(w);
+    weight.push_back(x);
+  });
+  std::vector<unsigned char> visible(texel.size(), 1);
   std::uint64_t traced = 0;
-  for_each_sample(grid, n, vertex_key, samples,
-                  [&](std::uint32_t j, const glm::vec3& w, double weight) {
-                    if (rays) {
-                      ++traced;
-                      if (rays->occluded(origin, w)) return;
-                    }
-                    sum[j] += weight;
-                  });
+  // Every sample is above the horizon (cosine > 0), so the batch casts all of them.
+  if (batch) traced = batch->cast(origin, n, direction.data(), direction.size(), visible.data());
+  for (std::size_t i = 0; i < texel.size(); ++i) {
+    if (visible[i]) sum[texel[i]] += weight[i];
+  }
   // The samples' weights integrate over the texel; the transfer is the texel's mean (§14).
   for (std::uint32_t j = 0; j < grid.count(); ++j) {
     row[j] = sum[j] == 0.0 ? 0.0f : static_cast<float>(sum[j] / grid.solid_angle(j));
@@ -231,8 +243,8 @@ WaveletTransfer gather_rows(const std::vector<TaskRows>& task_rows, std::size_t 
 // wavelet domain and returns the rays it traced; rows are truncated by the settings.
 template <typename RowOf>
 WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const VertexTable& vertices,
-                          std::uint32_t count, const WaveletTransferSettings& s,
-                          const Context& ctx, const std::string& stage, RowOf row_of) {
+                         std::uint32_t count, const WaveletTransferSettings& s, const Context& ctx,
+                         const std::string& stage, RowOf row_of) {
   const std::size_t tasks = (todo.size() + kVerticesPerTask - 1) / kVerticesPerTask;
   std::vector<TaskRows> task_rows(tasks);
   render::parallel_tasks(tasks, ctx, stage, [&](std::size_t task) {
@@ -369,8 +381,8 @@ std::vector<float> unoccluded_wavelet_texels(std::uint32_t param, std::uint32_t 
 }
 
 WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
-                                           const WaveletTransferSettings& settings,
-                                           const Context& ctx) {
+                                         const WaveletTransferSettings& settings,
+                                         const Context& ctx) {
   validate(settings);
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<EmbreeScene> own_rays;
@@ -386,8 +398,9 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
       run_pass(todo, vertices, grid.count(), settings, ctx, "wavelet transfer: direct",
                [&](std::uint32_t v, std::vector<float>& row) {
                  const glm::vec3 n = vertices.normal[v];
+                 RayBatch batch(*rays);
                  const std::uint64_t traced = bake_texels(
-                     grid, n, rays->offset_origin(vertices.position[v], n), rays,
+                     grid, n, rays->offset_origin(vertices.position[v], n), &batch,
                      hash_key(settings.seed, v, kJitterTag), settings.samples, row.data());
                  transform_faces(grid, row.data());
                  return traced;
@@ -424,7 +437,7 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
 }
 
 std::vector<glm::vec3> shade_wavelet_transfer(const WaveletTransfer& transfer,
-                                               const std::vector<float>& light_rgba) {
+                                              const std::vector<float>& light_rgba) {
   if (light_rgba.size() != std::size_t(transfer.coefficient_count) * 4) {
     throw Error("wavelet shading: the light has " + std::to_string(light_rgba.size() / 4) +
                 " coefficients, the transfer " + std::to_string(transfer.coefficient_count));

@@ -58,6 +58,7 @@ class EmbreeScene {
   glm::vec3 offset_origin(const glm::vec3& p, const glm::vec3& n) const { return p + epsilon_ * n; }
 
  private:
+  friend class RayBatch;  // casts packets into the same BVH (ray_batch.hpp)
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::size_t triangle_count_ = 0, dropped_triangles_ = 0;
