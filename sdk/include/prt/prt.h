@@ -19,5 +19,6 @@
 #include <prt/prt_version.h>
 #include <prt/prt_wavelet.h>
 #include <prt/prt_wavelet_asset.h>
+#include <prt/prt_workers.h>
 
 #endif /* PRT_H */

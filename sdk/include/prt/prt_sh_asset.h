@@ -15,6 +15,7 @@
 #include <prt/prt_asset.h>
 #include <prt/prt_gl.h>
 #include <prt/prt_types.h>
+#include <prt/prt_workers.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -66,6 +67,15 @@ PRT_API prt_result prt_sh_decode_transfer(const prt_asset* asset, uint32_t first
  * overlapping vertex ranges of one asset may be shaded from several threads at once. */
 PRT_API prt_result prt_sh_shade(const prt_asset* asset, prt_backend backend, const float* light_rgb,
                                 uint32_t first_vertex, uint32_t vertex_count, float* out_rgb);
+
+/* prt_sh_shade of vertices [first, first+count) split over the pool's threads in contiguous
+ * chunks (prt_workers.h): bitwise the one-range call's result. Returns the failing result of the
+ * lowest failing chunk (an empty chunk checks its arguments as the one-range call does), or
+ * PRT_ERROR_INVALID_ARGUMENT for NULL workers or asset. The pool is busy until it returns. */
+PRT_API prt_result prt_sh_shade_workers(prt_workers* workers, const prt_asset* asset,
+                                        prt_backend backend, const float* light_rgb,
+                                        uint32_t first_vertex, uint32_t vertex_count,
+                                        float* out_rgb);
 
 /* ---- GL (prt_gl.h: loader, thread and GL state contract) --------------------------------------
  *

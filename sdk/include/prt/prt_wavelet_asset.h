@@ -21,6 +21,7 @@
 #include <prt/prt_gl.h>
 #include <prt/prt_types.h>
 #include <prt/prt_wavelet.h>
+#include <prt/prt_workers.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -85,6 +86,12 @@ PRT_API prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float
 PRT_API prt_result prt_wavelet_shade(const prt_asset* asset, prt_backend backend,
                                      const float* prepared_rgba, const uint8_t* zero_blocks,
                                      uint32_t first_vertex, uint32_t vertex_count, float* out_rgb);
+
+/* prt_wavelet_shade split over the pool's threads, as prt_sh_shade_workers (prt_sh_asset.h). */
+PRT_API prt_result prt_wavelet_shade_workers(prt_workers* workers, const prt_asset* asset,
+                                             prt_backend backend, const float* prepared_rgba,
+                                             const uint8_t* zero_blocks, uint32_t first_vertex,
+                                             uint32_t vertex_count, float* out_rgb);
 
 /* ---- GL (prt_gl.h: loader, thread and GL state contract) --------------------------------------
  *
