@@ -80,7 +80,60 @@ static inline cube_lanes locate_cube(__m256 x, __m256 y, __m256 z, __m256 half_s
 static inline void accumulate(float* out_rgba, uint32_t target, const float* radiance,
                               __m128 solid_angle) {
   float* to = out_rgba + 4u * (size_t)target;
-  _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(to), _mm_mul_ps(_mm_load_ps(radiance), solid_angle)));
+  _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(to), _mm_mul_ps(_mm_loadu_ps(radiance), solid_angle)));
+}
+
+static inline void add_to(float* to, __m128 value) {
+  _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(to), value));
+}
+
+/* A lane mask spread over the texel pairs of register k (lanes 2k, 2k + 1, four floats each). */
+static inline __m256 spread(__m256i mask, int k) {
+  return _mm256_castsi256_ps(_mm256_permutevar8x32_epi32(
+      mask,
+      _mm256_setr_epi32(2 * k, 2 * k, 2 * k, 2 * k, 2 * k + 1, 2 * k + 1, 2 * k + 1, 2 * k + 1)));
+}
+
+/* Accumulates eight consecutive texels (RGBA x dw in pairs[0..3], two texels each) into their
+ * targets. Neighbouring columns mostly share a target (near the poles a whole block of them
+ * does), and adding each into memory would chain every add on the previous store. So runs of
+ * equal targets are summed in registers first (a segmented prefix sum over the lanes, steps of
+ * 1, 2, 4), and only each run's last lane goes to memory; the other lanes add into a scratch
+ * slot of their own, which keeps the loop free of data-dependent branches. */
+static inline void accumulate_runs(float* out_rgba, float* scratch, __m256i index,
+                                   __m256 pairs[4]) {
+  const __m256i previous =
+      _mm256_permutevar8x32_epi32(index, _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6));
+  const __m256i not_first = _mm256_setr_epi32(0, -1, -1, -1, -1, -1, -1, -1);
+  /* same1[l]: lane l - 1 has the same target; same2: lanes l - 3 .. l; same4: l - 7 .. l.
+   * Lane 0 of each is 0, so a shift that reads lane 0 for an underflow reads 0. */
+  const __m256i same1 = _mm256_and_si256(_mm256_cmpeq_epi32(index, previous), not_first);
+  const __m256i same2 = _mm256_and_si256(
+      same1, _mm256_permutevar8x32_epi32(same1, _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6)));
+  const __m256i same4 = _mm256_and_si256(
+      same2, _mm256_permutevar8x32_epi32(same2, _mm256_setr_epi32(0, 0, 0, 1, 2, 3, 4, 5)));
+  /* A run ends where the next lane does not continue it; lane 7 always ends one. */
+  const int continued = _mm256_movemask_ps(_mm256_castsi256_ps(same1)) >> 1;
+  uint32_t target[8];
+  int k;
+  for (k = 3; k >= 0; --k) { /* one texel back: (t[2k-1], t[2k]) */
+    const __m256 back = k > 0 ? _mm256_permute2f128_ps(pairs[k - 1], pairs[k], 0x21)
+                              : _mm256_permute2f128_ps(pairs[0], pairs[0], 0x08);
+    pairs[k] = _mm256_add_ps(pairs[k], _mm256_and_ps(spread(same1, k), back));
+  }
+  for (k = 3; k >= 1; --k)
+    pairs[k] = _mm256_add_ps(pairs[k], _mm256_and_ps(spread(same2, k), pairs[k - 1]));
+  for (k = 3; k >= 2; --k)
+    pairs[k] = _mm256_add_ps(pairs[k], _mm256_and_ps(spread(same4, k), pairs[k - 2]));
+  _mm256_storeu_si256((__m256i*)(void*)target, index);
+  for (k = 0; k < 4; ++k) {
+    float* low =
+        (continued >> (2 * k)) & 1 ? scratch + 8 * k : out_rgba + 4u * (size_t)target[2 * k];
+    float* high = (continued >> (2 * k + 1)) & 1 ? scratch + 8 * k + 4
+                                                 : out_rgba + 4u * (size_t)target[2 * k + 1];
+    add_to(low, _mm256_castps256_ps128(pairs[k]));
+    add_to(high, _mm256_extractf128_ps(pairs[k], 1));
+  }
 }
 
 void prt_wavelet_source_splat_cube_avx2(const prt_wavelet_source* source, const double r[9],
@@ -91,6 +144,7 @@ void prt_wavelet_source_splat_cube_avx2(const prt_wavelet_source* source, const 
   float gx[PRT_WAVELET_SOURCE_COLUMN_BLOCK], gy[PRT_WAVELET_SOURCE_COLUMN_BLOCK],
       gz[PRT_WAVELET_SOURCE_COLUMN_BLOCK];
   uint32_t index[8];
+  float scratch[32] = {0}; /* the run sums that do not end a run go here, never read */
   uint32_t log2_size = 0, first, x, y, lane;
   __m128i shift;
   while ((1u << log2_size) < size) ++log2_size;
@@ -113,6 +167,7 @@ void prt_wavelet_source_splat_cube_avx2(const prt_wavelet_source* source, const 
       const __m256 up_y = _mm256_set1_ps((float)(cos_theta * r[4]));
       const __m256 up_z = _mm256_set1_ps((float)(cos_theta * r[7]));
       const __m128 solid_angle = _mm_set1_ps(source->texel_solid_angle[y]);
+      const __m256 solid_angle8 = _mm256_set1_ps(source->texel_solid_angle[y]);
       const float* radiance = source->radiance + 4u * ((size_t)y * width + first);
       for (x = 0; x < whole; x += 8u) {
         const cube_lanes lanes = locate_cube(
@@ -120,14 +175,20 @@ void prt_wavelet_source_splat_cube_avx2(const prt_wavelet_source* source, const 
             _mm256_fmadd_ps(sin_theta, _mm256_loadu_ps(gy + x), up_y),
             _mm256_fmadd_ps(sin_theta, _mm256_loadu_ps(gz + x), up_z), half_size, last, shift);
         int uncertain = _mm256_movemask_ps(lanes.uncertain);
-        _mm256_storeu_si256((__m256i*)(void*)index, lanes.index);
-        while (uncertain) {
-          lane = (uint32_t)__builtin_ctz((unsigned)uncertain);
-          index[lane] = prt_wavelet_source_locate_latlong(source, r, first + x + lane, y);
-          uncertain &= uncertain - 1;
+        __m256i exact = lanes.index;
+        __m256 pairs[4];
+        if (uncertain) {
+          _mm256_storeu_si256((__m256i*)(void*)index, lanes.index);
+          while (uncertain) {
+            lane = (uint32_t)__builtin_ctz((unsigned)uncertain);
+            index[lane] = prt_wavelet_source_locate_latlong(source, r, first + x + lane, y);
+            uncertain &= uncertain - 1;
+          }
+          exact = _mm256_loadu_si256((const __m256i*)(const void*)index);
         }
-        for (lane = 0; lane < 8u; ++lane)
-          accumulate(out_rgba, index[lane], radiance + 4u * (x + lane), solid_angle);
+        for (lane = 0; lane < 4u; ++lane)
+          pairs[lane] = _mm256_mul_ps(_mm256_loadu_ps(radiance + 4u * x + 8u * lane), solid_angle8);
+        accumulate_runs(out_rgba, scratch, exact, pairs);
       }
       for (x = whole; x < count; ++x)
         accumulate(out_rgba, prt_wavelet_source_locate_latlong(source, r, first + x, y),
