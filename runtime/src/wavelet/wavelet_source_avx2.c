@@ -4,17 +4,18 @@
  * their turned directions sin t g(f) + cos t R e_y from a float table of g per column block,
  * the cube face and texel found in float. A float texel can differ from the double one of
  * prt_wavelet_resample only for a direction near a texel edge or near a face boundary: such
- * lanes (a small margin around every edge, far wider than the float error) are located again
+ * lanes (a small margin around every texel edge, far wider than the float error) are located again
  * by the scalar path's exact function, so every source texel lands where it does there. */
 #include <immintrin.h>
 #include <stdint.h>
 
 #include "wavelet_source_internal.h"
 
-/* Margins, in texels and in |component| differences, of a float direction whose texel is
- * taken from the exact path; the float error of either is orders of magnitude smaller. */
+/* The margin, in texels, around a texel edge within which a float texel coordinate is taken
+ * from the exact path; the float error is orders of magnitude smaller. It also covers the face
+ * choice: float and double can only pick different faces where two |components| are nearly
+ * equal, and there the face coordinate is nearly +-1, a texel edge. */
 #define EDGE_MARGIN (1.0f / 2048.0f)
-#define FACE_MARGIN (1.0f / 65536.0f)
 
 typedef struct cube_lanes {
   __m256i index;    /* target texel f S^2 + y S + x */
@@ -62,17 +63,12 @@ static inline cube_lanes locate_cube(__m256 x, __m256 y, __m256 z, __m256 half_s
   const __m256 tt = _mm256_mul_ps(_mm256_fmadd_ps(tc, inv, _mm256_set1_ps(1.0f)), half_size);
   const __m256i tx = _mm256_min_epi32(_mm256_cvttps_epi32(_mm256_max_ps(ts, zero)), last);
   const __m256i ty = _mm256_min_epi32(_mm256_cvttps_epi32(_mm256_max_ps(tt, zero)), last);
-  const __m256 face_margin = _mm256_set1_ps(FACE_MARGIN);
-  const __m256 close_xy = _mm256_cmp_ps(abs_ps(_mm256_sub_ps(ax, ay)), face_margin, _CMP_LT_OQ);
-  const __m256 close_xz = _mm256_cmp_ps(abs_ps(_mm256_sub_ps(ax, az)), face_margin, _CMP_LT_OQ);
-  const __m256 close_yz = _mm256_cmp_ps(abs_ps(_mm256_sub_ps(ay, az)), face_margin, _CMP_LT_OQ);
   cube_lanes out;
   out.index = _mm256_add_epi32(
       _mm256_sll_epi32(_mm256_add_epi32(_mm256_sll_epi32(_mm256_cvttps_epi32(face), log2_size), ty),
                        log2_size),
       tx);
-  out.uncertain = _mm256_or_ps(_mm256_or_ps(close_xy, close_xz),
-                               _mm256_or_ps(close_yz, _mm256_or_ps(near_edge(ts), near_edge(tt))));
+  out.uncertain = _mm256_or_ps(near_edge(ts), near_edge(tt));
   return out;
 }
 
