@@ -14,7 +14,7 @@
 #include "wavelet_light_internal.h"
 #include "wavelet_source_internal.h"
 
-#define PRT_WAVELET_SOURCE_DESC_SIZE_1_0 PRT_SIZE_THROUGH(prt_wavelet_source_desc, env)
+#define PRT_WAVELET_SOURCE_DESC_SIZE_1_0 PRT_SIZE_THROUGH(prt_wavelet_source_desc, flags)
 
 /* A channel value as the light uses it: NaN, infinities and negatives count as 0. */
 static float sanitised(float value) {
@@ -104,10 +104,39 @@ static void copy_radiance(const prt_env_view* env, float* radiance) {
       }
 }
 
+/* The lat-long solid angle of row y of `height` rows, `width` columns (SPEC §12). */
+static double latlong_row_solid_angle(uint32_t width, uint32_t height, uint32_t y) {
+  return 2.0 * PRT_SPHERE_PI / (double)width *
+         (cos(PRT_SPHERE_PI * (double)y / (double)height) -
+          cos(PRT_SPHERE_PI * (double)(y + 1u) / (double)height));
+}
+
+/* PRT_WAVELET_SOURCE_REDUCE_2X2: texel (x, y) of the half-size map gets the power of the full
+ * map's 2x2 block over the block's solid angle (the half-size texel's, as lat-long rows add). */
+static void copy_reduced_radiance(const prt_env_view* env, float* radiance) {
+  const uint32_t width = env->width / 2u, height = env->height / 2u;
+  uint32_t x, y, c, i;
+  for (y = 0; y < height; ++y) {
+    const double dw[2] = {latlong_row_solid_angle(env->width, env->height, 2u * y),
+                          latlong_row_solid_angle(env->width, env->height, 2u * y + 1u)};
+    const double block = 2.0 * (dw[0] + dw[1]);
+    for (x = 0; x < width; ++x) {
+      double power[3] = {0.0, 0.0, 0.0};
+      float* to = radiance + 4u * ((size_t)y * width + x);
+      for (i = 0; i < 4u; ++i) {
+        const float* texel = prt_env_texel(env, 0u, 2u * x + (i & 1u), 2u * y + (i >> 1));
+        for (c = 0; c < 3u; ++c) power[c] += (double)sanitised(texel[c]) * dw[i >> 1];
+      }
+      for (c = 0; c < 3u; ++c) to[c] = (float)(power[c] / block);
+      to[3] = 1.0f;
+    }
+  }
+}
+
 prt_result prt_wavelet_source_create(prt_context* context, const prt_wavelet_source_desc* desc,
                                      prt_wavelet_source** out_source) {
   prt_wavelet_source_desc d;
-  prt_env_view env;
+  prt_env_view env, reduced;
   source_layout layout;
   prt_wavelet_source* s;
   unsigned char* at;
@@ -128,7 +157,15 @@ prt_result prt_wavelet_source_create(prt_context* context, const prt_wavelet_sou
     return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
                              "prt_wavelet_source_create: env rejected by prt_env_image_validate "
                              "or with a rotation (give it per frame)");
-  if (!plan_layout(&env, d.size, &layout))
+  if ((d.flags & ~(uint32_t)PRT_WAVELET_SOURCE_REDUCE_2X2) != 0u ||
+      ((d.flags & PRT_WAVELET_SOURCE_REDUCE_2X2) &&
+       (env.layout != PRT_ENV_LATLONG || env.width % 2u != 0u || env.height % 2u != 0u)))
+    return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
+                             "prt_wavelet_source_create: unknown flag, or REDUCE_2X2 on a cube "
+                             "map or an odd width or height");
+  reduced = env;
+  if (d.flags & PRT_WAVELET_SOURCE_REDUCE_2X2) reduced.width /= 2u, reduced.height /= 2u;
+  if (!plan_layout(&reduced, d.size, &layout))
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY,
                              "prt_wavelet_source_create: the map is too large");
   bytes = round_up(sizeof *s, 32u) + layout.total;
@@ -152,12 +189,15 @@ prt_result prt_wavelet_source_create(prt_context* context, const prt_wavelet_sou
   s->inv_length = s->row_cos + layout.rows;
   s->target_solid_angle = s->inv_length + layout.plane;
   s->texel_solid_angle = (float*)(void*)(s->target_solid_angle + (size_t)d.size * d.size);
-  s->env = env;
+  s->env = reduced;
   s->env.channels = 4u;
   s->env.texels = s->radiance;
-  s->env.row_stride = 4u * (size_t)env.width;
-  s->env.face_stride = s->env.row_stride * env.height;
-  copy_radiance(&env, s->radiance);
+  s->env.row_stride = 4u * (size_t)reduced.width;
+  s->env.face_stride = s->env.row_stride * reduced.height;
+  if (d.flags & PRT_WAVELET_SOURCE_REDUCE_2X2)
+    copy_reduced_radiance(&env, s->radiance);
+  else
+    copy_radiance(&env, s->radiance);
   if (env.layout == PRT_ENV_LATLONG)
     fill_latlong_tables(s);
   else

@@ -25,6 +25,17 @@ extern "C" {
 
 typedef struct prt_wavelet_source prt_wavelet_source;
 
+/* Bits of prt_wavelet_source_desc.flags. */
+typedef enum prt_wavelet_source_flag {
+  /* Sum each 2x2 block of a lat-long map (even width and height) into one texel of a map of
+   * half the width and height first: its radiance is the block's power over its solid angle,
+   * so each block's power is kept but lands at the block's centre, which can move it into a
+   * neighbouring target texel; and a half-size map can leave target texels empty, which take
+   * their nearest texel's radiance. NOT prt_wavelet_resample's result for the map (it is that
+   * for the half-size map); a quarter of the work per frame. */
+  PRT_WAVELET_SOURCE_REDUCE_2X2 = 0x1
+} prt_wavelet_source_flag;
+
 /* What a source is prepared for. A zero-initialised struct with struct_size set is not valid:
  * env is required. */
 typedef struct prt_wavelet_source_desc {
@@ -34,13 +45,15 @@ typedef struct prt_wavelet_source_desc {
   /* The map (any layout, channels and strides prt_env_image_validate accepts); copied, so it
    * may be freed after the call. Its rotation must be NULL: the rotation is given per frame. */
   const prt_env_image* env;
+  uint32_t flags; /* prt_wavelet_source_flag bits */
 } prt_wavelet_source_desc;
 
 /* Prepares a source with the context's allocator (about 16 bytes per source texel plus tables).
  * On success *out_source receives it; on failure *out_source is NULL (when out_source is not
  * NULL). PRT_ERROR_INVALID_ARGUMENT for a NULL context, desc or out_source, a struct_size below
  * 1.0's, a bad param or size, an env that prt_env_image_validate rejects or whose rotation is not
- * NULL; PRT_ERROR_OUT_OF_MEMORY. The context must outlive the source. */
+ * NULL, an unknown flag, PRT_WAVELET_SOURCE_REDUCE_2X2 on a cube map or an odd width or height;
+ * PRT_ERROR_OUT_OF_MEMORY. The context must outlive the source. */
 PRT_API prt_result prt_wavelet_source_create(prt_context* context,
                                              const prt_wavelet_source_desc* desc,
                                              prt_wavelet_source** out_source);

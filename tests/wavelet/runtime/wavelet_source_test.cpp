@@ -58,11 +58,13 @@ std::vector<float> random_map(size_t texels, uint32_t seed) {
 struct Source {
   prt_wavelet_source* source = nullptr;
   prt_result result = PRT_ERROR_INVALID_ARGUMENT;
-  Source(prt_context* context, prt_wavelet_param param, uint32_t size, const prt_env_image& env) {
+  Source(prt_context* context, prt_wavelet_param param, uint32_t size, const prt_env_image& env,
+         uint32_t flags = 0) {
     prt_wavelet_source_desc desc = prt::sized<prt_wavelet_source_desc>();
     desc.param = param;
     desc.size = size;
     desc.env = &env;
+    desc.flags = flags;
     result = prt_wavelet_source_create(context, &desc, &source);
   }
   ~Source() { prt_wavelet_source_destroy(source); }
@@ -247,6 +249,51 @@ TEST(WaveletSource, ZerosAndUnusableValuesGiveTheReference) {
   }
 }
 
+// ---- PRT_WAVELET_SOURCE_REDUCE_2X2: the reference's result for the half-size map. ----
+
+// Each 2x2 block's power over its solid angle, computed here from SPEC §12's row solid angles.
+std::vector<float> reduced_map(const std::vector<float>& map, uint32_t width, uint32_t height) {
+  std::vector<float> out(3 * size_t(width / 2) * (height / 2));
+  auto row_dw = [&](uint32_t y) {
+    return 2 * kPi / width * (std::cos(kPi * y / height) - std::cos(kPi * (y + 1) / height));
+  };
+  for (uint32_t y = 0; y < height / 2; ++y)
+    for (uint32_t x = 0; x < width / 2; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double power = 0, dw = 0;
+        for (uint32_t i = 0; i < 4; ++i) {
+          const uint32_t sx = 2 * x + (i & 1), sy = 2 * y + (i >> 1);
+          power += row_dw(sy) * map[3 * (size_t(sy) * width + sx) + c];
+          dw += row_dw(sy);
+        }
+        out[3 * (size_t(y) * (width / 2) + x) + c] = float(power / dw);
+      }
+  return out;
+}
+
+TEST(WaveletSource, Reduce2x2GivesTheReferenceOfTheHalfSizeMap) {
+  auto context = prt_test::limited_context();
+  const uint32_t width = 1024, height = 512;
+  const std::vector<float> map = random_map(size_t(width) * height, 8);
+  const std::vector<float> half = reduced_map(map, width, height);
+  const prt_env_image env = prt::latlong_env(width, height, map.data());
+  const prt_env_image half_env = prt::latlong_env(width / 2, height / 2, half.data());
+  Source source(context.get(), kCube, 64, env, PRT_WAVELET_SOURCE_REDUCE_2X2);
+  ASSERT_EQ(source.result, PRT_OK);
+  for (const Rotation& rotation : test_rotations()) {
+    const std::vector<float> got = resampled(source, kCube, 64, rotation);
+    const std::vector<float> want = reference(kCube, 64, half_env, rotation);
+    const std::vector<uint32_t> count = landed_counts(kCube, 64, width / 2, height / 2, rotation);
+    for (size_t j = 0; j < count.size(); ++j)
+      for (int c = 0; c < 4; ++c) {
+        // As above, plus one rounding of each reduced texel's radiance (here and there).
+        const double n = double(count[j]) + 2.0;
+        const double bound = 2.0 * (n + 1.0) * double(FLT_EPSILON) * double(want[4 * j + c]);
+        ASSERT_NEAR(got[4 * j + c], want[4 * j + c], bound) << "texel " << j << " c " << c;
+      }
+  }
+}
+
 // ---- Errors. ----
 
 TEST(WaveletSource, RejectsBadArguments) {
@@ -290,6 +337,16 @@ TEST(WaveletSource, RejectsBadArguments) {
   two_channels.channels = 2;
   bad = desc, bad.env = &two_channels;
   EXPECT_TRUE(rejected(bad));
+
+  bad = desc, bad.flags = 0x2;
+  EXPECT_TRUE(rejected(bad));
+  const prt_env_image odd = prt::latlong_env(63, 32, map.data());
+  bad = desc, bad.env = &odd, bad.flags = PRT_WAVELET_SOURCE_REDUCE_2X2;
+  EXPECT_TRUE(rejected(bad));
+  const prt_env_image cube = prt::cube_env(8, map.data());
+  bad = desc, bad.env = &cube, bad.flags = PRT_WAVELET_SOURCE_REDUCE_2X2;
+  EXPECT_TRUE(rejected(bad));
+  EXPECT_EQ(Source(ctx, kCube, 16, env, PRT_WAVELET_SOURCE_REDUCE_2X2).result, PRT_OK);
 
   ASSERT_EQ(prt_wavelet_source_create(ctx, &desc, &source), PRT_OK);
   std::vector<float> out(4 * size_t(prt_wavelet_coefficient_count(kCube, 16)));
