@@ -14,8 +14,14 @@ static int valid_face(uint32_t size, uint32_t channels, const float* face) {
 /* One level on n values spaced `step` texels apart (a row: step 1; a column: step size), each
  * texel `channels` floats: sums to the first half, differences to the second (forward), or back
  * (inverse). `scratch` holds n * channels floats. */
-static void haar_line(float* line, uint32_t n, size_t step, uint32_t channels, int forward,
-                      float* scratch) {
+#if defined(__GNUC__)
+#define HAAR_INLINE static inline __attribute__((always_inline))
+#else
+#define HAAR_INLINE static inline
+#endif
+
+HAAR_INLINE void haar_line(float* line, uint32_t n, size_t step, uint32_t channels, int forward,
+                           float* scratch) {
   uint32_t i, c, half = n / 2u;
   for (i = 0; i < n; ++i)
     memcpy(scratch + (size_t)i * channels, line + i * step * channels, channels * sizeof(float));
@@ -33,8 +39,8 @@ static void haar_line(float* line, uint32_t n, size_t step, uint32_t channels, i
 
 /* One level on the n x n top-left block: rows then columns (forward), columns then rows
  * (inverse, the transpose). */
-static void haar_level(float* face, uint32_t size, uint32_t n, uint32_t channels, int forward,
-                       float* scratch) {
+HAAR_INLINE void haar_level_of(float* face, uint32_t size, uint32_t n, uint32_t channels,
+                               int forward, float* scratch) {
   uint32_t i, pass;
   for (pass = 0; pass < 2u; ++pass) {
     const int rows = (pass == 0u) == (forward != 0);
@@ -43,6 +49,16 @@ static void haar_level(float* face, uint32_t size, uint32_t n, uint32_t channels
       haar_line(start, n, rows ? 1u : size, channels, forward, scratch);
     }
   }
+}
+
+/* RGBA lights (the usual case) get a copy with a constant channel count, so that a texel's four
+ * channels move and combine together instead of a call and a loop per texel; same arithmetic. */
+static void haar_level(float* face, uint32_t size, uint32_t n, uint32_t channels, int forward,
+                       float* scratch) {
+  if (channels == 4u)
+    haar_level_of(face, size, n, 4u, forward, scratch);
+  else
+    haar_level_of(face, size, n, channels, forward, scratch);
 }
 
 prt_result prt_haar_forward(uint32_t size, uint32_t channels, float* face) {

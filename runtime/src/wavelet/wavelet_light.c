@@ -10,6 +10,7 @@
 #include "env_internal.h"
 #include "sphere_internal.h"
 #include "wavelet_internal.h"
+#include "wavelet_light_internal.h"
 
 /* A channel value as the light uses it: NaN, infinities and negatives count as 0. */
 static float sanitised(float value) {
@@ -24,7 +25,7 @@ typedef struct light_source {
 
 /* The largest texel solid angle of a lat-long map (the rows next to the equator) and of cube
  * faces (the face centre: at most the texel around (0, 0) of the face plane). */
-static double latlong_largest_texel(uint32_t width, uint32_t height) {
+double prt_wavelet_latlong_largest_texel(uint32_t width, uint32_t height) {
   const uint32_t y = height / 2u;
   const double top = cos(PRT_SPHERE_PI * (double)(y > 0u ? y - 1u : 0u) / (double)height);
   const double equator = cos(PRT_SPHERE_PI * (double)y / (double)height);
@@ -33,7 +34,7 @@ static double latlong_largest_texel(uint32_t width, uint32_t height) {
   return 2.0 * PRT_SPHERE_PI / (double)width * band;
 }
 
-static double cube_largest_texel(uint32_t face_size) {
+double prt_wavelet_cube_largest_texel(uint32_t face_size) {
   const double half = 1.0 / (double)face_size; /* a texel centred on the face centre */
   return prt_cube_rect_solid_angle(-half, half, -half, half);
 }
@@ -100,13 +101,16 @@ static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint3
  * texel nothing landed in takes the nearest source texel's radiance times dw. dw depends on
  * (x, y) only, so it is computed once for all faces. */
 static void finish_resample(uint32_t param, uint32_t size, const double r[9],
-                            const light_source* source, float* out_rgba) {
+                            const light_source* source, const double* solid_angles,
+                            float* out_rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
   const int keep_power = source->largest_texel <= target_smallest_texel(param, size);
   uint32_t f, x, y, c;
   for (y = 0; y < size; ++y) {
     for (x = 0; x < size; ++x) {
-      const double solid_angle = prt_wavelet_texel_solid_angle(param, size, 0u, x, y);
+      const double solid_angle = solid_angles
+                                     ? solid_angles[(size_t)y * size + x]
+                                     : prt_wavelet_texel_solid_angle(param, size, 0u, x, y);
       for (f = 0; f < faces; ++f) {
         float* texel = out_rgba + 4u * (((size_t)f * size + y) * size + x);
         if (texel[3] <= 0.0f) {
@@ -256,13 +260,22 @@ prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size, const pr
   source.env = &env;
   if (env.layout == PRT_ENV_LATLONG) {
     splat_latlong(param, size, &env, r, out_rgba);
-    source.largest_texel = latlong_largest_texel(env.width, env.height);
+    source.largest_texel = prt_wavelet_latlong_largest_texel(env.width, env.height);
   } else {
     splat_cube(param, size, &env, r, out_rgba);
-    source.largest_texel = cube_largest_texel(env.width);
+    source.largest_texel = prt_wavelet_cube_largest_texel(env.width);
   }
-  finish_resample(param, size, r, &source, out_rgba);
+  finish_resample(param, size, r, &source, NULL, out_rgba);
   return PRT_OK;
+}
+
+void prt_wavelet_finish_resample(uint32_t param, uint32_t size, const double r[9],
+                                 const prt_env_view* env, double largest_texel,
+                                 const double* solid_angles, float* out_rgba) {
+  light_source source;
+  source.env = env;
+  source.largest_texel = largest_texel;
+  finish_resample(param, size, r, &source, solid_angles, out_rgba);
 }
 
 prt_result prt_wavelet_transform_light(prt_wavelet_param param, uint32_t size, float* rgba) {

@@ -19,6 +19,7 @@
 #include <prt/prt_version.h>
 #include <prt/prt_wavelet.h>
 #include <prt/prt_wavelet_asset.h>
+#include <prt/prt_wavelet_source.h>
 #include <prt/prt_workers.h>
 
 #endif /* PRT_H */

@@ -17,7 +17,10 @@
 //    shade faster; ms per frame and the ratio to M = all measured in the same run;
 //  - the per-frame light update: resample a 1k lat-long map (spiaggia_di_mondello_1k.hdr, or a
 //    synthetic sky with a sun when the shared assets are absent) under a rotation that changes
-//    every frame, Haar-transform, keep M coefficients, prepare for the asset; ms per step.
+//    every frame, Haar-transform, keep M coefficients, prepare for the asset; ms per step, by
+//    prt_wavelet_resample per frame (the old path), by a prepared prt_wavelet_source on the
+//    best SIMD instruction set (the same result) and by one with PRT_WAVELET_SOURCE_REDUCE_2X2
+//    (not the same result), with the ratio to the old path in this run.
 // Rates are given by wall clock and by the CPU time of the threads doing the work (this machine
 // may be shared; see sh_bench.cpp).
 //
@@ -53,6 +56,7 @@ using prt_bench::kBackends;
 
 struct LightFigure {
   uint32_t m = 0;
+  int path = 0;  // 0 prt_wavelet_resample per frame, 1 prt_wavelet_source, 2 the same reduced
   double resample = 0, transform = 0, select = 0, prepare = 0;  // seconds per frame
 };
 
@@ -294,6 +298,7 @@ const LatLong& environment() {
 // one degree per frame.
 void BM_LightUpdate(benchmark::State& state) {
   const uint32_t m = uint32_t(state.range(0));
+  const int path = int(state.range(1));
   std::string why;
   prt_asset* asset = g_assets.get(0, &why);
   if (!asset) {
@@ -305,6 +310,22 @@ void BM_LightUpdate(benchmark::State& state) {
       prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize);
   std::vector<float> light(4 * size_t(coefficients)), prepared(light.size());
   std::vector<uint8_t> zero_blocks(coefficients / 256);
+  // The source: once per map, outside the frame loop (a default context: the best SIMD ISA).
+  auto [context, made] = prt::create_context();
+  prt_wavelet_source* source = nullptr;
+  if (path > 0 && made == PRT_OK) {
+    const prt_env_image still = prt::latlong_env(env.width, env.height, env.rgb.data(), 3);
+    prt_wavelet_source_desc desc = prt::sized<prt_wavelet_source_desc>();
+    desc.param = PRT_WAVELET_PARAM_CUBE;
+    desc.size = prt_bench::kWaveletSize;
+    desc.env = &still;
+    desc.flags = path == 2 ? uint32_t(PRT_WAVELET_SOURCE_REDUCE_2X2) : 0u;
+    made = prt_wavelet_source_create(context.get(), &desc, &source);
+  }
+  if (made != PRT_OK) {
+    state.SkipWithError(prt_result_string(made));
+    return;
+  }
   double seconds[4] = {0, 0, 0, 0};
   int frame = 0;
   auto lap = [](std::chrono::steady_clock::time_point& t) {
@@ -320,8 +341,9 @@ void BM_LightUpdate(benchmark::State& state) {
     auto t = std::chrono::steady_clock::now();
     const prt_env_image image =
         prt::latlong_env(env.width, env.height, env.rgb.data(), 3, rotation);
-    prt_result r =
-        prt_wavelet_resample(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize, &image, light.data());
+    prt_result r = source ? prt_wavelet_source_resample(source, rotation, light.data())
+                          : prt_wavelet_resample(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
+                                                 &image, light.data());
     seconds[0] += lap(t);
     if (r == PRT_OK)
       r = prt_wavelet_transform_light(PRT_WAVELET_PARAM_CUBE, prt_bench::kWaveletSize,
@@ -340,25 +362,25 @@ void BM_LightUpdate(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(prepared.data());
   }
+  prt_wavelet_source_destroy(source);
   const double frames = double(state.iterations());
   state.counters["frames/s"] = benchmark::Counter(frames, benchmark::Counter::kIsRate);
   const char* names[4] = {"resample_ms", "transform_ms", "select_ms", "prepare_ms"};
   for (int i = 0; i < 4; ++i) state.counters[names[i]] = 1e3 * seconds[i] / frames;
   LightFigure figure;
   figure.m = m;
+  figure.path = path;
   figure.resample = seconds[0] / frames, figure.transform = seconds[1] / frames;
   figure.select = seconds[2] / frames, figure.prepare = seconds[3] / frames;
   std::vector<LightFigure>& figures = g_figures.light;
-  if (!figures.empty() && figures.back().m == m)
+  if (!figures.empty() && figures.back().m == m && figures.back().path == path)
     figures.back() = figure;
   else
     figures.push_back(figure);
 }
 BENCHMARK(BM_LightUpdate)
-    ->Arg(64)
-    ->Arg(256)
-    ->Arg(1024)
-    ->Arg(0)
+    ->ArgNames({"M", "path"})
+    ->ArgsProduct({{64, 256, 1024, 0}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(0.3);
@@ -492,13 +514,22 @@ void print_summary() {
   if (!f.light.empty()) {
     std::printf("\n  light update per frame (%s), cube N = %u, ms:\n", f.env_name.c_str(),
                 prt_bench::kWaveletSize);
-    std::printf("  %6s %9s %9s %9s %9s %9s\n", "M", "resample", "transform", "select", "prepare",
-                "total");
-    for (const LightFigure& l : f.light)
-      std::printf("  %6s %9.2f %9.2f %9.2f %9.2f %9.2f\n",
-                  l.m ? std::to_string(l.m).c_str() : "all", 1e3 * l.resample, 1e3 * l.transform,
-                  1e3 * l.select, 1e3 * l.prepare,
-                  1e3 * (l.resample + l.transform + l.select + l.prepare));
+    std::printf("  %6s %-9s %9s %9s %9s %9s %9s %16s\n", "M", "path", "resample", "transform",
+                "select", "prepare", "total", "total vs resample");
+    auto total = [](const LightFigure& l) {
+      return l.resample + l.transform + l.select + l.prepare;
+    };
+    for (const LightFigure& l : f.light) {
+      double old_total = 0;  // prt_wavelet_resample's at the same M in this run
+      for (const LightFigure& o : f.light)
+        if (o.m == l.m && o.path == 0) old_total = total(o);
+      std::printf("  %6s %-9s %9.2f %9.2f %9.2f %9.2f %9.2f",
+                  l.m ? std::to_string(l.m).c_str() : "all",
+                  l.path == 0 ? "resample" : (l.path == 1 ? "source" : "src 2x2"), 1e3 * l.resample,
+                  1e3 * l.transform, 1e3 * l.select, 1e3 * l.prepare, 1e3 * total(l));
+      if (l.path > 0 && old_total > 0) std::printf(" %15.2fx", old_total / total(l));
+      std::printf("\n");
+    }
   }
   print_relight_at_m();
   print_bake();

@@ -1,0 +1,24 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the wavelet light (wavelet_light.c, wavelet_source*.c): the steps of
+ * prt_wavelet_resample that a prepared source (prt_wavelet_source.h) shares with it, so that
+ * both give the same texels. */
+#ifndef PRT_RUNTIME_WAVELET_LIGHT_INTERNAL_H
+#define PRT_RUNTIME_WAVELET_LIGHT_INTERNAL_H
+
+#include <stdint.h>
+
+#include "env_internal.h"
+
+/* The largest source texel's solid angle of a lat-long map and of a cube map's faces. */
+double prt_wavelet_latlong_largest_texel(uint32_t width, uint32_t height);
+double prt_wavelet_cube_largest_texel(uint32_t face_size);
+
+/* The end of a resampling (SPEC §14): turns what landed in every target texel (sum of L dw in
+ * RGB, sum of dw in the 4th float) into its power, fills the texels nothing landed in from env's
+ * nearest texel in direction R^T c, and zeroes the 4th floats. solid_angles: the target texels'
+ * solid angles by y * size + x (shared by every face), or NULL to compute them. */
+void prt_wavelet_finish_resample(uint32_t param, uint32_t size, const double r[9],
+                                 const prt_env_view* env, double largest_texel,
+                                 const double* solid_angles, float* out_rgba);
+
+#endif /* PRT_RUNTIME_WAVELET_LIGHT_INTERNAL_H */
