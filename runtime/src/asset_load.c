@@ -204,6 +204,7 @@ static prt_result load(prt_context* context, const void* data, size_t size,
   asset->size = size;
   asset->sections = sections;
   memcpy(asset->views, views, sizeof asset->views);
+  prt_internal_attach_views(context, allocator, asset->views);
   *out_asset = asset;
   return PRT_OK;
 }

@@ -38,8 +38,18 @@ void prt_internal_free_views(const prt_allocator* allocator,
   size_t i;
   for (i = 0; i < TECHNIQUE_COUNT; ++i) {
     const prt_technique_entry* t = kTechniques[i];
+    if (views[t->technique] && t->release) t->release(allocator, views[t->technique]);
     prt_internal_free(allocator, views[t->technique], t->view_size);
     views[t->technique] = NULL;
+  }
+}
+
+void prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
+                               void* views[PRT_INTERNAL_MAX_TECHNIQUES]) {
+  size_t i;
+  for (i = 0; i < TECHNIQUE_COUNT; ++i) {
+    const prt_technique_entry* t = kTechniques[i];
+    if (views[t->technique] && t->attach) t->attach(context, allocator, views[t->technique]);
   }
 }
 
@@ -73,6 +83,7 @@ prt_result prt_internal_open_views(const prt_allocator* allocator,
       snprintf(msg, capacity, "out of memory for the '%s' section's view", t->name);
       return PRT_ERROR_OUT_OF_MEMORY;
     }
+    memset(view, 0, t->view_size); /* release hooks read what open left unset as empty */
     views[t->technique] = view;
     r = t->open(s, view, msg, capacity);
     if (r != PRT_OK) {

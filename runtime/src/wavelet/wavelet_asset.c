@@ -188,5 +188,15 @@ prt_result prt_wavelet_shade(const prt_asset* asset, prt_backend backend,
   rows = view->rows;
   rows.light = prepared_rgba;
   rows.skip = zero_blocks ? zero_blocks : kSkipNothing;
+#if defined(PRT_HAS_X86_SIMD)
+  /* The load's repack, made only for contexts whose SIMD ISA is AVX2 (wavelet_tiles.c). */
+  if (kernel == prt_wavelet_shade_avx2 && view->tiles) {
+    prt_wavelet_tile_light light;
+    if (prt_wavelet_tile_light_make(view->tiles, prepared_rgba, rows.skip, &light)) {
+      prt_wavelet_shade_tiles_avx2(view->tiles, &light, first_vertex, vertex_count, out_rgb);
+      return PRT_OK;
+    }
+  }
+#endif
   return kernel(&rows, first_vertex, vertex_count, out_rgb);
 }

@@ -63,7 +63,50 @@ static inline float prt_wavelet_vertex_scale(const prt_wavelet_rows* rows, uint3
 typedef prt_result (*prt_wavelet_kernel)(const prt_wavelet_rows* rows, uint32_t first,
                                          uint32_t count, float* out_rgb);
 
+/* The rows repacked at load for the tiled kernel (wavelet_tiles.c), 8 vertices per tile. Per tile
+ * and face, the coarse corner (Mallat levels -1..2: the 8 x 8 coefficients x, y < 8) dense as i8
+ * with the tile's vertices in lanes, stored only for the faces where some vertex of the tile has
+ * a non-zero there; the other ("fine") pairs kept sparse in block-major order: per tile and block
+ * the pairs of lane 0, then lane 1, ..., so that a block of zero light skips one contiguous run
+ * for the whole tile. Lanes past the last vertex hold zeros. */
+#define PRT_WAVELET_TILE 8u
+#define PRT_WAVELET_CORNER 8u /* coarse corner side: levels -1..2 */
+#define PRT_WAVELET_CORNER_COEFFICIENTS (PRT_WAVELET_CORNER * PRT_WAVELET_CORNER)
+#define PRT_WAVELET_MAX_FACES 6u
+
+typedef struct prt_wavelet_tiles {
+  uint32_t tiles, faces, size, blocks;
+  const uint8_t* face_mask;   /* u8[tiles]: bit f when face f has a stored corner slab */
+  const uint32_t* slab_start; /* u32[tiles]: index of the tile's first slab */
+  const int8_t* slabs;        /* i8[slabs][64 corner coefficients, y * 8 + x][8 lanes] */
+  const float* scale;         /* f32[tiles][3 channels][8 lanes]: vs */
+  const uint32_t* fine_start; /* u32[tiles * blocks + 1]: first pair of (tile, block) */
+  const uint16_t* fine_count; /* u16[tiles][blocks][8 lanes] */
+  const uint8_t* fine_pairs;  /* u8[][2]: (index in the block, value) */
+  void* memory;               /* the one allocation holding the arrays */
+  size_t bytes;
+} prt_wavelet_tiles;
+
+/* The light a tiled kernel reads in one call: the prepared light with the caller's skip mask,
+ * and per face the corner's RGBA light (zero where the mask skips its block) and whether any of
+ * it is non-zero. */
+typedef struct prt_wavelet_tile_light {
+  const float* light;
+  const uint8_t* skip;
+  float corner[PRT_WAVELET_MAX_FACES][PRT_WAVELET_CORNER_COEFFICIENTS][4];
+  uint8_t face_lit[PRT_WAVELET_MAX_FACES];
+} prt_wavelet_tile_light;
+
+/* Shades vertices [first, first+count) of the tiles into out_rgb. Each vertex's sum is computed
+ * in one order whatever the range (its tile is shaded whole, only the range written). */
+typedef void (*prt_wavelet_tile_kernel)(const prt_wavelet_tiles* tiles,
+                                        const prt_wavelet_tile_light* light, uint32_t first,
+                                        uint32_t count, float* out_rgb);
+
 #if defined(PRT_HAS_X86_SIMD)
+void prt_wavelet_shade_tiles_avx2(const prt_wavelet_tiles* tiles,
+                                  const prt_wavelet_tile_light* light, uint32_t first,
+                                  uint32_t count, float* out_rgb);
 prt_result prt_wavelet_shade_sse41(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,
                                    float* out_rgb);
 prt_result prt_wavelet_shade_avx2(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,

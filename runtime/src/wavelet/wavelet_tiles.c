@@ -1,0 +1,219 @@
+/* SPDX-License-Identifier: MIT */
+/* The WVLT rows repacked at load into 8-vertex tiles for the AVX2 kernel (prt_wavelet_tiles,
+ * wavelet_shade_simd.h): the coarse corners dense, the rest sparse in block-major order. The
+ * repack walks every row with the bounds checks shading makes; a row those checks reject, or one
+ * that stores a corner coefficient twice (possible only at quick validation), leaves the asset
+ * without tiles, so that shading keeps reading the blob rows and reports what they always did. */
+#include <string.h>
+
+#include "internal.h"
+#include "wavelet_internal.h"
+
+/* Where pair (block k, index i) of a row falls: *face, and its corner index or -1 (a fine
+ * pair). */
+static int corner_of(const prt_wavelet_tiles* t, uint32_t shift, uint32_t k, uint32_t i,
+                     uint32_t* face) {
+  const uint32_t j = PRT_BLOB_WVLT_BLOCK * k + i;
+  const uint32_t within = j & ((1u << (2u * shift)) - 1u);
+  const uint32_t x = within & (t->size - 1u), y = within >> shift;
+  *face = j >> (2u * shift);
+  return x < PRT_WAVELET_CORNER && y < PRT_WAVELET_CORNER ? (int)(y * PRT_WAVELET_CORNER + x) : -1;
+}
+
+/* Checks row v as shading does (row range, every count <= 256 and within the row, counts use up
+ * the row); 0 when it fails. */
+static int row_ok(const prt_wavelet_rows* rows, uint32_t v) {
+  const uint8_t* counts = rows->counts + 2u * (size_t)v * rows->blocks;
+  uint32_t start, end, at, k;
+  if (!prt_wavelet_row_range(rows, v, &start, &end)) return 0;
+  for (at = start, k = 0; k < rows->blocks; ++k) {
+    const uint32_t n = prt_le_load_u16(counts + 2u * k);
+    if (n > PRT_BLOB_WVLT_BLOCK || n > end - at) return 0;
+    at += n;
+  }
+  return at == end;
+}
+
+static size_t round_up(size_t n) {
+  return (n + 31u) & ~(size_t)31u;
+}
+
+void prt_wavelet_release_tiles(const prt_allocator* allocator, void* view_memory) {
+  prt_wavelet_view* view = (prt_wavelet_view*)view_memory;
+  if (!view->tiles) return;
+  prt_internal_free(allocator, view->tiles->memory, view->tiles->bytes);
+  prt_internal_free(allocator, view->tiles, sizeof *view->tiles);
+  view->tiles = NULL;
+}
+
+/* Fills the tile arrays from valid rows; 0 when a row stores a corner coefficient twice. */
+static int fill_tiles(const prt_wavelet_rows* rows, uint32_t vertices, prt_wavelet_tiles* t,
+                      uint32_t shift) {
+  uint8_t* mask = (uint8_t*)(uintptr_t)t->face_mask;
+  uint32_t* slab_start = (uint32_t*)(uintptr_t)t->slab_start;
+  int8_t* slabs = (int8_t*)(uintptr_t)t->slabs;
+  float* scale = (float*)(uintptr_t)t->scale;
+  uint32_t* fine_start = (uint32_t*)(uintptr_t)t->fine_start;
+  uint16_t* fine_count = (uint16_t*)(uintptr_t)t->fine_count;
+  uint8_t* fine_pairs = (uint8_t*)(uintptr_t)t->fine_pairs;
+  uint32_t tile, slab = 0, fine = 0;
+  for (tile = 0; tile < t->tiles; ++tile) {
+    const uint32_t first = tile * PRT_WAVELET_TILE;
+    uint32_t at[PRT_WAVELET_TILE], slab_of[PRT_WAVELET_MAX_FACES];
+    uint32_t lane, k, f, c, i;
+    uint8_t faces = 0;
+    /* The tile's faces with a corner pair first, so its slabs can be placed. */
+    for (lane = 0; lane < PRT_WAVELET_TILE && first + lane < vertices; ++lane) {
+      const uint32_t v = first + lane;
+      const uint8_t* counts = rows->counts + 2u * (size_t)v * rows->blocks;
+      uint32_t p = prt_le_load_u32(rows->row_start + 4u * (size_t)v);
+      for (k = 0; k < rows->blocks; ++k) {
+        const uint32_t n = prt_le_load_u16(counts + 2u * k);
+        for (i = 0; i < n; ++i, ++p)
+          if (corner_of(t, shift, k, rows->pairs[2u * (size_t)p], &f) >= 0)
+            faces |= (uint8_t)(1u << f);
+      }
+    }
+    mask[tile] = faces;
+    slab_start[tile] = slab;
+    for (f = 0; f < t->faces; ++f)
+      if (faces & (1u << f)) slab_of[f] = slab++;
+    memset(slabs + (size_t)PRT_WAVELET_CORNER_COEFFICIENTS * PRT_WAVELET_TILE * slab_start[tile], 0,
+           (size_t)PRT_WAVELET_CORNER_COEFFICIENTS * PRT_WAVELET_TILE * (slab - slab_start[tile]));
+    for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
+      const uint32_t v = first + lane;
+      at[lane] = v < vertices ? prt_le_load_u32(rows->row_start + 4u * (size_t)v) : 0;
+      for (c = 0; c < 3; ++c)
+        scale[(3u * (size_t)tile + c) * PRT_WAVELET_TILE + lane] =
+            v < vertices ? prt_wavelet_vertex_scale(rows, v, c) : 0.0f;
+    }
+    for (k = 0; k < rows->blocks; ++k) {
+      uint16_t* count = fine_count + ((size_t)tile * rows->blocks + k) * PRT_WAVELET_TILE;
+      fine_start[(size_t)tile * rows->blocks + k] = fine;
+      for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
+        const uint32_t v = first + lane;
+        const uint32_t n =
+            v < vertices ? prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k)) : 0;
+        uint32_t kept = 0;
+        for (i = 0; i < n; ++i) {
+          const uint8_t* pair = rows->pairs + 2u * ((size_t)at[lane] + i);
+          const int corner = corner_of(t, shift, k, pair[0], &f);
+          if (corner >= 0) {
+            int8_t* q = slabs +
+                        ((size_t)slab_of[f] * PRT_WAVELET_CORNER_COEFFICIENTS + (uint32_t)corner) *
+                            PRT_WAVELET_TILE +
+                        lane;
+            if (*q != 0) return 0; /* stored twice: the dense form holds one value */
+            *q = (int8_t)pair[1];
+          } else {
+            fine_pairs[2u * (size_t)fine] = pair[0];
+            fine_pairs[2u * (size_t)fine + 1u] = pair[1];
+            ++fine;
+            ++kept;
+          }
+        }
+        count[lane] = (uint16_t)kept;
+        at[lane] += n;
+      }
+    }
+  }
+  fine_start[(size_t)t->tiles * rows->blocks] = fine;
+  return 1;
+}
+
+void prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* allocator,
+                              void* view_memory) {
+  prt_wavelet_view* view = (prt_wavelet_view*)view_memory;
+  const prt_wavelet_rows* rows = &view->rows;
+  const uint32_t vertices = view->info.vertex_count;
+  prt_wavelet_tiles header, *t;
+  size_t off_mask, off_slab_start, off_scale, off_fine_start, off_fine_count, off_slabs,
+      off_fine_pairs;
+  uint32_t shift = 0, tile, slabs = 0, fine = 0;
+  uint8_t* memory;
+  if (prt_internal_simd_isa(context) != PRT_SIMD_ISA_AVX2 || vertices == 0) return;
+  memset(&header, 0, sizeof header);
+  header.tiles = (vertices + PRT_WAVELET_TILE - 1u) / PRT_WAVELET_TILE;
+  header.faces = view->info.faces;
+  header.size = view->info.size;
+  header.blocks = rows->blocks;
+  while ((1u << shift) < header.size) ++shift;
+  if (header.faces > PRT_WAVELET_MAX_FACES) return;
+  /* Sizes: every row checked, the slabs and fine pairs counted. */
+  for (tile = 0; tile < header.tiles; ++tile) {
+    uint32_t lane, faces = 0, f;
+    for (lane = 0; lane < PRT_WAVELET_TILE && tile * PRT_WAVELET_TILE + lane < vertices; ++lane) {
+      const uint32_t v = tile * PRT_WAVELET_TILE + lane;
+      const uint8_t* counts = rows->counts + 2u * (size_t)v * rows->blocks;
+      uint32_t p, k, i;
+      if (!row_ok(rows, v)) return;
+      p = prt_le_load_u32(rows->row_start + 4u * (size_t)v);
+      for (k = 0; k < rows->blocks; ++k) {
+        const uint32_t n = prt_le_load_u16(counts + 2u * k);
+        for (i = 0; i < n; ++i, ++p) {
+          if (corner_of(&header, shift, k, rows->pairs[2u * (size_t)p], &f) >= 0)
+            faces |= 1u << f;
+          else
+            ++fine;
+        }
+      }
+    }
+    for (f = 0; f < header.faces; ++f) slabs += (faces >> f) & 1u;
+  }
+  off_mask = 0;
+  off_slab_start = round_up(off_mask + header.tiles);
+  off_scale = round_up(off_slab_start + 4u * (size_t)header.tiles);
+  off_fine_start = round_up(off_scale + 4u * 3u * PRT_WAVELET_TILE * (size_t)header.tiles);
+  off_fine_count = round_up(off_fine_start + 4u * ((size_t)header.tiles * header.blocks + 1u));
+  off_slabs =
+      round_up(off_fine_count + 2u * PRT_WAVELET_TILE * (size_t)header.tiles * header.blocks);
+  off_fine_pairs =
+      round_up(off_slabs + (size_t)PRT_WAVELET_CORNER_COEFFICIENTS * PRT_WAVELET_TILE * slabs);
+  header.bytes = round_up(off_fine_pairs + 2u * (size_t)fine);
+  t = (prt_wavelet_tiles*)prt_internal_alloc(allocator, sizeof *t, 16);
+  memory = t ? (uint8_t*)prt_internal_alloc(allocator, header.bytes, 32) : NULL;
+  if (!memory) { /* the rows still shade */
+    if (t) prt_internal_free(allocator, t, sizeof *t);
+    return;
+  }
+  *t = header;
+  t->memory = memory;
+  t->face_mask = memory + off_mask;
+  t->slab_start = (const uint32_t*)(const void*)(memory + off_slab_start);
+  t->scale = (const float*)(const void*)(memory + off_scale);
+  t->fine_start = (const uint32_t*)(const void*)(memory + off_fine_start);
+  t->fine_count = (const uint16_t*)(const void*)(memory + off_fine_count);
+  t->slabs = (const int8_t*)(const void*)(memory + off_slabs);
+  t->fine_pairs = memory + off_fine_pairs;
+  view->tiles = t;
+  if (!fill_tiles(rows, vertices, t, shift)) prt_wavelet_release_tiles(allocator, view);
+}
+
+/* 1 when f is neither infinite nor NaN. */
+static int finite_f32(float f) {
+  return f - f == 0.0f;
+}
+
+int prt_wavelet_tile_light_make(const prt_wavelet_tiles* tiles, const float* light,
+                                const uint8_t* skip, prt_wavelet_tile_light* out) {
+  uint32_t f, c, ch;
+  out->light = light;
+  out->skip = skip;
+  memset(out->corner, 0, sizeof out->corner);
+  memset(out->face_lit, 0, sizeof out->face_lit);
+  for (f = 0; f < tiles->faces; ++f)
+    for (c = 0; c < PRT_WAVELET_CORNER_COEFFICIENTS; ++c) {
+      const size_t j =
+          ((size_t)f * tiles->size + c / PRT_WAVELET_CORNER) * tiles->size + c % PRT_WAVELET_CORNER;
+      if (skip[j / PRT_BLOB_WVLT_BLOCK]) continue;
+      for (ch = 0; ch < 3; ++ch) {
+        const float value = light[4u * j + ch];
+        /* A dense corner multiplies its light by the zeros of absent pairs too: only finite
+         * light keeps those products exactly 0. */
+        if (!finite_f32(value)) return 0;
+        out->corner[f][c][ch] = value;
+        out->face_lit[f] |= value != 0.0f;
+      }
+    }
+  return 1;
+}
