@@ -44,13 +44,21 @@ void prt_internal_free_views(const prt_allocator* allocator,
   }
 }
 
-void prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
-                               void* views[PRT_INTERNAL_MAX_TECHNIQUES]) {
+prt_result prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
+                                     void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
+                                     size_t capacity) {
   size_t i;
   for (i = 0; i < TECHNIQUE_COUNT; ++i) {
     const prt_technique_entry* t = kTechniques[i];
-    if (views[t->technique] && t->attach) t->attach(context, allocator, views[t->technique]);
+    prt_result r;
+    if (!views[t->technique] || !t->attach) continue;
+    r = t->attach(context, allocator, views[t->technique]);
+    if (r != PRT_OK) {
+      snprintf(msg, capacity, "out of memory for the '%s' section's runtime data", t->name);
+      return r;
+    }
   }
+  return PRT_OK;
 }
 
 /* The section with the technique's tag (tags are unique after structure validation), if this

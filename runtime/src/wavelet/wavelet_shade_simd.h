@@ -66,35 +66,41 @@ typedef prt_result (*prt_wavelet_kernel)(const prt_wavelet_rows* rows, uint32_t 
 /* The rows repacked at load for the tiled kernel (wavelet_tiles.c), 8 vertices per tile. Per tile
  * and face, the coarse corner (Mallat levels -1..2: the 8 x 8 coefficients x, y < 8) dense as i8
  * with the tile's vertices in lanes, stored only for the faces where some vertex of the tile has
- * a non-zero there; the other ("fine") pairs kept sparse in block-major order: per tile and block
- * the pairs of lane 0, then lane 1, ..., so that a block of zero light skips one contiguous run
- * for the whole tile. Lanes past the last vertex hold zeros. */
+ * a non-zero there; the other ("fine") pairs kept sparse in group-major order (a group is 64
+ * coefficients, a quarter block): per tile and group the pairs of lane 0, then lane 1, ..., so
+ * that a group whose fine light is zero skips one run for the whole tile. Lanes past the last
+ * vertex hold zeros. */
 #define PRT_WAVELET_TILE 8u
 #define PRT_WAVELET_CORNER 8u /* coarse corner side: levels -1..2 */
 #define PRT_WAVELET_CORNER_COEFFICIENTS (PRT_WAVELET_CORNER * PRT_WAVELET_CORNER)
 #define PRT_WAVELET_MAX_FACES 6u
+#define PRT_WAVELET_GROUP 64u
+#define PRT_WAVELET_GROUPS_PER_BLOCK (PRT_BLOB_WVLT_BLOCK / PRT_WAVELET_GROUP)
+#define PRT_WAVELET_MAX_GROUPS (PRT_WAVELET_MAX_BLOCKS * PRT_WAVELET_GROUPS_PER_BLOCK)
 
 typedef struct prt_wavelet_tiles {
-  uint32_t tiles, faces, size, blocks;
+  uint32_t tiles, faces, size, groups;
   const uint8_t* face_mask;   /* u8[tiles]: bit f when face f has a stored corner slab */
   const uint32_t* slab_start; /* u32[tiles]: index of the tile's first slab */
   const int8_t* slabs;        /* i8[slabs][64 corner coefficients, y * 8 + x][8 lanes] */
   const float* scale;         /* f32[tiles][3 channels][8 lanes]: vs */
-  const uint32_t* fine_start; /* u32[tiles * blocks + 1]: first pair of (tile, block) */
-  const uint16_t* fine_count; /* u16[tiles][blocks][8 lanes] */
-  const uint8_t* fine_pairs;  /* u8[][2]: (index in the block, value) */
+  const uint32_t* fine_start; /* u32[tiles + 1]: first fine pair of each tile */
+  const uint8_t* fine_count;  /* u8[tiles][groups][8 lanes] */
+  const uint8_t* fine_pairs;  /* u8[][2]: (index in the group, value) */
   void* memory;               /* the one allocation holding the arrays */
   size_t bytes;
 } prt_wavelet_tiles;
 
-/* The light a tiled kernel reads in one call: the prepared light with the caller's skip mask,
- * and per face the corner's RGBA light (zero where the mask skips its block) and whether any of
- * it is non-zero. */
+/* The light a tiled kernel reads in one call: the prepared light; per group whether its fine
+ * pairs may meet a non-zero light (not skipped by the caller's mask, some light outside the
+ * corner non-zero); per face the corner's RGBA light (zero where the mask skips its block) and
+ * whether any of it is non-zero. */
 typedef struct prt_wavelet_tile_light {
   const float* light;
-  const uint8_t* skip;
+  uint8_t group_lit[PRT_WAVELET_MAX_GROUPS];
   float corner[PRT_WAVELET_MAX_FACES][PRT_WAVELET_CORNER_COEFFICIENTS][4];
   uint8_t face_lit[PRT_WAVELET_MAX_FACES];
+  uint32_t lit_groups; /* how many group_lit are 1 */
 } prt_wavelet_tile_light;
 
 /* Shades vertices [first, first+count) of the tiles into out_rgb. Each vertex's sum is computed

@@ -2,7 +2,7 @@
 /* `wavelet` tiled shading for AVX2 + FMA (compiled with -mavx2 -mfma, called only when the CPU
  * has both) over the repack of wavelet_tiles.c: per tile of 8 vertices, the lit faces' dense
  * corners as an 8-lane product with the broadcast corner light (no gathers), then the fine pairs
- * of the blocks the mask does not skip, lane by lane, two pairs per 256-bit step. */
+ * of the groups whose light is not zero, lane by lane, two pairs per 256-bit step. */
 #include <immintrin.h>
 #include <prt/format/blob_layout.h>
 #include <stddef.h>
@@ -47,23 +47,32 @@ static inline void shade_corners(const prt_wavelet_tiles* t, const prt_wavelet_t
   rgb[2] = _mm256_add_ps(b0, b1);
 }
 
-/* The RGBA light of the pair at `pair` in the block at `block`. */
+/* The RGBA light of the pair at `pair` in the group whose light starts at `block`. */
 static inline __m128 pair_light(const float* block, const uint8_t* pair) {
   return _mm_loadu_ps(block + 4u * pair[0]);
 }
 
-/* Adds the fine pairs of one tile's unskipped blocks into sums[lane] (RGBA). */
+/* The number of pairs the 8 lane counts at `count` add up to. */
+static inline uint32_t group_pairs(const uint8_t* count) {
+  const __m128i c = _mm_loadl_epi64((const __m128i*)(const void*)count);
+  return (uint32_t)_mm_cvtsi128_si32(_mm_sad_epu8(c, _mm_setzero_si128()));
+}
+
+/* Adds the fine pairs of one tile's lit groups into sums[lane] (RGBA). */
 static inline void shade_fine(const prt_wavelet_tiles* t, const prt_wavelet_tile_light* light,
                               uint32_t tile, float sums[PRT_WAVELET_TILE][4]) {
-  const uint32_t* start = t->fine_start + (size_t)tile * t->blocks;
+  const uint8_t* count = t->fine_count + (size_t)tile * t->groups * PRT_WAVELET_TILE;
+  const uint8_t* pair = t->fine_pairs + 2u * (size_t)t->fine_start[tile];
   __m256 acc[PRT_WAVELET_TILE];
-  uint32_t k, lane;
+  uint32_t g, lane;
   for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) acc[lane] = _mm256_setzero_ps();
-  for (k = 0; k < t->blocks; ++k) {
-    const uint16_t* count = t->fine_count + ((size_t)tile * t->blocks + k) * PRT_WAVELET_TILE;
-    const float* block = light->light + 4u * PRT_BLOB_WVLT_BLOCK * (size_t)k;
-    const uint8_t* pair = t->fine_pairs + 2u * (size_t)start[k];
-    if (light->skip[k] || start[k] == start[k + 1]) continue;
+  for (g = 0; g < t->groups; ++g, count += PRT_WAVELET_TILE) {
+    const uint32_t total = group_pairs(count);
+    const float* group = light->light + 4u * PRT_WAVELET_GROUP * (size_t)g;
+    if (!light->group_lit[g] || total == 0) {
+      pair += 2u * total;
+      continue;
+    }
     for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
       const uint32_t n = count[lane];
       __m256 a = acc[lane];
@@ -71,13 +80,13 @@ static inline void shade_fine(const prt_wavelet_tiles* t, const prt_wavelet_tile
       for (; p + 2 <= n; p += 2, pair += 4) {
         const __m256 q = _mm256_set_m128(_mm_set1_ps((float)(int8_t)pair[3]),
                                          _mm_set1_ps((float)(int8_t)pair[1]));
-        const __m256 l = _mm256_set_m128(pair_light(block, pair + 2), pair_light(block, pair));
+        const __m256 l = _mm256_set_m128(pair_light(group, pair + 2), pair_light(group, pair));
         a = _mm256_fmadd_ps(q, l, a);
       }
       if (p < n) { /* the odd pair in the low half */
         const __m128 zero = _mm_setzero_ps();
         const __m256 q = _mm256_set_m128(zero, _mm_set1_ps((float)(int8_t)pair[1]));
-        a = _mm256_fmadd_ps(q, _mm256_set_m128(zero, pair_light(block, pair)), a);
+        a = _mm256_fmadd_ps(q, _mm256_set_m128(zero, pair_light(group, pair)), a);
         pair += 2;
       }
       acc[lane] = a;

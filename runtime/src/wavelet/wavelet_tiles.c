@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* The WVLT rows repacked at load into 8-vertex tiles for the AVX2 kernel (prt_wavelet_tiles,
- * wavelet_shade_simd.h): the coarse corners dense, the rest sparse in block-major order. The
+ * wavelet_shade_simd.h): the coarse corners dense, the rest sparse in group-major order. The
  * repack walks every row with the bounds checks shading makes; a row those checks reject, or one
  * that stores a corner coefficient twice (possible only at quick validation), leaves the asset
  * without tiles, so that shading keeps reading the blob rows and reports what they always did. */
@@ -34,6 +34,9 @@ static int row_ok(const prt_wavelet_rows* rows, uint32_t v) {
   return at == end;
 }
 
+/* Bytes after the fine pairs: the kernel copies runs 32 bytes at a time. */
+#define PRT_WAVELET_FINE_PAD 32u
+
 static size_t round_up(size_t n) {
   return (n + 31u) & ~(size_t)31u;
 }
@@ -54,7 +57,7 @@ static int fill_tiles(const prt_wavelet_rows* rows, uint32_t vertices, prt_wavel
   int8_t* slabs = (int8_t*)(uintptr_t)t->slabs;
   float* scale = (float*)(uintptr_t)t->scale;
   uint32_t* fine_start = (uint32_t*)(uintptr_t)t->fine_start;
-  uint16_t* fine_count = (uint16_t*)(uintptr_t)t->fine_count;
+  uint8_t* fine_count = (uint8_t*)(uintptr_t)t->fine_count;
   uint8_t* fine_pairs = (uint8_t*)(uintptr_t)t->fine_pairs;
   uint32_t tile, slab = 0, fine = 0;
   for (tile = 0; tile < t->tiles; ++tile) {
@@ -87,42 +90,57 @@ static int fill_tiles(const prt_wavelet_rows* rows, uint32_t vertices, prt_wavel
         scale[(3u * (size_t)tile + c) * PRT_WAVELET_TILE + lane] =
             v < vertices ? prt_wavelet_vertex_scale(rows, v, c) : 0.0f;
     }
+    fine_start[tile] = fine;
+    /* Block by block, each of its groups lane after lane (a lane's pairs of the block scanned
+     * once per group: quick validation leaves their order unchecked). */
     for (k = 0; k < rows->blocks; ++k) {
-      uint16_t* count = fine_count + ((size_t)tile * rows->blocks + k) * PRT_WAVELET_TILE;
-      fine_start[(size_t)tile * rows->blocks + k] = fine;
+      uint32_t g;
+      for (g = 0; g < PRT_WAVELET_GROUPS_PER_BLOCK; ++g) {
+        uint8_t* count =
+            fine_count +
+            ((size_t)tile * t->groups + PRT_WAVELET_GROUPS_PER_BLOCK * k + g) * PRT_WAVELET_TILE;
+        for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
+          const uint32_t v = first + lane;
+          const uint32_t n =
+              v < vertices ? prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k))
+                           : 0;
+          uint32_t kept = 0;
+          for (i = 0; i < n; ++i) {
+            const uint8_t* pair = rows->pairs + 2u * ((size_t)at[lane] + i);
+            const int corner = corner_of(t, shift, k, pair[0], &f);
+            if (pair[0] / PRT_WAVELET_GROUP != g) continue;
+            if (corner >= 0) {
+              int8_t* q =
+                  slabs +
+                  ((size_t)slab_of[f] * PRT_WAVELET_CORNER_COEFFICIENTS + (uint32_t)corner) *
+                      PRT_WAVELET_TILE +
+                  lane;
+              if (*q != 0) return 0; /* stored twice: the dense form holds one value */
+              *q = (int8_t)pair[1];
+            } else {
+              if (kept == UINT8_MAX) return 0; /* only repeated indices get here */
+              fine_pairs[2u * (size_t)fine] = (uint8_t)(pair[0] % PRT_WAVELET_GROUP);
+              fine_pairs[2u * (size_t)fine + 1u] = pair[1];
+              ++fine;
+              ++kept;
+            }
+          }
+          count[lane] = (uint8_t)kept;
+        }
+      }
       for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
         const uint32_t v = first + lane;
-        const uint32_t n =
-            v < vertices ? prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k)) : 0;
-        uint32_t kept = 0;
-        for (i = 0; i < n; ++i) {
-          const uint8_t* pair = rows->pairs + 2u * ((size_t)at[lane] + i);
-          const int corner = corner_of(t, shift, k, pair[0], &f);
-          if (corner >= 0) {
-            int8_t* q = slabs +
-                        ((size_t)slab_of[f] * PRT_WAVELET_CORNER_COEFFICIENTS + (uint32_t)corner) *
-                            PRT_WAVELET_TILE +
-                        lane;
-            if (*q != 0) return 0; /* stored twice: the dense form holds one value */
-            *q = (int8_t)pair[1];
-          } else {
-            fine_pairs[2u * (size_t)fine] = pair[0];
-            fine_pairs[2u * (size_t)fine + 1u] = pair[1];
-            ++fine;
-            ++kept;
-          }
-        }
-        count[lane] = (uint16_t)kept;
-        at[lane] += n;
+        if (v < vertices)
+          at[lane] += prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k));
       }
     }
   }
-  fine_start[(size_t)t->tiles * rows->blocks] = fine;
+  fine_start[t->tiles] = fine;
   return 1;
 }
 
-void prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* allocator,
-                              void* view_memory) {
+prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* allocator,
+                                    void* view_memory) {
   prt_wavelet_view* view = (prt_wavelet_view*)view_memory;
   const prt_wavelet_rows* rows = &view->rows;
   const uint32_t vertices = view->info.vertex_count;
@@ -131,14 +149,14 @@ void prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* a
       off_fine_pairs;
   uint32_t shift = 0, tile, slabs = 0, fine = 0;
   uint8_t* memory;
-  if (prt_internal_simd_isa(context) != PRT_SIMD_ISA_AVX2 || vertices == 0) return;
+  if (prt_internal_simd_isa(context) != PRT_SIMD_ISA_AVX2 || vertices == 0) return PRT_OK;
   memset(&header, 0, sizeof header);
   header.tiles = (vertices + PRT_WAVELET_TILE - 1u) / PRT_WAVELET_TILE;
   header.faces = view->info.faces;
   header.size = view->info.size;
-  header.blocks = rows->blocks;
+  header.groups = rows->blocks * PRT_WAVELET_GROUPS_PER_BLOCK;
   while ((1u << shift) < header.size) ++shift;
-  if (header.faces > PRT_WAVELET_MAX_FACES) return;
+  if (header.faces > PRT_WAVELET_MAX_FACES) return PRT_OK;
   /* Sizes: every row checked, the slabs and fine pairs counted. */
   for (tile = 0; tile < header.tiles; ++tile) {
     uint32_t lane, faces = 0, f;
@@ -146,7 +164,7 @@ void prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* a
       const uint32_t v = tile * PRT_WAVELET_TILE + lane;
       const uint8_t* counts = rows->counts + 2u * (size_t)v * rows->blocks;
       uint32_t p, k, i;
-      if (!row_ok(rows, v)) return;
+      if (!row_ok(rows, v)) return PRT_OK; /* the rows shade, and report it */
       p = prt_le_load_u32(rows->row_start + 4u * (size_t)v);
       for (k = 0; k < rows->blocks; ++k) {
         const uint32_t n = prt_le_load_u16(counts + 2u * k);
@@ -164,29 +182,31 @@ void prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* a
   off_slab_start = round_up(off_mask + header.tiles);
   off_scale = round_up(off_slab_start + 4u * (size_t)header.tiles);
   off_fine_start = round_up(off_scale + 4u * 3u * PRT_WAVELET_TILE * (size_t)header.tiles);
-  off_fine_count = round_up(off_fine_start + 4u * ((size_t)header.tiles * header.blocks + 1u));
-  off_slabs =
-      round_up(off_fine_count + 2u * PRT_WAVELET_TILE * (size_t)header.tiles * header.blocks);
+  off_fine_count = round_up(off_fine_start + 4u * ((size_t)header.tiles + 1u));
+  off_slabs = round_up(off_fine_count + PRT_WAVELET_TILE * (size_t)header.tiles * header.groups);
   off_fine_pairs =
       round_up(off_slabs + (size_t)PRT_WAVELET_CORNER_COEFFICIENTS * PRT_WAVELET_TILE * slabs);
-  header.bytes = round_up(off_fine_pairs + 2u * (size_t)fine);
+  header.bytes = round_up(off_fine_pairs + 2u * (size_t)fine + PRT_WAVELET_FINE_PAD);
   t = (prt_wavelet_tiles*)prt_internal_alloc(allocator, sizeof *t, 16);
   memory = t ? (uint8_t*)prt_internal_alloc(allocator, header.bytes, 32) : NULL;
-  if (!memory) { /* the rows still shade */
+  if (!memory) {
     if (t) prt_internal_free(allocator, t, sizeof *t);
-    return;
+    return PRT_ERROR_OUT_OF_MEMORY;
   }
   *t = header;
+  memset(memory + off_fine_pairs + 2u * (size_t)fine, 0,
+         header.bytes - off_fine_pairs - 2u * (size_t)fine);
   t->memory = memory;
   t->face_mask = memory + off_mask;
   t->slab_start = (const uint32_t*)(const void*)(memory + off_slab_start);
   t->scale = (const float*)(const void*)(memory + off_scale);
   t->fine_start = (const uint32_t*)(const void*)(memory + off_fine_start);
-  t->fine_count = (const uint16_t*)(const void*)(memory + off_fine_count);
+  t->fine_count = memory + off_fine_count;
   t->slabs = (const int8_t*)(const void*)(memory + off_slabs);
   t->fine_pairs = memory + off_fine_pairs;
   view->tiles = t;
   if (!fill_tiles(rows, vertices, t, shift)) prt_wavelet_release_tiles(allocator, view);
+  return PRT_OK;
 }
 
 /* 1 when f is neither infinite nor NaN. */
@@ -196,9 +216,10 @@ static int finite_f32(float f) {
 
 int prt_wavelet_tile_light_make(const prt_wavelet_tiles* tiles, const float* light,
                                 const uint8_t* skip, prt_wavelet_tile_light* out) {
-  uint32_t f, c, ch;
+  const uint32_t face_size = tiles->size * tiles->size;
+  uint32_t f, c, ch, g;
   out->light = light;
-  out->skip = skip;
+  out->lit_groups = 0;
   memset(out->corner, 0, sizeof out->corner);
   memset(out->face_lit, 0, sizeof out->face_lit);
   for (f = 0; f < tiles->faces; ++f)
@@ -215,5 +236,21 @@ int prt_wavelet_tile_light_make(const prt_wavelet_tiles* tiles, const float* lig
         out->face_lit[f] |= value != 0.0f;
       }
     }
+  for (g = 0; g < tiles->groups; ++g) {
+    const uint32_t first = g * PRT_WAVELET_GROUP;
+    uint32_t j;
+    int lit = 0;
+    if (!skip[g / PRT_WAVELET_GROUPS_PER_BLOCK])
+      for (j = first; j < first + PRT_WAVELET_GROUP && !lit; ++j) {
+        const uint32_t within = j % face_size;
+        if (within / tiles->size < PRT_WAVELET_CORNER && within % tiles->size < PRT_WAVELET_CORNER)
+          continue; /* the dense part's */
+        /* NaN counts as lit: the pairs that meet it must reach the sum. */
+        lit = light[4u * (size_t)j] != 0.0f || light[4u * (size_t)j + 1u] != 0.0f ||
+              light[4u * (size_t)j + 2u] != 0.0f;
+      }
+    out->group_lit[g] = (uint8_t)lit;
+    out->lit_groups += (uint32_t)lit;
+  }
   return 1;
 }
