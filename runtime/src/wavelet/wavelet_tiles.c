@@ -91,48 +91,52 @@ static int fill_tiles(const prt_wavelet_rows* rows, uint32_t vertices, prt_wavel
             v < vertices ? prt_wavelet_vertex_scale(rows, v, c) : 0.0f;
     }
     fine_start[tile] = fine;
-    /* Block by block, each of its groups lane after lane (a lane's pairs of the block scanned
-     * once per group: quick validation leaves their order unchecked). */
+    /* Block by block: each lane's fine pairs counted by group, then placed group after group,
+     * lane after lane within a group (stored order within a lane). */
     for (k = 0; k < rows->blocks; ++k) {
-      uint32_t g;
-      for (g = 0; g < PRT_WAVELET_GROUPS_PER_BLOCK; ++g) {
-        uint8_t* count =
-            fine_count +
-            ((size_t)tile * t->groups + PRT_WAVELET_GROUPS_PER_BLOCK * k + g) * PRT_WAVELET_TILE;
-        for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
-          const uint32_t v = first + lane;
-          const uint32_t n =
-              v < vertices ? prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k))
-                           : 0;
-          uint32_t kept = 0;
-          for (i = 0; i < n; ++i) {
-            const uint8_t* pair = rows->pairs + 2u * ((size_t)at[lane] + i);
-            const int corner = corner_of(t, shift, k, pair[0], &f);
-            if (pair[0] / PRT_WAVELET_GROUP != g) continue;
-            if (corner >= 0) {
-              int8_t* q =
-                  slabs +
-                  ((size_t)slab_of[f] * PRT_WAVELET_CORNER_COEFFICIENTS + (uint32_t)corner) *
-                      PRT_WAVELET_TILE +
-                  lane;
-              if (*q != 0) return 0; /* stored twice: the dense form holds one value */
-              *q = (int8_t)pair[1];
-            } else {
-              if (kept == UINT8_MAX) return 0; /* only repeated indices get here */
-              fine_pairs[2u * (size_t)fine] = (uint8_t)(pair[0] % PRT_WAVELET_GROUP);
-              fine_pairs[2u * (size_t)fine + 1u] = pair[1];
-              ++fine;
-              ++kept;
-            }
-          }
-          count[lane] = (uint8_t)kept;
-        }
-      }
+      uint8_t* count = fine_count + ((size_t)tile * t->groups + PRT_WAVELET_GROUPS_PER_BLOCK * k) *
+                                        PRT_WAVELET_TILE;
+      uint32_t n[PRT_WAVELET_TILE], place[PRT_WAVELET_GROUPS_PER_BLOCK][PRT_WAVELET_TILE];
+      uint32_t g, next = fine;
+      memset(count, 0, PRT_WAVELET_GROUPS_PER_BLOCK * PRT_WAVELET_TILE);
       for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
         const uint32_t v = first + lane;
-        if (v < vertices)
-          at[lane] += prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k));
+        const uint8_t* pair = rows->pairs + 2u * (size_t)at[lane];
+        n[lane] =
+            v < vertices ? prt_le_load_u16(rows->counts + 2u * ((size_t)v * rows->blocks + k)) : 0;
+        for (i = 0; i < n[lane]; ++i, pair += 2) {
+          uint8_t* c = count + (pair[0] / PRT_WAVELET_GROUP) * PRT_WAVELET_TILE + lane;
+          if (corner_of(t, shift, k, pair[0], &f) >= 0) continue;
+          if (*c == UINT8_MAX) return 0; /* only repeated indices get here */
+          ++*c;
+        }
       }
+      for (g = 0; g < PRT_WAVELET_GROUPS_PER_BLOCK; ++g)
+        for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
+          place[g][lane] = next;
+          next += count[g * PRT_WAVELET_TILE + lane];
+        }
+      for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
+        const uint8_t* pair = rows->pairs + 2u * (size_t)at[lane];
+        for (i = 0; i < n[lane]; ++i, pair += 2) {
+          const int corner = corner_of(t, shift, k, pair[0], &f);
+          if (corner >= 0) {
+            int8_t* q = slabs +
+                        ((size_t)slab_of[f] * PRT_WAVELET_CORNER_COEFFICIENTS + (uint32_t)corner) *
+                            PRT_WAVELET_TILE +
+                        lane;
+            if (*q != 0) return 0; /* stored twice: the dense form holds one value */
+            *q = (int8_t)pair[1];
+          } else {
+            uint32_t* to = &place[pair[0] / PRT_WAVELET_GROUP][lane];
+            fine_pairs[2u * (size_t)*to] = (uint8_t)(pair[0] % PRT_WAVELET_GROUP);
+            fine_pairs[2u * (size_t)*to + 1u] = pair[1];
+            ++*to;
+          }
+        }
+        at[lane] += n[lane];
+      }
+      fine = next;
     }
   }
   fine_start[t->tiles] = fine;
