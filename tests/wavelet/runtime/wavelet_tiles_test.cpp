@@ -9,6 +9,7 @@
 
 #include <prt/prt_wavelet.h>
 #include <prt/prt_wavelet_asset.h>
+#include <prt/prt_workers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -174,6 +175,32 @@ TEST_F(WaveletTiles, RangesGiveTheSameBits) {
       ASSERT_EQ(std::memcmp(part.data(), whole.data() + 3 * size_t(first), 4 * part.size()), 0)
           << "range " << first << " + " << count;
     }
+}
+
+TEST_F(WaveletTiles, WorkersGiveTheOneRangeBits) {
+  const WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 32, 203, 300, 75);
+  LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  ASSERT_EQ(a.result, PRT_OK);
+  std::vector<float> light = sparse_light(t, 0x3f, 10, ~0u, 76);
+  ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data(), nullptr), PRT_OK);
+  std::vector<float> whole(3 * size_t(t.vertices));
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 0, t.vertices,
+                              whole.data()),
+            PRT_OK);
+  for (uint32_t threads = 1; threads <= 5; ++threads) {
+    prt_workers_desc desc{};
+    desc.struct_size = sizeof desc;
+    desc.thread_count = threads;
+    prt_workers* workers = nullptr;
+    ASSERT_EQ(prt_workers_create(ctx, &desc, &workers), PRT_OK);
+    std::vector<float> split(whole.size(), -1.0f);
+    EXPECT_EQ(prt_wavelet_shade_workers(workers, a.asset, PRT_BACKEND_SIMD, light.data(), nullptr,
+                                        0, t.vertices, split.data()),
+              PRT_OK);
+    prt_workers_destroy(workers);
+    EXPECT_EQ(std::memcmp(split.data(), whole.data(), 4 * whole.size()), 0)
+        << threads << " threads";
+  }
 }
 
 TEST_F(WaveletTiles, NonFiniteCornerLightReachesOnlyItsPairs) {
