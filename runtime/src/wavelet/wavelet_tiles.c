@@ -20,6 +20,13 @@ static int corner_of(const prt_wavelet_tiles* t, uint32_t shift, uint32_t k, uin
   return x < PRT_WAVELET_CORNER && y < PRT_WAVELET_CORNER ? (int)(y * PRT_WAVELET_CORNER + x) : -1;
 }
 
+/* Whether block k holds corner coefficients: blocks are whole rows of a face (or a face), so
+ * those that start above row 8. */
+static int corner_block(uint32_t shift, uint32_t k) {
+  const uint32_t within = (PRT_BLOB_WVLT_BLOCK * k) & ((1u << (2u * shift)) - 1u);
+  return (within >> shift) < PRT_WAVELET_CORNER;
+}
+
 /* Checks row v as shading does (row range, every count <= 256 and within the row, counts use up
  * the row); 0 when it fails. */
 static int row_ok(const prt_wavelet_rows* rows, uint32_t v) {
@@ -72,9 +79,11 @@ static int fill_tiles(const prt_wavelet_rows* rows, uint32_t vertices, prt_wavel
       uint32_t p = prt_le_load_u32(rows->row_start + 4u * (size_t)v);
       for (k = 0; k < rows->blocks; ++k) {
         const uint32_t n = prt_le_load_u16(counts + 2u * k);
-        for (i = 0; i < n; ++i, ++p)
-          if (corner_of(t, shift, k, rows->pairs[2u * (size_t)p], &f) >= 0)
-            faces |= (uint8_t)(1u << f);
+        if (corner_block(shift, k))
+          for (i = 0; i < n; ++i)
+            if (corner_of(t, shift, k, rows->pairs[2u * ((size_t)p + i)], &f) >= 0)
+              faces |= (uint8_t)(1u << f);
+        p += n;
       }
     }
     mask[tile] = faces;
@@ -172,12 +181,14 @@ prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_alloca
       p = prt_le_load_u32(rows->row_start + 4u * (size_t)v);
       for (k = 0; k < rows->blocks; ++k) {
         const uint32_t n = prt_le_load_u16(counts + 2u * k);
-        for (i = 0; i < n; ++i, ++p) {
-          if (corner_of(&header, shift, k, rows->pairs[2u * (size_t)p], &f) >= 0)
-            faces |= 1u << f;
-          else
-            ++fine;
-        }
+        fine += n;
+        if (corner_block(shift, k))
+          for (i = 0; i < n; ++i)
+            if (corner_of(&header, shift, k, rows->pairs[2u * ((size_t)p + i)], &f) >= 0) {
+              faces |= 1u << f;
+              --fine;
+            }
+        p += n;
       }
     }
     for (f = 0; f < header.faces; ++f) slabs += (faces >> f) & 1u;
