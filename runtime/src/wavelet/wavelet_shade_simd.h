@@ -11,7 +11,10 @@
  * so a pair costs one 16-byte load of the light and one multiply-add of four lanes. A block whose
  * prepared light is all zero (prt_wavelet_prepare_light's zero-block mask) adds exactly 0, so
  * every kernel skips the pairs of the blocks the caller's mask marks: with M light coefficients
- * selected, the time follows the blocks they touch. */
+ * selected, the time follows the blocks they touch. With AVX2 the load also repacks the rows into
+ * tiles (prt_wavelet_tiles below) for a kernel whose time follows the 64-coefficient groups the
+ * light touches; the row kernels stay the reference layout's and take the lights it would not
+ * speed up. */
 #ifndef PRT_WAVELET_SHADE_SIMD_H
 #define PRT_WAVELET_SHADE_SIMD_H
 
