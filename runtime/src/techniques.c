@@ -38,9 +38,27 @@ void prt_internal_free_views(const prt_allocator* allocator,
   size_t i;
   for (i = 0; i < TECHNIQUE_COUNT; ++i) {
     const prt_technique_entry* t = kTechniques[i];
+    if (views[t->technique] && t->release) t->release(allocator, views[t->technique]);
     prt_internal_free(allocator, views[t->technique], t->view_size);
     views[t->technique] = NULL;
   }
+}
+
+prt_result prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
+                                     void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
+                                     size_t capacity) {
+  size_t i;
+  for (i = 0; i < TECHNIQUE_COUNT; ++i) {
+    const prt_technique_entry* t = kTechniques[i];
+    prt_result r;
+    if (!views[t->technique] || !t->attach) continue;
+    r = t->attach(context, allocator, views[t->technique]);
+    if (r != PRT_OK) {
+      snprintf(msg, capacity, "out of memory for the '%s' section's runtime data", t->name);
+      return r;
+    }
+  }
+  return PRT_OK;
 }
 
 /* The section with the technique's tag (tags are unique after structure validation), if this
@@ -73,6 +91,7 @@ prt_result prt_internal_open_views(const prt_allocator* allocator,
       snprintf(msg, capacity, "out of memory for the '%s' section's view", t->name);
       return PRT_ERROR_OUT_OF_MEMORY;
     }
+    memset(view, 0, t->view_size); /* release hooks read what open left unset as empty */
     views[t->technique] = view;
     r = t->open(s, view, msg, capacity);
     if (r != PRT_OK) {

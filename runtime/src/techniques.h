@@ -17,6 +17,13 @@ typedef struct prt_technique_entry {
    * validation level: fills *view (view_size bytes, pointing into section->data), or returns
    * PRT_ERROR_CORRUPT with msg naming the field. */
   prt_result (*open)(const prt_asset_section* section, void* view, char* msg, size_t capacity);
+  /* Optional (NULL: none): once the asset is loaded, may add runtime-owned data to its view from
+   * the context's allocator (e.g. a layout the context's kernels read faster): PRT_OK, also when
+   * it adds nothing (the view works as opened), or PRT_ERROR_OUT_OF_MEMORY. */
+  prt_result (*attach)(const prt_context* context, const prt_allocator* allocator, void* view);
+  /* Optional: frees what attach added; called on every view before it is freed (views start
+   * zeroed, so a view attach never saw holds nothing to free). */
+  void (*release)(const prt_allocator* allocator, void* view);
 } prt_technique_entry;
 
 /* The entry of `technique`, NULL when this runtime does not implement it. */
@@ -34,7 +41,13 @@ prt_result prt_internal_open_views(const prt_allocator* allocator,
                                    int keep, void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
                                    size_t capacity);
 
-/* Frees the views prt_internal_open_views kept. */
+/* Runs every technique's attach hook on the views of a loaded asset; on failure msg names the
+ * technique (the caller frees the views). */
+prt_result prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
+                                     void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
+                                     size_t capacity);
+
+/* Frees the views prt_internal_open_views kept (and what attach added). */
 void prt_internal_free_views(const prt_allocator* allocator,
                              void* views[PRT_INTERNAL_MAX_TECHNIQUES]);
 

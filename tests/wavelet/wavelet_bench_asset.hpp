@@ -36,11 +36,13 @@ struct SplitMix {
   double unit() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
 };
 
+// Share of each level's coefficients kept, by level + 1 (levels -1..6 for S up to 128), for
+// `--keep 1000` rows.
+constexpr double kKeep1000Share[8] = {1.0, 1.0, 1.0, 1.0, 0.6, 0.15, 0.013, 0.003};
+
 inline prt_test::WvltTransfer bake_shaped_transfer(uint32_t vertices = kBunnyVertices,
-                                                   uint32_t size = kWaveletSize,
-                                                   uint64_t seed = 1) {
-  // Share of each level's coefficients kept, by level + 1 (levels -1..6 for S up to 128).
-  const double kept_share[8] = {1.0, 1.0, 1.0, 1.0, 0.6, 0.15, 0.013, 0.003};
+                                                   uint32_t size = kWaveletSize, uint64_t seed = 1,
+                                                   const double* kept_share = kKeep1000Share) {
   prt_test::WvltTransfer t = prt_test::wvlt_random(PRT_WAVELET_PARAM_CUBE, size, vertices, 0, 7);
   SplitMix rng{seed};
   uint32_t keep = 0;

@@ -79,5 +79,5 @@ static prt_result open_shtr(const prt_asset_section* section, void* out, char* m
 }
 
 const prt_technique_entry prt_sh_technique_entry = {
-    PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG_SHTR, sizeof(prt_sh_view), open_shtr,
+    PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG_SHTR, sizeof(prt_sh_view), open_shtr, NULL, NULL,
 };

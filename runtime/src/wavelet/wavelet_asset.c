@@ -157,6 +157,26 @@ static prt_wavelet_kernel simd_kernel(const prt_context* context) {
   return NULL;
 }
 
+#if defined(PRT_HAS_X86_SIMD)
+/* How many times the row kernel's cost per kept quarter block the tiled kernel pays per lit
+ * group. */
+#define TILED_GROUP_COST 3u
+
+/* Whether the tiled kernel is the quicker for this light. Each kernel's time follows what the
+ * light touches: the row kernel's the blocks the mask keeps, the tiled kernel's its lit groups
+ * (plus the dense corners), at a higher cost per group than the row kernel pays per quarter
+ * block (short runs per lane); the weight is that ratio, measured on the bench's bake-shaped
+ * asset. A choice made from the light alone keeps every vertex's result independent of the
+ * range it is shaded in. */
+static int tiles_pay(const prt_wavelet_tiles* tiles, const prt_wavelet_rows* rows,
+                     const prt_wavelet_tile_light* light) {
+  uint32_t k, kept = 0;
+  for (k = 0; k < rows->blocks; ++k) kept += !rows->skip[k];
+  return (uint64_t)TILED_GROUP_COST * light->lit_groups * rows->blocks <=
+         (uint64_t)kept * tiles->groups;
+}
+#endif
+
 prt_result prt_wavelet_shade(const prt_asset* asset, prt_backend backend,
                              const float* prepared_rgba, const uint8_t* zero_blocks,
                              uint32_t first_vertex, uint32_t vertex_count, float* out_rgb) {
@@ -188,5 +208,16 @@ prt_result prt_wavelet_shade(const prt_asset* asset, prt_backend backend,
   rows = view->rows;
   rows.light = prepared_rgba;
   rows.skip = zero_blocks ? zero_blocks : kSkipNothing;
+#if defined(PRT_HAS_X86_SIMD)
+  /* The load's repack, made only for contexts whose SIMD ISA is AVX2 (wavelet_tiles.c). */
+  if (kernel == prt_wavelet_shade_avx2 && view->tiles) {
+    prt_wavelet_tile_light light;
+    if (prt_wavelet_tile_light_make(view->tiles, prepared_rgba, rows.skip, &light) &&
+        tiles_pay(view->tiles, &rows, &light)) {
+      prt_wavelet_shade_tiles_avx2(view->tiles, &light, first_vertex, vertex_count, out_rgb);
+      return PRT_OK;
+    }
+  }
+#endif
   return kernel(&rows, first_vertex, vertex_count, out_rgb);
 }

@@ -23,7 +23,19 @@ typedef struct prt_wavelet_view {
   const uint8_t* section;    /* the section's bytes, layout.raw_size of them */
   const uint8_t* band_scale; /* f32[bands] */
   prt_wavelet_rows rows;     /* light and skip left NULL */
+  prt_wavelet_tiles* tiles;  /* runtime-owned repack (wavelet_tiles.c), NULL when not made */
 } prt_wavelet_view;
+
+/* The technique entry's attach and release hooks (wavelet_tiles.c). */
+prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* allocator,
+                                    void* view);
+void prt_wavelet_release_tiles(const prt_allocator* allocator, void* view);
+
+/* Fills *out for one tiled call from the prepared light and the skip mask (never NULL); 0 when a
+ * corner light that is not skipped is infinite or NaN (the rows must then be shaded instead, as
+ * only their stored pairs may meet it). */
+int prt_wavelet_tile_light_make(const prt_wavelet_tiles* tiles, const float* light,
+                                const uint8_t* skip, prt_wavelet_tile_light* out);
 
 /* 1 when param is known and size a power of two in PRT_WAVELET_MIN_SIZE..PRT_WAVELET_MAX_SIZE. */
 int prt_wavelet_domain_valid(uint32_t param, uint32_t size);

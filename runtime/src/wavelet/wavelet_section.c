@@ -100,5 +100,7 @@ static prt_result open_wvlt(const prt_asset_section* section, void* out, char* m
 }
 
 const prt_technique_entry prt_wavelet_technique_entry = {
-    PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG_WVLT, sizeof(prt_wavelet_view), open_wvlt,
+    PRT_TECHNIQUE_WAVELET,     "wavelet", PRT_BLOB_TAG_WVLT,
+    sizeof(prt_wavelet_view),  open_wvlt, prt_wavelet_attach_tiles,
+    prt_wavelet_release_tiles,
 };

@@ -11,7 +11,10 @@
  * so a pair costs one 16-byte load of the light and one multiply-add of four lanes. A block whose
  * prepared light is all zero (prt_wavelet_prepare_light's zero-block mask) adds exactly 0, so
  * every kernel skips the pairs of the blocks the caller's mask marks: with M light coefficients
- * selected, the time follows the blocks they touch. */
+ * selected, the time follows the blocks they touch. With AVX2 the load also repacks the rows into
+ * tiles (prt_wavelet_tiles below) for a kernel whose time follows the 64-coefficient groups the
+ * light touches; the row kernels stay the reference layout's and take the lights it would not
+ * speed up. */
 #ifndef PRT_WAVELET_SHADE_SIMD_H
 #define PRT_WAVELET_SHADE_SIMD_H
 
@@ -63,7 +66,56 @@ static inline float prt_wavelet_vertex_scale(const prt_wavelet_rows* rows, uint3
 typedef prt_result (*prt_wavelet_kernel)(const prt_wavelet_rows* rows, uint32_t first,
                                          uint32_t count, float* out_rgb);
 
+/* The rows repacked at load for the tiled kernel (wavelet_tiles.c), 8 vertices per tile. Per tile
+ * and face, the coarse corner (Mallat levels -1..2: the 8 x 8 coefficients x, y < 8) dense as i8
+ * with the tile's vertices in lanes, stored only for the faces where some vertex of the tile has
+ * a non-zero there; the other ("fine") pairs kept sparse in group-major order (a group is 64
+ * coefficients, a quarter block): per tile and group the pairs of lane 0, then lane 1, ..., so
+ * that a group whose fine light is zero skips one run for the whole tile. Lanes past the last
+ * vertex hold zeros. */
+#define PRT_WAVELET_TILE 8u
+#define PRT_WAVELET_CORNER 8u /* coarse corner side: levels -1..2 */
+#define PRT_WAVELET_CORNER_COEFFICIENTS (PRT_WAVELET_CORNER * PRT_WAVELET_CORNER)
+#define PRT_WAVELET_MAX_FACES 6u
+#define PRT_WAVELET_GROUP 64u
+#define PRT_WAVELET_GROUPS_PER_BLOCK (PRT_BLOB_WVLT_BLOCK / PRT_WAVELET_GROUP)
+#define PRT_WAVELET_MAX_GROUPS (PRT_WAVELET_MAX_BLOCKS * PRT_WAVELET_GROUPS_PER_BLOCK)
+
+typedef struct prt_wavelet_tiles {
+  uint32_t tiles, faces, size, groups;
+  const uint8_t* face_mask;   /* u8[tiles]: bit f when face f has a stored corner slab */
+  const uint32_t* slab_start; /* u32[tiles]: index of the tile's first slab */
+  const int8_t* slabs;        /* i8[slabs][64 corner coefficients, y * 8 + x][8 lanes] */
+  const float* scale;         /* f32[tiles][3 channels][8 lanes]: vs */
+  const uint32_t* fine_start; /* u32[tiles + 1]: first fine pair of each tile */
+  const uint8_t* fine_count;  /* u8[tiles][groups][8 lanes] */
+  const uint8_t* fine_pairs;  /* u8[][2]: (index in the group, value) */
+  void* memory;               /* the one allocation holding the arrays */
+  size_t bytes;
+} prt_wavelet_tiles;
+
+/* The light a tiled kernel reads in one call: the prepared light; per group whether its fine
+ * pairs may meet a non-zero light (not skipped by the caller's mask, some light outside the
+ * corner non-zero); per face the corner's RGBA light (zero where the mask skips its block) and
+ * whether any of it is non-zero. */
+typedef struct prt_wavelet_tile_light {
+  const float* light;
+  uint8_t group_lit[PRT_WAVELET_MAX_GROUPS];
+  float corner[PRT_WAVELET_MAX_FACES][PRT_WAVELET_CORNER_COEFFICIENTS][4];
+  uint8_t face_lit[PRT_WAVELET_MAX_FACES];
+  uint32_t lit_groups; /* how many group_lit are 1 */
+} prt_wavelet_tile_light;
+
+/* Shades vertices [first, first+count) of the tiles into out_rgb. Each vertex's sum is computed
+ * in one order whatever the range (its tile is shaded whole, only the range written). */
+typedef void (*prt_wavelet_tile_kernel)(const prt_wavelet_tiles* tiles,
+                                        const prt_wavelet_tile_light* light, uint32_t first,
+                                        uint32_t count, float* out_rgb);
+
 #if defined(PRT_HAS_X86_SIMD)
+void prt_wavelet_shade_tiles_avx2(const prt_wavelet_tiles* tiles,
+                                  const prt_wavelet_tile_light* light, uint32_t first,
+                                  uint32_t count, float* out_rgb);
 prt_result prt_wavelet_shade_sse41(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,
                                    float* out_rgb);
 prt_result prt_wavelet_shade_avx2(const prt_wavelet_rows* rows, uint32_t first, uint32_t count,

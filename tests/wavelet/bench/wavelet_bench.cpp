@@ -14,7 +14,11 @@
 //    on the same mesh (bench_embree.hpp; skipped without the shared assets);
 //  - relight at M: the same shading on the best SIMD backend, 1 thread, under the environment
 //    below cut to M light coefficients: blocks of zero light are skipped, so fewer coefficients
-//    shade faster; ms per frame and the ratio to M = all measured in the same run;
+//    shade faster; ms per frame, the ratio to M = all measured in the same run, frames/s and,
+//    at M = 300, the ratio to issue 12's marks (N = 64, K = 1000: 70 frames/s; N = 32, K = 307
+//    rows: 200 frames/s). With AVX2 the load repacks the rows into 8-vertex tiles (dense coarse
+//    corners, fine pairs by group of zero light skipped); the load time and bytes that adds are
+//    printed against a load without it (an SSE4.1-limited context) in the same run;
 //  - the per-frame light update: resample a 1k lat-long map (spiaggia_di_mondello_1k.hdr, or a
 //    synthetic sky with a sun when the shared assets are absent) under a rotation that changes
 //    every frame, Haar-transform, keep M coefficients, prepare for the asset; ms per step, by
@@ -28,13 +32,17 @@
 #include <benchmark/benchmark.h>
 #include <prt/prt.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -66,7 +74,18 @@ struct Figures {
   prt_bench::Rate shading[kBackendCount][2][2];
   prt_bench::WaveletTraffic traffic;
   std::vector<LightFigure> light;
-  std::vector<std::pair<uint32_t, double>> relight_at_m;  // (M, 0 = all; seconds per frame)
+  struct RelightAtM {
+    uint32_t size, m;  // face size N, M (0 = all)
+    double seconds;    // per frame
+  };
+  std::vector<RelightAtM> relight_at_m;
+  struct LoadCost {
+    uint32_t size = 0;
+    double tiled = 0, plain = 0;              // seconds per quick-validated load
+    double tiled_bytes = 0, plain_bytes = 0;  // bytes the loaded asset holds from the allocator
+    double section_bytes = 0;
+  };
+  std::vector<LoadCost> load_cost;
   std::string relight_at_m_backend;
   std::string env_name;
   prt_bench::Rate bake_rays;    // rays/s
@@ -390,7 +409,9 @@ BENCHMARK(BM_LightUpdate)
 std::vector<float> environment_light(prt_asset* asset, uint32_t m,
                                      std::vector<uint8_t>* zero_blocks) {
   const LatLong& env = environment();
-  const uint32_t size = prt_bench::kWaveletSize,
+  prt_wavelet_info info = prt::sized<prt_wavelet_info>();
+  prt_wavelet_get_info(asset, &info);
+  const uint32_t size = info.size,
                  coefficients = prt_wavelet_coefficient_count(PRT_WAVELET_PARAM_CUBE, size);
   std::vector<float> light(4 * size_t(coefficients));
   zero_blocks->assign(coefficients / 256, 0);
@@ -405,18 +426,110 @@ std::vector<float> environment_light(prt_asset* asset, uint32_t m,
   return light;
 }
 
-// Every vertex on the best SIMD backend, one thread, under the environment cut to M terms.
+// Rows shaped like a `--cube 32 --keep 307` bake: every coarse coefficient of levels -1..2 and
+// a share of levels 3 and 4 on three faces, about 307 per vertex.
+constexpr double kKeep307Share[8] = {1.0, 1.0, 1.0, 1.0, 0.17, 0.008, 0.0, 0.0};
+
+// Counts the bytes an asset holds from its context's allocator.
+struct CountingAllocator {
+  std::mutex mutex;
+  double live = 0;
+  static void* alloc(void* user, size_t size, size_t align) {
+    auto* self = static_cast<CountingAllocator*>(user);
+    void* p = ::operator new(size, std::align_val_t(align < 16 ? 16 : align));
+    const std::lock_guard<std::mutex> lock(self->mutex);
+    self->live += double(size);
+    return p;
+  }
+  static void free(void* user, void* ptr, size_t size) {
+    auto* self = static_cast<CountingAllocator*>(user);
+    ::operator delete(ptr, std::align_val_t(16));
+    const std::lock_guard<std::mutex> lock(self->mutex);
+    self->live -= double(size);
+  }
+};
+
+// The relight-at-M assets by face size (64: the bunny of g_assets' rows; 32: keep-307 rows),
+// each loaded in a context without limits (the best SIMD backend) and timed against a load in
+// an SSE4.1-limited context, which makes no tiles.
+class MarkAssets {
+ public:
+  ~MarkAssets() {
+    for (auto& [size, entry] : entries_) prt_asset_destroy(entry.asset);
+  }
+  prt_context* context() const { return context_.get(); }
+  prt_asset* get(uint32_t size) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    Entry& e = entries_[size];
+    if (!e.asset) load(size, &e);
+    return e.asset;
+  }
+
+ private:
+  struct Entry {
+    prt_test::Bytes blob;
+    prt_asset* asset = nullptr;
+  };
+  // The best of three loads' seconds, and the bytes the last one holds.
+  static std::pair<double, double> time_load(const prt_test::Bytes& blob, prt_simd_isa limit) {
+    CountingAllocator counter;
+    prt_allocator allocator{CountingAllocator::alloc, CountingAllocator::free, &counter};
+    prt_context_desc desc = prt::sized<prt_context_desc>();
+    desc.allocator = &allocator;
+    desc.simd_isa_limit = limit;
+    auto [context, made] = prt::create_context(&desc);
+    if (made != PRT_OK) return {0.0, 0.0};
+    double best = 1e30, bytes = 0;
+    for (int run = 0; run < 3; ++run) {
+      const double before = counter.live;
+      prt_asset* asset = nullptr;
+      const auto start = std::chrono::steady_clock::now();
+      const prt_result r = prt_asset_load_memory_borrowed(context.get(), blob.data(), blob.size(),
+                                                          PRT_VALIDATE_QUICK, &asset);
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (r != PRT_OK) return {0.0, 0.0};
+      best = std::min(best, seconds);
+      bytes = counter.live - before;
+      prt_asset_destroy(asset);
+    }
+    return {best, bytes};
+  }
+  void load(uint32_t size, Entry* e) {
+    const prt_test::WvltTransfer t =
+        size == prt_bench::kWaveletSize
+            ? prt_bench::bake_shaped_transfer()
+            : prt_bench::bake_shaped_transfer(prt_bench::kBunnyVertices, size, 1, kKeep307Share);
+    const prt_test::Bytes section = prt_test::wvlt_encode(t);
+    e->blob = prt_test::wvlt_make_blob(section, t.vertices);
+    if (!context_) context_ = std::move(prt::create_context(nullptr).handle);
+    if (!context_ || prt_asset_load_memory_borrowed(context_.get(), e->blob.data(), e->blob.size(),
+                                                    PRT_VALIDATE_FULL, &e->asset) != PRT_OK) {
+      e->asset = nullptr;
+      return;
+    }
+    Figures::LoadCost cost;
+    cost.size = size;
+    cost.section_bytes = double(section.size());
+    std::tie(cost.tiled, cost.tiled_bytes) = time_load(e->blob, PRT_SIMD_ISA_AUTO);
+    std::tie(cost.plain, cost.plain_bytes) = time_load(e->blob, PRT_SIMD_ISA_SSE41);
+    g_figures.load_cost.push_back(cost);
+  }
+  std::mutex mutex_;
+  prt::ContextPtr context_;
+  std::map<uint32_t, Entry> entries_;
+} g_mark_assets;
+
+// Every vertex on the best SIMD backend, one thread, under the environment cut to M terms
+// (state.range(0), 0 = all) on the asset of face size state.range(1).
 void BM_RelightAtM(benchmark::State& state) {
-  const uint32_t m = uint32_t(state.range(0));
-  std::string why;
-  prt_asset* asset = nullptr;
-  int backend = kBackendCount;
-  while (!asset && backend > 0) asset = g_assets.get(--backend, &why);
+  const uint32_t m = uint32_t(state.range(0)), size = uint32_t(state.range(1));
+  prt_asset* asset = g_mark_assets.get(size);
   std::vector<uint8_t> zero_blocks;
   const std::vector<float> light =
       asset ? environment_light(asset, m, &zero_blocks) : std::vector<float>();
   if (light.empty()) {
-    state.SkipWithError(asset ? "light update failed" : why.c_str());
+    state.SkipWithError(asset ? "light update failed" : "load failed");
     return;
   }
   std::vector<float> out(3 * size_t(prt_bench::kBunnyVertices));
@@ -424,7 +537,7 @@ void BM_RelightAtM(benchmark::State& state) {
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     const prt_result r =
-        prt_wavelet_shade(asset, kBackends[backend].backend, light.data(), zero_blocks.data(), 0,
+        prt_wavelet_shade(asset, PRT_BACKEND_AUTO, light.data(), zero_blocks.data(), 0,
                           prt_bench::kBunnyVertices, out.data());
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r != PRT_OK) {
@@ -435,17 +548,19 @@ void BM_RelightAtM(benchmark::State& state) {
   }
   state.counters["frames/s"] =
       benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
-  g_figures.relight_at_m_backend = kBackends[backend].name;
-  auto& figures = g_figures.relight_at_m;  // the last run of each M (benchmark reruns it)
-  if (figures.empty() || figures.back().first != m) figures.emplace_back(m, 0.0);
-  figures.back().second = seconds / double(state.iterations());
+  if (g_figures.relight_at_m_backend.empty()) {
+    prt_backend_info info = prt::sized<prt_backend_info>();
+    prt_backend_get_info(g_mark_assets.context(), PRT_BACKEND_SIMD, &info);
+    g_figures.relight_at_m_backend =
+        info.usable ? std::string("simd-") + prt_simd_isa_name(info.isa) : std::string("cpu");
+  }
+  auto& figures = g_figures.relight_at_m;  // the last run of each (N, M) (benchmark reruns it)
+  if (figures.empty() || figures.back().m != m || figures.back().size != size)
+    figures.push_back({size, m, 0.0});
+  figures.back().seconds = seconds / double(state.iterations());
 }
 BENCHMARK(BM_RelightAtM)
-    ->Arg(0)
-    ->Arg(30)
-    ->Arg(100)
-    ->Arg(300)
-    ->Arg(1000)
+    ->ArgsProduct({{0, 30, 100, 300, 1000}, {64, 32}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(0.3);
@@ -477,16 +592,36 @@ void print_relight(bool by_cpu) {
 void print_relight_at_m() {
   const Figures& f = g_figures;
   if (f.relight_at_m.empty()) return;
-  double all = 0.0;
-  for (const auto& [m, seconds] : f.relight_at_m)
-    if (m == 0) all = seconds;
   std::printf(
-      "\n  relight at M light coefficients (%s, %s, 1 thread; blocks of zero light "
-      "skipped), ms per frame and against M = all in this run:\n",
+      "\n  relight at M light coefficients (%s, %s, 1 thread; zero light skipped), ms per frame, "
+      "against M = all in this run, frames/s, and at M = 300 against the mark:\n",
       f.env_name.c_str(), f.relight_at_m_backend.c_str());
-  for (const auto& [m, seconds] : f.relight_at_m)
-    std::printf("  %6s %9.2f ms %6.2f x\n", m ? std::to_string(m).c_str() : "all", 1e3 * seconds,
-                all > 0.0 ? all / seconds : 0.0);
+  for (const uint32_t size : {64u, 32u}) {
+    double all = 0.0;
+    for (const auto& r : f.relight_at_m)
+      if (r.size == size && r.m == 0) all = r.seconds;
+    bool header = false;
+    for (const auto& r : f.relight_at_m) {
+      if (r.size != size) continue;
+      if (!header)
+        std::printf("  N = %u, K = %s:\n", size, size == 64 ? "1000" : "307"), header = true;
+      const double fps = r.seconds > 0.0 ? 1.0 / r.seconds : 0.0, mark = size == 64 ? 70.0 : 200.0;
+      std::printf("  %6s %9.2f ms %6.2f x %8.1f frames/s",
+                  r.m ? std::to_string(r.m).c_str() : "all", 1e3 * r.seconds,
+                  all > 0.0 ? all / r.seconds : 0.0, fps);
+      if (r.m == 300) std::printf("   %.2f x the mark of %.0f frames/s", fps / mark, mark);
+      std::printf("\n");
+    }
+  }
+  for (const auto& c : f.load_cost)
+    std::printf(
+        "  load, N = %u (quick validation, best of 3): %.1f ms with the tiles, %.1f ms without "
+        "(%+.1f ms); asset holds %.1f MB with, %.3f MB without (tiles %+.1f MB = %.2f x the "
+        "%.1f MB section)\n",
+        c.size, 1e3 * c.tiled, 1e3 * c.plain, 1e3 * (c.tiled - c.plain), c.tiled_bytes * 1e-6,
+        c.plain_bytes * 1e-6, (c.tiled_bytes - c.plain_bytes) * 1e-6,
+        c.section_bytes > 0 ? (c.tiled_bytes - c.plain_bytes) / c.section_bytes : 0.0,
+        c.section_bytes * 1e-6);
 }
 
 void print_summary() {
