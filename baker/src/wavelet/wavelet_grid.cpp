@@ -77,22 +77,6 @@ bool TexelGrid::below_horizon(std::uint32_t j, const glm::vec3& n) const {
   return !(best > 0.0);
 }
 
-void TexelGrid::corners_above(const glm::vec3& n, std::vector<unsigned char>* above) const {
-  above->resize(corner_.size());
-  for (std::size_t i = 0; i < corner_.size(); ++i) (*above)[i] = glm::dot(n, corner_[i]) > 0.0f;
-}
-
-bool TexelGrid::below_horizon(std::uint32_t j, const glm::vec3& n,
-                              const std::vector<unsigned char>& corners_above) const {
-  if (param_ != PRT_WAVELET_PARAM_CUBE) return below_horizon(j, n);
-  if (!(solid_angle_[j] > 0.0)) return true;
-  const std::uint32_t face = j / (size_ * size_), x = j % size_, y = (j / size_) % size_;
-  const std::uint32_t side = size_ + 1;
-  const unsigned char* c = corners_above.data() + std::size_t(face) * side * side;
-  return !(c[y * side + x] || c[y * side + x + 1] || c[(y + 1) * side + x] ||
-           c[(y + 1) * side + x + 1]);
-}
-
 bool TexelGrid::sample(std::uint32_t face, float u, float v, glm::vec3* dir,
                        double* jacobian) const {
   if (!prt_wavelet_direction(static_cast<prt_wavelet_param>(param_), size_, face, u, v, &dir->x))

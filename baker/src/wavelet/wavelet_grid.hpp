@@ -27,13 +27,6 @@ class TexelGrid {
   // True when max(0, n.w) = 0 everywhere on texel j (or the texel carries no direction).
   bool below_horizon(std::uint32_t j, const glm::vec3& n) const;
 
-  // Cube: per texel corner of every face, 1 when n.w > 0 there (each corner tested once, not
-  // once per texel that meets at it); empty for the paraboloid. The overload below then gives
-  // below_horizon's answer from it.
-  void corners_above(const glm::vec3& n, std::vector<unsigned char>* above) const;
-  bool below_horizon(std::uint32_t j, const glm::vec3& n,
-                     const std::vector<unsigned char>& corners_above) const;
-
   // The direction at continuous face coordinates (u, v) and its Jacobian relative to the texel
   // (d omega / du dv up to a per-face constant). False when (u, v) has no direction.
   bool sample(std::uint32_t face, float u, float v, glm::vec3* dir, double* jacobian) const;

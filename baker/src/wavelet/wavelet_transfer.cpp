@@ -64,7 +64,6 @@ bool wavelet_usable(const glm::vec3& p, const glm::vec3& n) {
 // A texel's samples, computed once for both the Jacobian total and the visits; kept by a thread
 // from vertex to vertex so the bake does not allocate per vertex.
 struct TexelSamples {
-  std::vector<unsigned char> corners_above;
   std::vector<glm::vec3> w;
   std::vector<double> jacobian;
   std::vector<unsigned char> on_grid;
@@ -81,9 +80,8 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
   glm::vec3* w = scratch.w.data();
   double* jacobian = scratch.jacobian.data();
   unsigned char* on_grid = scratch.on_grid.data();
-  grid.corners_above(n, &scratch.corners_above);
   for (std::uint32_t j = 0; j < grid.count(); ++j) {
-    if (grid.below_horizon(j, n, scratch.corners_above)) continue;
+    if (grid.below_horizon(j, n)) continue;
     const std::uint32_t face = j / (size * size), x = j % size, y = (j / size) % size;
     auto position = [&](std::uint32_t i, float* u, float* v) {
       const std::uint32_t h = hash_key(vertex_key, j, i);
