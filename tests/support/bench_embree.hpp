@@ -187,6 +187,20 @@ inline Rate raw_occluded_rate_width(benchmark::State& state, const RawEmbree& ra
   }
 }
 
+// Registers `run` as BM_RawEmbreeOccluded/N for the widths raw_occluded_rate_width knows; `run`
+// reads N from state.range(0). Call it from a namespace-scope initialiser so it keeps its place
+// among the BENCHMARK registrations.
+inline benchmark::internal::Benchmark* register_raw_occluded(void (*run)(benchmark::State&)) {
+  return benchmark::RegisterBenchmark("BM_RawEmbreeOccluded", run)
+      ->Arg(1)
+      ->Arg(4)
+      ->Arg(8)
+      ->Arg(16)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->MinTime(0.5);
+}
+
 // The best of the raw calls measured so far (by CPU time, and by wall clock), and its width.
 struct BestRaw {
   Rate rate{0.0, 0.0};

@@ -24,23 +24,6 @@ void on_embree_error(void* user, RTCError code, const char* message) {
   }
 }
 
-RTCRay make_ray(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {
-  RTCRay ray;
-  ray.org_x = origin.x;
-  ray.org_y = origin.y;
-  ray.org_z = origin.z;
-  ray.dir_x = dir.x;
-  ray.dir_y = dir.y;
-  ray.dir_z = dir.z;
-  ray.tnear = tnear;
-  ray.tfar = tfar;
-  ray.time = 0.0f;
-  ray.mask = 0xFFFFFFFFu;  // Debian's Embree has RAY_MASK on: a zero mask hits nothing
-  ray.id = 0;
-  ray.flags = 0;
-  return ray;
-}
-
 }  // namespace
 
 bool is_degenerate_triangle(const Mesh& mesh, std::size_t triangle) {
@@ -141,7 +124,7 @@ bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float 
                            float tfar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray = make_ray(origin, dir, tnear, tfar);
+  RTCRay ray = make_embree_ray(origin, dir, tnear, tfar);
   rtcOccluded1(impl_->scene, &context, &ray);
   return ray.tfar < 0.0f;  // Embree sets tfar = -inf on occlusion
 }
@@ -151,7 +134,7 @@ bool EmbreeScene::intersect(const glm::vec3& origin, const glm::vec3& dir, RayHi
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayhit;
-  rayhit.ray = make_ray(origin, dir, tnear, tfar);
+  rayhit.ray = make_embree_ray(origin, dir, tnear, tfar);
   rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;

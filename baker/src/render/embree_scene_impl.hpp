@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "prt/baker/embree_scene.hpp"
 
 namespace prt::bake {
@@ -17,6 +19,28 @@ namespace prt::bake {
 struct DeviceErrors {
   std::string first;
 };
+
+// Every mask bit set: Debian's Embree has RAY_MASK on, and a zero mask hits nothing.
+constexpr std::uint32_t kEmbreeAllMask = 0xFFFFFFFFu;
+
+// An occlusion or intersection ray as EmbreeScene casts it.
+inline RTCRay make_embree_ray(const glm::vec3& origin, const glm::vec3& dir, float tnear,
+                              float tfar) {
+  RTCRay ray;
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = dir.x;
+  ray.dir_y = dir.y;
+  ray.dir_z = dir.z;
+  ray.tnear = tnear;
+  ray.tfar = tfar;
+  ray.time = 0.0f;
+  ray.mask = kEmbreeAllMask;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
 
 struct EmbreeScene::Impl {
   DeviceErrors errors;

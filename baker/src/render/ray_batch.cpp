@@ -12,22 +12,6 @@ namespace prt::bake {
 namespace {
 
 constexpr std::size_t kPacket = 16;
-constexpr std::uint32_t kAllMask = 0xFFFFFFFFu;  // EmbreeScene's rays: a zero mask hits nothing
-
-void set_ray(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, RTCRay* ray) {
-  ray->org_x = origin.x;
-  ray->org_y = origin.y;
-  ray->org_z = origin.z;
-  ray->dir_x = dir.x;
-  ray->dir_y = dir.y;
-  ray->dir_z = dir.z;
-  ray->tnear = tnear;
-  ray->tfar = tfar;
-  ray->time = 0.0f;
-  ray->mask = kAllMask;
-  ray->id = 0;
-  ray->flags = 0;
-}
 
 }  // namespace
 
@@ -73,8 +57,7 @@ std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
   switch (mode_) {
     case RayBatchMode::Single:
       for (std::uint32_t i : above) {
-        RTCRay ray;
-        set_ray(origin, directions[i], tnear, tfar, &ray);
+        RTCRay ray = make_embree_ray(origin, directions[i], tnear, tfar);
         rtcOccluded1(scene, &context, &ray);
         visible[i] = ray.tfar < 0.0f ? 0 : 1;  // Embree sets tfar = -inf on occlusion
       }
@@ -97,7 +80,7 @@ std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
           packet.tnear[k] = tnear;
           packet.tfar[k] = tfar;
           packet.time[k] = 0.0f;
-          packet.mask[k] = kAllMask;
+          packet.mask[k] = kEmbreeAllMask;
           packet.id[k] = 0;
           packet.flags[k] = 0;
         }
@@ -111,7 +94,7 @@ std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
       std::vector<RTCRay>& rays = scratch_->stream;
       rays.resize(above.size());
       for (std::size_t k = 0; k < above.size(); ++k) {
-        set_ray(origin, directions[above[k]], tnear, tfar, &rays[k]);
+        rays[k] = make_embree_ray(origin, directions[above[k]], tnear, tfar);
       }
       rtcOccluded1M(scene, &context, rays.data(), static_cast<unsigned>(rays.size()),
                     sizeof(RTCRay));

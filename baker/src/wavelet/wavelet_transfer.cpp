@@ -2,6 +2,7 @@
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
 
 #include <prt/prt_wavelet.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -44,6 +45,12 @@ void validate(const WaveletTransferSettings& s) {
   }
 }
 
+// select_wavelet_coefficients, also returning the row's squared norm and its nonzero count (the
+// statistics keep_row needs) from the same scan.
+std::vector<std::uint32_t> select_and_measure(const std::vector<float>& row, std::uint32_t keep,
+                                              double keep_energy, double* squared_norm,
+                                              std::size_t* nonzeros);
+
 bool wavelet_usable(const glm::vec3& p, const glm::vec3& n) {
   const float len2 = glm::dot(n, n);
   return std::isfinite(len2) && len2 > 1e-12f && std::isfinite(p.x) && std::isfinite(p.y) &&
@@ -54,15 +61,25 @@ bool wavelet_usable(const glm::vec3& p, const glm::vec3& n) {
 // below the horizon of n with n.w > 0, weight = dw_j / pi * J cos / sum of the texel's J (k x k
 // samples; those off the paraboloid's disc skipped, the centre when all are): so the weights of
 // an unoccluded texel sum to its integral of cos / pi (dw_j times the T_j of an open sky).
+// A texel's samples, computed once for both the Jacobian total and the visits; kept by a thread
+// from vertex to vertex so the bake does not allocate per vertex.
+struct TexelSamples {
+  std::vector<glm::vec3> w;
+  std::vector<double> jacobian;
+  std::vector<unsigned char> on_grid;
+};
+
 template <typename Visit>
 void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::uint32_t vertex_key,
-                     std::uint32_t samples, Visit visit) {
+                     std::uint32_t samples, TexelSamples& scratch, Visit visit) {
   const std::uint32_t size = grid.size(),
                       k = static_cast<std::uint32_t>(std::lround(std::sqrt(samples)));
-  // A texel's samples, computed once for both the Jacobian total and the visits.
-  std::vector<glm::vec3> w(samples);
-  std::vector<double> jacobian(samples);
-  std::vector<unsigned char> on_grid(samples);
+  scratch.w.resize(samples);
+  scratch.jacobian.resize(samples);
+  scratch.on_grid.resize(samples);
+  glm::vec3* w = scratch.w.data();
+  double* jacobian = scratch.jacobian.data();
+  unsigned char* on_grid = scratch.on_grid.data();
   for (std::uint32_t j = 0; j < grid.count(); ++j) {
     if (grid.below_horizon(j, n)) continue;
     const std::uint32_t face = j / (size * size), x = j % size, y = (j / size) % size;
@@ -95,21 +112,37 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
   }
 }
 
+// One thread's buffers for bake_texels, reused from vertex to vertex.
+struct TexelScratch {
+  TexelSamples samples;
+  std::vector<double> sum;
+  std::vector<std::uint32_t> texel;
+  std::vector<double> weight;
+  std::vector<glm::vec3> direction;
+  std::vector<unsigned char> visible;
+};
+
 // Texel values of one vertex: the visible samples' weights; `batch` null = unoccluded. Returns
 // the rays traced.
 std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
                           const glm::vec3& origin, RayBatch* batch, std::uint32_t vertex_key,
-                          std::uint32_t samples, float* row) {
-  std::vector<double> sum(grid.count(), 0.0);
-  std::vector<std::uint32_t> texel;
-  std::vector<double> weight;
-  std::vector<glm::vec3> direction;
-  for_each_sample(grid, n, vertex_key, samples, [&](std::uint32_t j, const glm::vec3& w, double x) {
-    texel.push_back(j);
-    direction.push_back(w);
-    weight.push_back(x);
-  });
-  std::vector<unsigned char> visible(texel.size(), 1);
+                          std::uint32_t samples, TexelScratch& scratch, float* row) {
+  std::vector<double>& sum = scratch.sum;
+  std::vector<std::uint32_t>& texel = scratch.texel;
+  std::vector<double>& weight = scratch.weight;
+  std::vector<glm::vec3>& direction = scratch.direction;
+  std::vector<unsigned char>& visible = scratch.visible;
+  sum.assign(grid.count(), 0.0);
+  texel.clear();
+  weight.clear();
+  direction.clear();
+  for_each_sample(grid, n, vertex_key, samples, scratch.samples,
+                  [&](std::uint32_t j, const glm::vec3& w, double x) {
+                    texel.push_back(j);
+                    direction.push_back(w);
+                    weight.push_back(x);
+                  });
+  visible.assign(texel.size(), 1);
   std::uint64_t traced = 0;
   // Every sample is above the horizon (cosine > 0), so the batch casts all of them.
   if (batch) traced = batch->cast(origin, n, direction.data(), direction.size(), visible.data());
@@ -186,12 +219,10 @@ struct VertexTable {
 // Truncates a dense row into `rows` (and its statistics).
 void keep_row(std::uint32_t v, const std::vector<float>& row, const WaveletTransferSettings& s,
               TaskRows& rows) {
-  const std::vector<std::uint32_t> kept = select_wavelet_coefficients(row, s.keep, s.keep_energy);
-  double total = 0.0, sum = 0.0, nonzeros = 0.0;
-  for (float c : row) {
-    total += double(c) * c;
-    nonzeros += c != 0.0f ? 1.0 : 0.0;
-  }
+  double total = 0.0, sum = 0.0;
+  std::size_t nonzeros = 0;
+  const std::vector<std::uint32_t> kept =
+      select_and_measure(row, s.keep, s.keep_energy, &total, &nonzeros);
   for (std::uint32_t j : kept) {
     sum += double(row[j]) * row[j];
     rows.index.push_back(j);
@@ -200,7 +231,7 @@ void keep_row(std::uint32_t v, const std::vector<float>& row, const WaveletTrans
   rows.vertex.push_back(v);
   rows.count.push_back(static_cast<std::uint32_t>(kept.size()));
   rows.energy_kept += total > 0.0 ? sum / total : 1.0;
-  rows.nonzeros_before += nonzeros;
+  rows.nonzeros_before += double(nonzeros);
 }
 
 // The tasks' rows as one transfer (rows of vertices not in any task empty).
@@ -269,8 +300,9 @@ std::uint64_t gather_bounce(std::uint32_t v, const WaveletTransfer& previous,
   const glm::vec3 n = vertices.normal[v], origin = rays.offset_origin(vertices.position[v], n);
   std::vector<std::pair<std::uint32_t, double>> hits;
   std::uint64_t traced = 0;
+  TexelSamples scratch;
   for_each_sample(
-      grid, n, hash_key(s.seed, v, kJitterTag), s.samples,
+      grid, n, hash_key(s.seed, v, kJitterTag), s.samples, scratch,
       [&](std::uint32_t, const glm::vec3& w, double weight) {
         ++traced;
         RayHit hit;
@@ -339,10 +371,27 @@ std::uint32_t default_wavelet_keep(std::uint32_t param, std::uint32_t size) {
 
 std::vector<std::uint32_t> select_wavelet_coefficients(const std::vector<float>& row,
                                                        std::uint32_t keep, double keep_energy) {
+  double squared_norm;
+  std::size_t nonzeros;
+  return select_and_measure(row, keep, keep_energy, &squared_norm, &nonzeros);
+}
+
+namespace {
+
+std::vector<std::uint32_t> select_and_measure(const std::vector<float>& row, std::uint32_t keep,
+                                              double keep_energy, double* squared_norm,
+                                              std::size_t* nonzeros) {
   std::vector<std::uint32_t> order;
+  // Zeros add nothing to the norm: summing the others in index order gives the same double.
+  double norm = 0.0;
   for (std::uint32_t j = 0; j < row.size(); ++j) {
-    if (row[j] != 0.0f) order.push_back(j);
+    if (row[j] != 0.0f) {
+      order.push_back(j);
+      norm += double(row[j]) * row[j];
+    }
   }
+  *squared_norm = norm;
+  *nonzeros = order.size();
   const auto larger = [&](std::uint32_t a, std::uint32_t b) {
     const float fa = std::abs(row[a]), fb = std::abs(row[b]);
     return fa > fb || (fa == fb && a < b);
@@ -365,6 +414,8 @@ std::vector<std::uint32_t> select_wavelet_coefficients(const std::vector<float>&
   return order;
 }
 
+}  // namespace
+
 std::vector<float> unoccluded_wavelet_texels(std::uint32_t param, std::uint32_t size,
                                              std::uint32_t samples, const glm::vec3& normal,
                                              std::uint32_t seed) {
@@ -375,8 +426,9 @@ std::vector<float> unoccluded_wavelet_texels(std::uint32_t param, std::uint32_t 
   validate(s);
   const wavelet::TexelGrid grid(param, size);
   std::vector<float> row(grid.count());
+  TexelScratch scratch;
   bake_texels(grid, glm::normalize(normal), glm::vec3(0.0f), nullptr, hash_key(seed, 0, kJitterTag),
-              samples, row.data());
+              samples, scratch, row.data());
   return row;
 }
 
@@ -394,17 +446,26 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
   const wavelet::TexelGrid grid(settings.param, settings.size);
   const VertexTable vertices(scene, settings);
   const std::vector<std::uint32_t> todo = subset(settings, vertices.size());
-  WaveletTransfer out =
-      run_pass(todo, vertices, grid.count(), settings, ctx, "wavelet transfer: direct",
-               [&](std::uint32_t v, std::vector<float>& row) {
-                 const glm::vec3 n = vertices.normal[v];
-                 RayBatch batch(*rays);
-                 const std::uint64_t traced = bake_texels(
-                     grid, n, rays->offset_origin(vertices.position[v], n), &batch,
-                     hash_key(settings.seed, v, kJitterTag), settings.samples, row.data());
-                 transform_faces(grid, row.data());
-                 return traced;
-               });
+  // A ray batch and texel buffers per thread, not per vertex: the bake then does not allocate.
+  struct DirectScratch {
+    RayBatch batch;
+    TexelScratch texels;
+    explicit DirectScratch(const EmbreeScene& scene) : batch(scene) {}
+  };
+  tbb::enumerable_thread_specific<std::unique_ptr<DirectScratch>> direct_scratch;
+  WaveletTransfer out = run_pass(
+      todo, vertices, grid.count(), settings, ctx, "wavelet transfer: direct",
+      [&](std::uint32_t v, std::vector<float>& row) {
+        const glm::vec3 n = vertices.normal[v];
+        std::unique_ptr<DirectScratch>& local = direct_scratch.local();
+        if (!local) local = std::make_unique<DirectScratch>(*rays);
+        DirectScratch& scratch = *local;
+        const std::uint64_t traced = bake_texels(
+            grid, n, rays->offset_origin(vertices.position[v], n), &scratch.batch,
+            hash_key(settings.seed, v, kJitterTag), settings.samples, scratch.texels, row.data());
+        transform_faces(grid, row.data());
+        return traced;
+      });
   WaveletTransfer previous = out;
   for (int b = 1; b <= settings.bounces; ++b) {
     const std::string stage = "wavelet transfer: bounce " + std::to_string(b);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "../../../baker/src/render/embree_scene_impl.hpp"
 #include "prt/baker/demo_scene.hpp"
 #include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
@@ -191,6 +192,25 @@ TEST(RayBatch, TnearAndTfarBoundTheSegment) {
     }
     expect_modes_agree(rays, origin, n, dirs, c.tnear, c.tfar);
   }
+}
+
+// The one ray set-up EmbreeScene and every batch mode share: the inputs copied field by field,
+// no time, id or flags, every mask bit set.
+TEST(RayBatch, SharedRaySetUpCopiesInputsAndSetsFullMask) {
+  const RTCRay ray = make_embree_ray({1.0f, -2.0f, 3.5f}, {-0.25f, 0.5f, 2.0f}, 0.125f, 7.0f);
+  EXPECT_EQ(ray.org_x, 1.0f);
+  EXPECT_EQ(ray.org_y, -2.0f);
+  EXPECT_EQ(ray.org_z, 3.5f);
+  EXPECT_EQ(ray.dir_x, -0.25f);
+  EXPECT_EQ(ray.dir_y, 0.5f);
+  EXPECT_EQ(ray.dir_z, 2.0f);
+  EXPECT_EQ(ray.tnear, 0.125f);
+  EXPECT_EQ(ray.tfar, 7.0f);
+  EXPECT_EQ(ray.time, 0.0f);
+  EXPECT_EQ(ray.mask, 0xFFFFFFFFu);
+  EXPECT_EQ(ray.id, 0u);
+  EXPECT_EQ(ray.flags, 0u);
+  EXPECT_EQ(make_embree_ray({}, {}, 0.0f, INFINITY).tfar, INFINITY);
 }
 
 }  // namespace

@@ -284,14 +284,8 @@ void BM_RawEmbreeOccluded(benchmark::State& state) {
   const int width = static_cast<int>(state.range(0));
   g_figures.raw_best.offer(prt_bench::raw_occluded_rate_width(state, raw, rays, width), width);
 }
-BENCHMARK(BM_RawEmbreeOccluded)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(8)
-    ->Arg(16)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->MinTime(0.5);
+[[maybe_unused]] const benchmark::internal::Benchmark* const kRawEmbreeOccluded =
+    prt_bench::register_raw_occluded(BM_RawEmbreeOccluded);
 
 void BM_BakeShadowed(benchmark::State& state) {
   if (!std::filesystem::exists(bunny_path())) {
