@@ -128,13 +128,18 @@ static void finish_resample(uint32_t param, uint32_t size, const double r[9],
 
 /* Splats one source texel, turned direction (x, y, z) = R d: radiance * dw and dw into the
  * target holding that direction. */
-static inline void splat(uint32_t param, uint32_t size, double x, double y, double z,
-                         const float* rgb, float solid_angle, float* out_rgba) {
-  float* target = out_rgba + 4u * (size_t)prt_wavelet_locate_unit(param, size, x, y, z);
+static inline void splat_texel(uint32_t texel, const float* rgb, float solid_angle,
+                               float* out_rgba) {
+  float* target = out_rgba + 4u * (size_t)texel;
   target[0] += sanitised(rgb[0]) * solid_angle;
   target[1] += sanitised(rgb[1]) * solid_angle;
   target[2] += sanitised(rgb[2]) * solid_angle;
   target[3] += solid_angle;
+}
+
+static inline void splat(uint32_t param, uint32_t size, double x, double y, double z,
+                         const float* rgb, float solid_angle, float* out_rgba) {
+  splat_texel(prt_wavelet_locate_unit(param, size, x, y, z), rgb, solid_angle, out_rgba);
 }
 
 /* Columns per block of the lat-long loop: their turned azimuth vectors fit a 12 KiB stack table;
@@ -231,16 +236,9 @@ static void splat_cube(uint32_t param, uint32_t size, const prt_env_view* env, c
       const double next_bottom = prt_cube_corner_solid_angle(s1, t1);
       const double solid_angle = fabs(next_bottom - corner_bottom - next_top + corner_top);
       const double inv_length = 1.0 / sqrt(1.0 + sc * sc + tc * tc);
-      for (f = 0; f < 6u; ++f) {
-        double d[3];
-        prt_cube_direction(f, sc, tc, d);
-        d[0] *= inv_length;
-        d[1] *= inv_length;
-        d[2] *= inv_length;
-        splat(param, size, r[0] * d[0] + r[1] * d[1] + r[2] * d[2],
-              r[3] * d[0] + r[4] * d[1] + r[5] * d[2], r[6] * d[0] + r[7] * d[1] + r[8] * d[2],
-              prt_env_texel(env, f, i, j), (float)solid_angle, out_rgba);
-      }
+      for (f = 0; f < 6u; ++f)
+        splat_texel(prt_wavelet_locate_cube_texel(param, size, r, f, sc, tc, inv_length),
+                    prt_env_texel(env, f, i, j), (float)solid_angle, out_rgba);
       corner_top = next_top;
       corner_bottom = next_bottom;
     }

@@ -8,6 +8,8 @@
 #include <stdint.h>
 
 #include "env_internal.h"
+#include "sphere_internal.h"
+#include "wavelet_internal.h"
 
 /* The largest source texel's solid angle of a lat-long map and of a cube map's faces. */
 double prt_wavelet_latlong_largest_texel(uint32_t width, uint32_t height);
@@ -20,5 +22,21 @@ double prt_wavelet_cube_largest_texel(uint32_t face_size);
 void prt_wavelet_finish_resample(uint32_t param, uint32_t size, const double r[9],
                                  const prt_env_view* env, double largest_texel,
                                  const double* solid_angles, float* out_rgba);
+
+/* The target texel of a cube map's texel: face f, face coordinates (sc, tc), its direction scaled
+ * by inv_length (1 / its length) and turned by R. One expression for both resamplings, so that
+ * both send a texel to the same target. */
+static inline uint32_t prt_wavelet_locate_cube_texel(uint32_t param, uint32_t size,
+                                                     const double r[9], uint32_t f, double sc,
+                                                     double tc, double inv_length) {
+  double d[3];
+  prt_cube_direction(f, sc, tc, d);
+  d[0] *= inv_length;
+  d[1] *= inv_length;
+  d[2] *= inv_length;
+  return prt_wavelet_locate_unit(param, size, r[0] * d[0] + r[1] * d[1] + r[2] * d[2],
+                                 r[3] * d[0] + r[4] * d[1] + r[5] * d[2],
+                                 r[6] * d[0] + r[7] * d[1] + r[8] * d[2]);
+}
 
 #endif /* PRT_RUNTIME_WAVELET_LIGHT_INTERNAL_H */

@@ -283,19 +283,10 @@ static void splat_cube_map(const prt_wavelet_source* s, const double r[9], float
       const size_t at = (size_t)j * face_size + i;
       const double sc = s->column_cos[i], inv_length = s->inv_length[at];
       const float solid_angle = s->texel_solid_angle[at];
-      for (f = 0; f < 6u; ++f) {
-        double d[3];
-        prt_cube_direction(f, sc, tc, d);
-        d[0] *= inv_length;
-        d[1] *= inv_length;
-        d[2] *= inv_length;
-        accumulate(
-            out_rgba,
-            prt_wavelet_locate_unit(s->param, s->size, r[0] * d[0] + r[1] * d[1] + r[2] * d[2],
-                                    r[3] * d[0] + r[4] * d[1] + r[5] * d[2],
-                                    r[6] * d[0] + r[7] * d[1] + r[8] * d[2]),
-            s->radiance + 4u * ((size_t)f * face_size * face_size + at), solid_angle);
-      }
+      for (f = 0; f < 6u; ++f)
+        accumulate(out_rgba,
+                   prt_wavelet_locate_cube_texel(s->param, s->size, r, f, sc, tc, inv_length),
+                   s->radiance + 4u * ((size_t)f * face_size * face_size + at), solid_angle);
     }
   }
 }
