@@ -48,8 +48,8 @@ static inline void shade_corners(const prt_wavelet_tiles* t, const prt_wavelet_t
 }
 
 /* The RGBA light of the pair at `pair` in the group whose light starts at `block`. */
-static inline __m128 pair_light(const float* block, const uint8_t* pair) {
-  return _mm_loadu_ps(block + 4u * pair[0]);
+static inline __m128 pair_light(const float* block, uint32_t index) {
+  return _mm_loadu_ps(block + 4u * index);
 }
 
 /* The number of pairs the 8 lane counts at `count` add up to. */
@@ -58,38 +58,80 @@ static inline uint32_t group_pairs(const uint8_t* count) {
   return (uint32_t)_mm_cvtsi128_si32(_mm_sad_epu8(c, _mm_setzero_si128()));
 }
 
-/* Adds the fine pairs of one tile's lit groups into sums[lane] (RGBA). */
+/* Pair k of a lane's run is kept in the 128-bit half k of step (k / 2) when k < n. */
+static inline __m256 add_four_pairs(__m256 a, const float* group, const uint8_t* pair, __m256i n) {
+  const __m128i bytes = _mm_loadl_epi64((const __m128i*)(const void*)pair);
+  const __m128i q01 = _mm_shuffle_epi8(
+      bytes, _mm_setr_epi8(1, 1, 1, 1, 3, 3, 3, 3, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m128i q23 = _mm_shuffle_epi8(
+      bytes, _mm_setr_epi8(5, 5, 5, 5, 7, 7, 7, 7, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m256 keep01 =
+      _mm256_castsi256_ps(_mm256_cmpgt_epi32(n, _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1)));
+  const __m256 keep23 =
+      _mm256_castsi256_ps(_mm256_cmpgt_epi32(n, _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3)));
+  /* Indices past the run belong to the next run (or the padding): masked to the group, and
+   * their light masked to +0, so they add exactly 0 even where the light is not finite. */
+  const __m256 l01 = _mm256_and_ps(
+      keep01, _mm256_set_m128(pair_light(group, pair[2] & 63u), pair_light(group, pair[0] & 63u)));
+  const __m256 l23 = _mm256_and_ps(
+      keep23, _mm256_set_m128(pair_light(group, pair[6] & 63u), pair_light(group, pair[4] & 63u)));
+  a = _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(q01)), l01, a);
+  return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(q23)), l23, a);
+}
+
+/* Adds a lane's n pairs of one group into a, four pairs per step: a run of up to four pairs (the
+ * common case) takes one step and no branch that depends on its length. */
+static inline __m256 add_lane_pairs(__m256 a, const float* group, const uint8_t* pair, uint32_t n) {
+  uint32_t p = 0;
+  do {
+    a = add_four_pairs(a, group, pair + 2u * p, _mm256_set1_epi32((int)(n - p)));
+    p += 4;
+  } while (p < n);
+  return a;
+}
+
+/* Lit groups a tile collects (and prefetches) before it shades them. */
+#define PRT_WAVELET_LIT_WINDOW 32u
+
+/* A lit group of one tile: its light, its 8 lane counts and its first pair. */
+typedef struct lit_group {
+  const float* light;
+  const uint8_t* count;
+  const uint8_t* pair;
+} lit_group;
+
+/* Adds the fine pairs of one tile's lit groups into sums[lane] (RGBA). A tile's lit groups lie
+ * scattered through its pairs, so the loop first finds a window of them and prefetches their
+ * pairs, then shades them: the cache misses overlap. */
 static inline void shade_fine(const prt_wavelet_tiles* t, const prt_wavelet_tile_light* light,
                               uint32_t tile, float sums[PRT_WAVELET_TILE][4]) {
   const uint8_t* count = t->fine_count + (size_t)tile * t->groups * PRT_WAVELET_TILE;
   const uint8_t* pair = t->fine_pairs + 2u * (size_t)t->fine_start[tile];
   __m256 acc[PRT_WAVELET_TILE];
-  uint32_t g, lane;
+  lit_group window[PRT_WAVELET_LIT_WINDOW];
+  uint32_t g = 0, lane, i;
   for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) acc[lane] = _mm256_setzero_ps();
-  for (g = 0; g < t->groups; ++g, count += PRT_WAVELET_TILE) {
-    const uint32_t total = group_pairs(count);
-    const float* group = light->light + 4u * PRT_WAVELET_GROUP * (size_t)g;
-    if (!light->group_lit[g] || total == 0) {
+  while (g < t->groups) {
+    uint32_t found = 0;
+    for (; g < t->groups && found < PRT_WAVELET_LIT_WINDOW; ++g, count += PRT_WAVELET_TILE) {
+      const uint32_t total = group_pairs(count);
+      if (light->group_lit[g] && total != 0) {
+        lit_group* w = &window[found++];
+        w->light = light->light + 4u * PRT_WAVELET_GROUP * (size_t)g;
+        w->count = count;
+        w->pair = pair;
+        _mm_prefetch((const char*)pair, _MM_HINT_T0);
+        if (total > 16u) _mm_prefetch((const char*)(pair + 2u * total - 1u), _MM_HINT_T0);
+      }
       pair += 2u * total;
-      continue;
     }
-    for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
-      const uint32_t n = count[lane];
-      __m256 a = acc[lane];
-      uint32_t p = 0;
-      for (; p + 2 <= n; p += 2, pair += 4) {
-        const __m256 q = _mm256_set_m128(_mm_set1_ps((float)(int8_t)pair[3]),
-                                         _mm_set1_ps((float)(int8_t)pair[1]));
-        const __m256 l = _mm256_set_m128(pair_light(group, pair + 2), pair_light(group, pair));
-        a = _mm256_fmadd_ps(q, l, a);
+    for (i = 0; i < found; ++i) {
+      const uint8_t* p = window[i].pair;
+      for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
+        const uint32_t n = window[i].count[lane];
+        acc[lane] = add_lane_pairs(acc[lane], window[i].light, p, n);
+        p += 2u * n;
       }
-      if (p < n) { /* the odd pair in the low half */
-        const __m128 zero = _mm_setzero_ps();
-        const __m256 q = _mm256_set_m128(zero, _mm_set1_ps((float)(int8_t)pair[1]));
-        a = _mm256_fmadd_ps(q, _mm256_set_m128(zero, pair_light(group, pair)), a);
-        pair += 2;
-      }
-      acc[lane] = a;
     }
   }
   for (lane = 0; lane < PRT_WAVELET_TILE; ++lane)
