@@ -109,22 +109,48 @@ class WaveletView : public ViewTechnique {
   std::uint32_t light_coefficients_ = 0xFFFFFFFFu;  // detail coefficients kept (all)
   std::vector<float> light_;                        // coefficient_count prepared RGBA quadruples
   std::vector<std::uint8_t> zero_blocks_;           // block_count bytes, 1 = all-zero light
+  // The map prepared once for the per-frame resampling, and what it was made from.
+  prt::WaveletSourcePtr source_;
+  const float* source_pixels_ = nullptr;
+  int source_width_ = 0, source_height_ = 0;
 
   std::uint32_t detail_coefficients() const { return info_.coefficient_count - info_.faces; }
 
+  // The source of `map` (the same environment image prt_sh_project takes), prepared on first use
+  // and again only when the map changes, so that turning the light re-does the per-frame part.
+  const prt_wavelet_source* source_for(const BlobScene& scene, const prt::io::EnvMap& map) {
+    if (source_ && source_pixels_ == map.pixels().data() && source_width_ == map.width() &&
+        source_height_ == map.height())
+      return source_.get();
+    std::vector<float> faces;
+    const prt_env_image env = environment_image(map, nullptr, &faces);
+    prt_wavelet_source_desc desc = prt::sized<prt_wavelet_source_desc>();
+    desc.param = info_.param;
+    desc.size = info_.size;
+    desc.env = &env;
+    prt_wavelet_source* source = nullptr;
+    source_.reset();
+    check_runtime(prt_wavelet_source_create(scene.context(), &desc, &source),
+                  "prt_wavelet_source_create");
+    source_.reset(source);
+    source_pixels_ = map.pixels().data();
+    source_width_ = map.width();
+    source_height_ = map.height();
+    return source;
+  }
+
   // The map resampled onto the asset's parameterisation turned by `degrees` about +Y
-  // (prt_wavelet_resample of the same environment image prt_sh_project takes), Haar-transformed,
-  // `kept` detail coefficients kept by area-weighted selection (plus the scaling ones), and
-  // prepared (band scales folded in, the blocks of zero light marked).
+  // (prt_wavelet_source_resample), Haar-transformed, `kept` detail coefficients kept by
+  // area-weighted selection (plus the scaling ones), and prepared (band scales folded in, the
+  // blocks of zero light marked).
   void build_light(const BlobScene& scene, const prt::io::EnvMap& map, double degrees,
                    std::uint32_t kept) {
     float rotation[9];
     prt::io::rotation_about_y_row_major(degrees, rotation);
-    std::vector<float> faces;
-    const prt_env_image env = environment_image(map, rotation, &faces);
+    const prt_wavelet_source* source = source_for(scene, map);
     light_.assign(4u * info_.coefficient_count, 0.0f);
-    check_runtime(prt_wavelet_resample(info_.param, info_.size, &env, light_.data()),
-                  "prt_wavelet_resample");
+    check_runtime(prt_wavelet_source_resample(source, rotation, light_.data()),
+                  "prt_wavelet_source_resample");
     check_runtime(prt_wavelet_transform_light(info_.param, info_.size, light_.data()),
                   "prt_wavelet_transform_light");
     check_runtime(prt_wavelet_select_light(info_.param, info_.size, kept, light_.data()),

@@ -37,11 +37,15 @@ struct GlShShaderDeleter {
 struct GlWaveletShaderDeleter {
   void operator()(prt_gl_wavelet_shader* shader) const noexcept { prt_gl_wavelet_destroy(shader); }
 };
+struct WaveletSourceDeleter {
+  void operator()(prt_wavelet_source* source) const noexcept { prt_wavelet_source_destroy(source); }
+};
 
 using ContextPtr = std::unique_ptr<prt_context, ContextDeleter>;
 using AssetPtr = std::unique_ptr<prt_asset, AssetDeleter>;
 using GlShShaderPtr = std::unique_ptr<prt_gl_sh_shader, GlShShaderDeleter>;
 using GlWaveletShaderPtr = std::unique_ptr<prt_gl_wavelet_shader, GlWaveletShaderDeleter>;
+using WaveletSourcePtr = std::unique_ptr<prt_wavelet_source, WaveletSourceDeleter>;
 
 // A handle and the result of the call that made it (the handle is empty unless result is PRT_OK).
 // Binds to `auto [handle, result] = ...`.
