@@ -83,28 +83,49 @@ prt_result prt_wavelet_decode_transfer(const prt_asset* asset, uint32_t first_ve
   return PRT_OK;
 }
 
-/* Band scales folded in, block by block; the zero-block mask in the same pass. */
+/* The band scale of each coefficient of face `face` by max(x, y) (its level's band, as
+ * prt_wavelet_band numbers them). */
+static void tabulate_band_scales(const prt_wavelet_view* view, uint32_t face, float* by_extent) {
+  const uint32_t size = view->info.size;
+  uint32_t k, log2_size = 0u;
+  while ((1u << log2_size) < size) ++log2_size;
+  for (k = 0; k < size; ++k) {
+    const uint32_t band = face * (log2_size + 1u) + (uint32_t)(prt_haar_level(size, k, 0u) + 1);
+    by_extent[k] = prt_wavelet_load_f32(view->band_scale + 4u * (size_t)band);
+  }
+}
+
+/* Band scales folded in, face by face and row by row (a row's scale is that of max(x, y));
+ * the zero-block mask in the same pass, blocks being whole rows or runs of them. */
 prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_rgba,
                                      float* out_rgba, uint8_t* out_zero_blocks) {
   const prt_wavelet_view* view;
-  uint32_t block, j, c;
+  float by_extent[PRT_WAVELET_MAX_SIZE];
+  uint32_t face, faces, size, x, y, c;
+  size_t j = 0;
+  int lit = 0;
   if (!asset || !light_rgba || !out_rgba) return PRT_ERROR_INVALID_ARGUMENT;
   view = wavelet_view(asset);
   if (!view) return PRT_ERROR_NOT_FOUND;
-  for (block = 0; block < view->info.block_count; ++block) {
-    const uint32_t first = block * PRT_BLOB_WVLT_BLOCK;
-    int lit = 0;
-    for (j = first; j < first + PRT_BLOB_WVLT_BLOCK; ++j) {
-      const uint32_t band = prt_wavelet_band(view->info.param, view->info.size, j);
-      const float bs = prt_wavelet_load_f32(view->band_scale + 4u * (size_t)band);
-      for (c = 0; c < 3; ++c) {
-        const float value = light_rgba[4u * (size_t)j + c] * bs;
-        out_rgba[4u * (size_t)j + c] = value;
-        lit |= value != 0.0f; /* NaN counts as lit: it must reach the sum */
+  size = view->info.size;
+  faces = prt_wavelet_face_count(view->info.param);
+  for (face = 0; face < faces; ++face) {
+    tabulate_band_scales(view, face, by_extent);
+    for (y = 0; y < size; ++y) {
+      for (x = 0; x < size; ++x, ++j) {
+        const float bs = by_extent[x > y ? x : y];
+        for (c = 0; c < 3; ++c) {
+          const float value = light_rgba[4u * j + c] * bs;
+          out_rgba[4u * j + c] = value;
+          lit |= value != 0.0f; /* NaN counts as lit: it must reach the sum */
+        }
+        out_rgba[4u * j + 3] = 0.0f;
       }
-      out_rgba[4u * (size_t)j + 3] = 0.0f;
+      if (j % PRT_BLOB_WVLT_BLOCK == 0u) {
+        if (out_zero_blocks) out_zero_blocks[j / PRT_BLOB_WVLT_BLOCK - 1u] = (uint8_t)!lit;
+        lit = 0;
+      }
     }
-    if (out_zero_blocks) out_zero_blocks[block] = (uint8_t)!lit;
   }
   return PRT_OK;
 }

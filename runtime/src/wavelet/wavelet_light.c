@@ -333,20 +333,29 @@ static void tabulate_areas(uint32_t size, uint32_t* area) {
 
 /* One pass over every detail coefficient in index order: passes 0..2 histogram the next digit
  * of the weights that match the prefix; pass 3 keeps those above the threshold and the first
- * `remaining` equal to it, and zeroes the rest. */
-static void selection_pass(uint32_t faces, uint32_t size, uint32_t pass, selection* state,
-                           float* rgba) {
+ * `remaining` equal to it, and zeroes the rest. The first pass computes each weight's bits and
+ * parks them in the coefficient's padding float, which the later passes read and the last one
+ * writes back as 0. */
+static void selection_pass(uint32_t faces, uint32_t size, uint32_t pass, uint32_t first_pass,
+                           selection* state, float* rgba) {
   uint32_t f, x, y;
   for (f = 0; f < faces; ++f) {
     for (y = 0; y < size; ++y) {
       for (x = (y == 0u ? 1u : 0u); x < size; ++x) {
         float* coefficient = rgba + 4u * (((size_t)f * size + y) * size + x);
-        const uint32_t bits = weight_bits(coefficient, state->area[x > y ? x : y]);
+        uint32_t bits;
+        if (pass == first_pass) {
+          bits = weight_bits(coefficient, state->area[x > y ? x : y]);
+          memcpy(coefficient + 3, &bits, sizeof bits);
+        } else {
+          memcpy(&bits, coefficient + 3, sizeof bits);
+        }
         if (pass < 3u) {
           if ((bits & state->prefix_mask) == state->prefix)
             ++state->histogram[(bits >> digit_shift(pass)) & digit_mask(pass)];
         } else if (bits > state->prefix || (bits == state->prefix && state->remaining > 0u)) {
           if (bits == state->prefix) --state->remaining;
+          coefficient[3] = 0.0f;
         } else {
           memset(coefficient, 0, 4u * sizeof(float));
         }
@@ -372,7 +381,7 @@ prt_result prt_wavelet_select_light(prt_wavelet_param param, uint32_t size, uint
                                     float* rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
   selection state;
-  uint32_t pass;
+  uint32_t pass, first_pass;
   if (!prt_wavelet_domain_valid(param, size) || !rgba) return PRT_ERROR_INVALID_ARGUMENT;
   if (m >= faces * (size * size - 1u)) return PRT_OK;
   state.prefix = 0u;
@@ -381,9 +390,10 @@ prt_result prt_wavelet_select_light(prt_wavelet_param param, uint32_t size, uint
   tabulate_areas(size, state.area);
   /* m = 0: the threshold stays above every weight (none equal with remaining 0 is kept). */
   if (m == 0u) state.prefix = 0xFFFFFFFFu;
-  for (pass = (m == 0u ? 3u : 0u); pass <= 3u; ++pass) {
+  first_pass = m == 0u ? 3u : 0u;
+  for (pass = first_pass; pass <= 3u; ++pass) {
     if (pass < 3u) memset(state.histogram, 0, sizeof state.histogram);
-    selection_pass(faces, size, pass, &state, rgba);
+    selection_pass(faces, size, pass, first_pass, &state, rgba);
     if (pass < 3u) choose_digit(pass, &state);
   }
   return PRT_OK;
