@@ -543,6 +543,25 @@ TEST(WaveletSelect, KeepsExactlyTheMLargestWeights) {
   }
 }
 
+// The padding float is scratch during selection (the weights' bits) and must come back as 0
+// (prt_wavelet.h) for every detail coefficient, kept or not, whatever the caller left there.
+TEST(WaveletSelect, PaddingComesBackAsZero) {
+  const uint32_t size = 16, count = texel_count(kCube, size);
+  std::vector<float> light(4 * size_t(count));
+  for (uint32_t j = 0; j < count; ++j) {
+    light[4 * j] = light[4 * j + 1] = light[4 * j + 2] = float(j % 97 + 1);
+    light[4 * j + 3] = std::numeric_limits<float>::quiet_NaN();
+  }
+  ASSERT_EQ(prt_wavelet_select_light(kCube, size, 300, light.data()), PRT_OK);
+  uint32_t kept = 0;
+  for (uint32_t j = 0; j < count; ++j) {
+    if (is_scaling(size, j)) continue;
+    kept += light[4 * j] != 0.0f;
+    EXPECT_EQ(light[4 * j + 3], 0.0f) << j;
+  }
+  EXPECT_EQ(kept, 300u);
+}
+
 TEST(WaveletSelect, ExactlyMKeptAmongManyEqualWeights) {
   const uint32_t size = 32, count = texel_count(kCube, size);
   std::vector<float> light(4 * size_t(count), 0.0f);
