@@ -77,6 +77,25 @@ bool TexelGrid::below_horizon(std::uint32_t j, const glm::vec3& n) const {
   return !(best > 0.0);
 }
 
+TexelGrid::Horizon::Horizon(const TexelGrid& grid, const glm::vec3& n,
+                            std::vector<unsigned char>& above)
+    : grid_(grid), n_(n), above_(nullptr) {
+  if (grid.param_ != PRT_WAVELET_PARAM_CUBE) return;
+  above.resize(grid.corner_.size());
+  for (std::size_t i = 0; i < grid.corner_.size(); ++i)
+    above[i] = glm::dot(n, grid.corner_[i]) > 0.0f ? 1 : 0;
+  above_ = above.data();
+}
+
+bool TexelGrid::Horizon::below(std::uint32_t face, std::uint32_t x, std::uint32_t y) const {
+  const std::uint32_t size = grid_.size_;
+  if (!above_) return grid_.below_horizon((face * size + y) * size + x, n_);
+  if (!(grid_.solid_angle_[(face * size + y) * size + x] > 0.0)) return true;
+  const std::uint32_t side = size + 1;
+  const unsigned char* c = above_ + (std::size_t(face) * side + y) * side + x;
+  return !(c[0] | c[1] | c[side] | c[side + 1]);
+}
+
 bool TexelGrid::sample(std::uint32_t face, float u, float v, glm::vec3* dir,
                        double* jacobian) const {
   if (!prt_wavelet_direction(static_cast<prt_wavelet_param>(param_), size_, face, u, v, &dir->x))

@@ -27,6 +27,20 @@ class TexelGrid {
   // True when max(0, n.w) = 0 everywhere on texel j (or the texel carries no direction).
   bool below_horizon(std::uint32_t j, const glm::vec3& n) const;
 
+  // below_horizon for every texel of one normal, texel (face, x, y) at a time: on the cube each
+  // corner's side of the horizon is found once for the four texels that share it.
+  class Horizon {
+   public:
+    // `above` is the caller's buffer, reused from normal to normal.
+    Horizon(const TexelGrid& grid, const glm::vec3& n, std::vector<unsigned char>& above);
+    bool below(std::uint32_t face, std::uint32_t x, std::uint32_t y) const;
+
+   private:
+    const TexelGrid& grid_;
+    glm::vec3 n_;
+    const unsigned char* above_;  // cube: per corner, n.corner > 0
+  };
+
   // The direction at continuous face coordinates (u, v) and its Jacobian relative to the texel
   // (d omega / du dv up to a per-face constant). False when (u, v) has no direction.
   bool sample(std::uint32_t face, float u, float v, glm::vec3* dir, double* jacobian) const;

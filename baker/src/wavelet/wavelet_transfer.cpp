@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -67,6 +68,8 @@ struct TexelSamples {
   std::vector<glm::vec3> w;
   std::vector<double> jacobian;
   std::vector<unsigned char> on_grid;
+  std::vector<float> stratum_u, stratum_v;  // float(i % k), float(i / k)
+  std::vector<unsigned char> corner_above;  // TexelGrid::Horizon's buffer
 };
 
 template <typename Visit>
@@ -77,37 +80,52 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
   scratch.w.resize(samples);
   scratch.jacobian.resize(samples);
   scratch.on_grid.resize(samples);
+  scratch.stratum_u.resize(samples);
+  scratch.stratum_v.resize(samples);
+  for (std::uint32_t i = 0; i < samples; ++i) {
+    scratch.stratum_u[i] = float(i % k);
+    scratch.stratum_v[i] = float(i / k);
+  }
   glm::vec3* w = scratch.w.data();
   double* jacobian = scratch.jacobian.data();
   unsigned char* on_grid = scratch.on_grid.data();
-  for (std::uint32_t j = 0; j < grid.count(); ++j) {
-    if (grid.below_horizon(j, n)) continue;
-    const std::uint32_t face = j / (size * size), x = j % size, y = (j / size) % size;
-    auto position = [&](std::uint32_t i, float* u, float* v) {
-      const std::uint32_t h = hash_key(vertex_key, j, i);
-      *u = float(x) + (float(i % k) + (float(h & 0xFFFFu) + 0.5f) / 65536.0f) / float(k);
-      *v = float(y) + (float(i / k) + (float(h >> 16) + 0.5f) / 65536.0f) / float(k);
-    };
-    double total = 0.0;
-    float u, v;
-    for (std::uint32_t i = 0; i < samples; ++i) {
-      position(i, &u, &v);
-      on_grid[i] = grid.sample(face, u, v, &w[i], &jacobian[i]);
-      if (on_grid[i]) total += jacobian[i];
-    }
-    const double scale = grid.solid_angle(j) * kInvPi;
-    if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
-      glm::vec3 centre;
-      double ignored;
-      grid.sample(face, x + 0.5f, y + 0.5f, &centre, &ignored);
-      const float cosine = glm::dot(n, centre);
-      if (cosine > 0.0f) visit(j, centre, scale * cosine);
-      continue;
-    }
-    for (std::uint32_t i = 0; i < samples; ++i) {
-      if (!on_grid[i]) continue;
-      const float cosine = glm::dot(n, w[i]);
-      if (cosine > 0.0f) visit(j, w[i], scale * jacobian[i] * cosine / total);
+  const float* stratum_u = scratch.stratum_u.data();
+  const float* stratum_v = scratch.stratum_v.data();
+  const wavelet::TexelGrid::Horizon horizon(grid, n, scratch.corner_above);
+  for (std::uint32_t face = 0, j = 0; face < grid.faces(); ++face) {
+    for (std::uint32_t y = 0; y < size; ++y) {
+      for (std::uint32_t x = 0; x < size; ++x, ++j) {
+        if (horizon.below(face, x, y)) continue;
+        // One sample per texel (k = 1) skips the division by 1, which is exact.
+        auto position = [&](std::uint32_t i, float* u, float* v) {
+          const std::uint32_t h = hash_key(vertex_key, j, i);
+          const float ju = (float(h & 0xFFFFu) + 0.5f) / 65536.0f,
+                      jv = (float(h >> 16) + 0.5f) / 65536.0f;
+          *u = float(x) + (k == 1 ? ju : (stratum_u[i] + ju) / float(k));
+          *v = float(y) + (k == 1 ? jv : (stratum_v[i] + jv) / float(k));
+        };
+        double total = 0.0;
+        float u, v;
+        for (std::uint32_t i = 0; i < samples; ++i) {
+          position(i, &u, &v);
+          on_grid[i] = grid.sample(face, u, v, &w[i], &jacobian[i]);
+          if (on_grid[i]) total += jacobian[i];
+        }
+        const double scale = grid.solid_angle(j) * kInvPi;
+        if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
+          glm::vec3 centre;
+          double ignored;
+          grid.sample(face, x + 0.5f, y + 0.5f, &centre, &ignored);
+          const float cosine = glm::dot(n, centre);
+          if (cosine > 0.0f) visit(j, centre, scale * cosine);
+          continue;
+        }
+        for (std::uint32_t i = 0; i < samples; ++i) {
+          if (!on_grid[i]) continue;
+          const float cosine = glm::dot(n, w[i]);
+          if (cosine > 0.0f) visit(j, w[i], scale * jacobian[i] * cosine / total);
+        }
+      }
     }
   }
 }
@@ -407,8 +425,19 @@ std::vector<std::uint32_t> select_and_measure(const std::vector<float>& row, std
     }
     order.resize(kept);
   } else if (keep > 0 && order.size() > keep) {
-    std::nth_element(order.begin(), order.begin() + keep, order.end(), larger);
+    // `larger` as one integer comparison: |value|'s bits (ordered as |value|, being >= 0) above
+    // the complemented index (lower index first on ties). The keys are distinct, so the kept
+    // set is the one nth_element with `larger` picks.
+    std::vector<std::uint64_t> keys(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const float magnitude = std::abs(row[order[i]]);
+      std::uint32_t bits;
+      std::memcpy(&bits, &magnitude, sizeof bits);
+      keys[i] = (std::uint64_t(bits) << 32) | ~order[i];
+    }
+    std::nth_element(keys.begin(), keys.begin() + keep, keys.end(), std::greater<>());
     order.resize(keep);
+    for (std::size_t i = 0; i < keep; ++i) order[i] = ~std::uint32_t(keys[i]);
   }
   std::sort(order.begin(), order.end());
   return order;

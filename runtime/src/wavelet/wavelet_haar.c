@@ -51,12 +51,15 @@ HAAR_INLINE void haar_level_of(float* face, uint32_t size, uint32_t n, uint32_t 
   }
 }
 
-/* RGBA lights (the usual case) get a copy with a constant channel count, so that a texel's four
- * channels move and combine together instead of a call and a loop per texel; same arithmetic. */
+/* RGBA lights (the usual case) and the bake's single-channel rows get a copy with a constant
+ * channel count, so that a texel's channels move and combine together instead of a call and a
+ * loop per texel; same arithmetic. */
 static void haar_level(float* face, uint32_t size, uint32_t n, uint32_t channels, int forward,
                        float* scratch) {
   if (channels == 4u)
     haar_level_of(face, size, n, 4u, forward, scratch);
+  else if (channels == 1u)
+    haar_level_of(face, size, n, 1u, forward, scratch);
   else
     haar_level_of(face, size, n, channels, forward, scratch);
 }
