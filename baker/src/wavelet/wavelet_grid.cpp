@@ -102,8 +102,8 @@ bool TexelGrid::sample(std::uint32_t face, float u, float v, glm::vec3* dir,
     return false;
   const double a = 2.0 * u / size_ - 1.0, b = 2.0 * v / size_ - 1.0, r2 = a * a + b * b;
   // Cube: d omega = ds dt / (1 + s^2 + t^2)^(3/2); paraboloid: 4 da db / (1 + r^2)^2.
-  *jacobian =
-      param_ == PRT_WAVELET_PARAM_CUBE ? std::pow(1.0 + r2, -1.5) : 1.0 / ((1 + r2) * (1 + r2));
+  const double q = 1.0 + r2;
+  *jacobian = param_ == PRT_WAVELET_PARAM_CUBE ? 1.0 / (q * std::sqrt(q)) : 1.0 / (q * q);
   return true;
 }
 
