@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -27,9 +28,11 @@ namespace prt_bench {
 struct RawEmbree {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  explicit RawEmbree(const prt::bake::Scene& s) {
+  // flags: none for the fastest raw call; RTC_SCENE_FLAG_ROBUST for the bake's own scene flags.
+  explicit RawEmbree(const prt::bake::Scene& s, RTCSceneFlags flags = RTC_SCENE_FLAG_NONE) {
     device = rtcNewDevice(nullptr);
     scene = rtcNewScene(device);
+    rtcSetSceneFlags(scene, flags);
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     for (const prt::bake::Mesh& mesh : s.meshes) {
       std::vector<std::uint32_t> kept;
@@ -199,6 +202,27 @@ inline benchmark::internal::Benchmark* register_raw_occluded(void (*run)(benchma
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->MinTime(0.5);
+}
+
+// Registers `run` as BM_RawEmbreeOccludedRobust/16: rtcOccluded16 on a scene built with the
+// bake's flags (RTC_SCENE_FLAG_ROBUST), which shows how much of a bake's gap to the fastest raw
+// call is the flag rather than the work around the rays.
+inline benchmark::internal::Benchmark* register_raw_occluded_robust(
+    void (*run)(benchmark::State&)) {
+  return benchmark::RegisterBenchmark("BM_RawEmbreeOccludedRobust", run)
+      ->Arg(16)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->MinTime(0.5);
+}
+
+// The bake's share of the raw call with its own scene flags, when both were measured.
+inline void print_robust_share(const Rate& bake, const Rate& robust) {
+  if (!(bake.cpu > 0.0 && robust.cpu > 0.0)) return;
+  std::printf(
+      "    against rtcOccluded16 on a scene with the bake's flags (RTC_SCENE_FLAG_ROBUST), by CPU "
+      "time: %.2f vs %.2f Mrays/s = %.0f %%\n",
+      bake.cpu * 1e-6, robust.cpu * 1e-6, 100.0 * bake.cpu / robust.cpu);
 }
 
 // The best of the raw calls measured so far (by CPU time, and by wall clock), and its width.

@@ -73,6 +73,7 @@ struct Figures {
   prt_bench::Rate triad[3];         // bytes/s by thread count 1, 2
   std::vector<ShadingRow> shading;  // in registration order
   prt_bench::Rate bake_rays;        // rays/s
+  prt_bench::Rate raw_robust;       // rtcOccluded16 with the bake's scene flags
   prt_bench::BestRaw raw_best;      // the fastest raw rtcOccludedN
   uint32_t mesh_vertices = 0;
   std::string mesh_name, bake_skipped;
@@ -287,6 +288,15 @@ void BM_RawEmbreeOccluded(benchmark::State& state) {
 [[maybe_unused]] const benchmark::internal::Benchmark* const kRawEmbreeOccluded =
     prt_bench::register_raw_occluded(BM_RawEmbreeOccluded);
 
+// rtcOccluded16 on the same rays through a scene with the bake's flags.
+void BM_RawEmbreeOccludedRobust(benchmark::State& state) {
+  static const prt_bench::RawEmbree raw(mesh_scene(), RTC_SCENE_FLAG_ROBUST);
+  static const prt_bench::VertexRays rays = prt_bench::cosine_vertex_rays(mesh_scene(), kBakeRays);
+  g_figures.raw_robust = prt_bench::raw_occluded_rate_width(state, raw, rays, 16);
+}
+[[maybe_unused]] const benchmark::internal::Benchmark* const kRawEmbreeOccludedRobust =
+    prt_bench::register_raw_occluded_robust(BM_RawEmbreeOccludedRobust);
+
 void BM_BakeShadowed(benchmark::State& state) {
   if (!std::filesystem::exists(bunny_path())) {
     g_figures.bake_skipped = "skipped: " + bunny_path().string() + " not found";
@@ -369,6 +379,7 @@ void print_summary() {
                 f.raw_best.rate.cpu * 1e-6, 100.0 * f.bake_rays.cpu / f.raw_best.rate.cpu);
     std::printf("    by wall clock: %.2f vs %.2f Mrays/s = %.0f %%\n", f.bake_rays.wall * 1e-6,
                 f.raw_best.rate.wall * 1e-6, 100.0 * f.bake_rays.wall / f.raw_best.rate.wall);
+    prt_bench::print_robust_share(f.bake_rays, f.raw_robust);
   }
 }
 

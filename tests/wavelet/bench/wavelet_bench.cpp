@@ -89,6 +89,7 @@ struct Figures {
   std::string relight_at_m_backend;
   std::string env_name;
   prt_bench::Rate bake_rays;    // rays/s
+  prt_bench::Rate raw_robust;   // rtcOccluded16 with the bake's scene flags
   prt_bench::BestRaw raw_best;  // the fastest raw rtcOccludedN
   std::string bake_skipped;
   std::mutex mutex;
@@ -125,6 +126,16 @@ void BM_RawEmbreeOccluded(benchmark::State& state) {
 }
 [[maybe_unused]] const benchmark::internal::Benchmark* const kRawEmbreeOccluded =
     prt_bench::register_raw_occluded(BM_RawEmbreeOccluded);
+
+// rtcOccluded16 on the same rays through a scene with the bake's flags.
+void BM_RawEmbreeOccludedRobust(benchmark::State& state) {
+  if (skip_without_bunny(state)) return;
+  static const prt_bench::RawEmbree raw(bunny(), RTC_SCENE_FLAG_ROBUST);
+  static const prt_bench::VertexRays rays = prt_bench::cosine_vertex_rays(bunny(), 64);
+  g_figures.raw_robust = prt_bench::raw_occluded_rate_width(state, raw, rays, 16);
+}
+[[maybe_unused]] const benchmark::internal::Benchmark* const kRawEmbreeOccludedRobust =
+    prt_bench::register_raw_occluded_robust(BM_RawEmbreeOccludedRobust);
 
 void BM_BakeWavelet(benchmark::State& state) {
   if (skip_without_bunny(state)) return;
@@ -168,6 +179,7 @@ void print_bake() {
               f.raw_best.rate.cpu * 1e-6, 100.0 * f.bake_rays.cpu / f.raw_best.rate.cpu);
   std::printf("    by wall clock: %.2f vs %.2f Mrays/s = %.0f %%\n", f.bake_rays.wall * 1e-6,
               f.raw_best.rate.wall * 1e-6, 100.0 * f.bake_rays.wall / f.raw_best.rate.wall);
+  prt_bench::print_robust_share(f.bake_rays, f.raw_robust);
 }
 
 prt_bench::Rate shading_total(int backend, int threads) {
