@@ -95,8 +95,12 @@ static void tabulate_band_scales(const prt_wavelet_view* view, uint32_t face, fl
   }
 }
 
-/* Band scales folded in, face by face and row by row (a row's scale is that of max(x, y));
- * the zero-block mask in the same pass, blocks being whole rows or runs of them. */
+/* A face row (at most PRT_WAVELET_MAX_SIZE coefficients, a power of two) never straddles two
+ * blocks, so the zero-block mask can be written at row ends. */
+typedef char prt_wavelet_rows_within_blocks[PRT_WAVELET_MAX_SIZE <= PRT_BLOB_WVLT_BLOCK ? 1 : -1];
+
+/* Band scales folded in, face by face and row by row (a coefficient's scale is that of
+ * max(x, y)); the zero-block mask in the same pass. */
 prt_result prt_wavelet_prepare_light(const prt_asset* asset, const float* light_rgba,
                                      float* out_rgba, uint8_t* out_zero_blocks) {
   const prt_wavelet_view* view;
