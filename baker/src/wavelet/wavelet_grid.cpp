@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "prt/baker/context.hpp"
@@ -100,11 +101,28 @@ bool TexelGrid::sample(std::uint32_t face, float u, float v, glm::vec3* dir,
                        double* jacobian) const {
   if (!prt_wavelet_direction(static_cast<prt_wavelet_param>(param_), size_, face, u, v, &dir->x))
     return false;
+  *jacobian = this->jacobian(u, v);
+  return true;
+}
+
+void TexelGrid::sample(std::uint32_t face, std::size_t count, const float* u, const float* v,
+                       glm::vec3* dir, double* jacobian, unsigned char* on_grid) const {
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "directions are packed float triples");
+  if (count == 0) return;
+  if (count > UINT32_MAX ||
+      !prt_wavelet_directions(static_cast<prt_wavelet_param>(param_), size_, face,
+                              static_cast<std::uint32_t>(count), u, v, &dir->x, on_grid)) {
+    throw Error("wavelet transfer: prt_wavelet_directions rejected a face's samples");
+  }
+  for (std::size_t i = 0; i < count; ++i)
+    if (on_grid[i]) jacobian[i] = this->jacobian(u[i], v[i]);
+}
+
+double TexelGrid::jacobian(float u, float v) const {
   const double a = 2.0 * u / size_ - 1.0, b = 2.0 * v / size_ - 1.0, r2 = a * a + b * b;
   // Cube: d omega = ds dt / (1 + s^2 + t^2)^(3/2); paraboloid: 4 da db / (1 + r^2)^2.
   const double q = 1.0 + r2;
-  *jacobian = param_ == PRT_WAVELET_PARAM_CUBE ? 1.0 / (q * std::sqrt(q)) : 1.0 / (q * q);
-  return true;
+  return param_ == PRT_WAVELET_PARAM_CUBE ? 1.0 / (q * std::sqrt(q)) : 1.0 / (q * q);
 }
 
 }  // namespace prt::bake::wavelet

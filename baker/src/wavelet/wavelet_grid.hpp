@@ -45,7 +45,14 @@ class TexelGrid {
   // (d omega / du dv up to a per-face constant). False when (u, v) has no direction.
   bool sample(std::uint32_t face, float u, float v, glm::vec3* dir, double* jacobian) const;
 
+  // sample at count points of one face: on_grid[i] is sample's return value for point i.
+  void sample(std::uint32_t face, std::size_t count, const float* u, const float* v, glm::vec3* dir,
+              double* jacobian, unsigned char* on_grid) const;
+
  private:
+  // The Jacobian at (u, v), which has a direction.
+  double jacobian(float u, float v) const;
+
   std::uint32_t param_, size_, faces_;
   std::vector<double> solid_angle_;
   std::vector<glm::vec3> corner_;  // cube: (size+1)^2 corner directions per face

@@ -65,69 +65,90 @@ bool wavelet_usable(const glm::vec3& p, const glm::vec3& n) {
 // A texel's samples, computed once for both the Jacobian total and the visits; kept by a thread
 // from vertex to vertex so the bake does not allocate per vertex.
 struct TexelSamples {
-  std::vector<glm::vec3> w;
-  std::vector<double> jacobian;
-  std::vector<unsigned char> on_grid;
+  std::vector<std::uint32_t> column;        // the row's texels not below the horizon
+  std::vector<float> u, v;                  // their samples' positions, texel by texel
+  std::vector<glm::vec3> w;                 // and directions
+  std::vector<double> jacobian;             // and Jacobians
+  std::vector<unsigned char> on_grid;       // and whether each has a direction
   std::vector<float> stratum_u, stratum_v;  // float(i % k), float(i / k)
   std::vector<unsigned char> corner_above;  // TexelGrid::Horizon's buffer
 };
+
+// The sample positions of texel (x, y): stratum i of k x k, jittered by the hash of (vertex,
+// texel, i). One sample per texel (k = 1) skips the division by 1, which is exact.
+void sample_positions(std::uint32_t vertex_key, std::uint32_t j, std::uint32_t x, std::uint32_t y,
+                      std::uint32_t samples, std::uint32_t k, const TexelSamples& s, float* u,
+                      float* v) {
+  for (std::uint32_t i = 0; i < samples; ++i) {
+    const std::uint32_t h = hash_key(vertex_key, j, i);
+    const float ju = (float(h & 0xFFFFu) + 0.5f) / 65536.0f,
+                jv = (float(h >> 16) + 0.5f) / 65536.0f;
+    u[i] = float(x) + (k == 1 ? ju : (s.stratum_u[i] + ju) / float(k));
+    v[i] = float(y) + (k == 1 ? jv : (s.stratum_v[i] + jv) / float(k));
+  }
+}
+
+// Row y of a face: the positions of its texels' samples, their directions in one runtime call,
+// then the weights; the visits come in texel then sample order.
+template <typename Visit>
+void row_samples(const wavelet::TexelGrid& grid, const wavelet::TexelGrid::Horizon& horizon,
+                 const glm::vec3& n, std::uint32_t vertex_key, std::uint32_t samples,
+                 std::uint32_t k, std::uint32_t face, std::uint32_t y, TexelSamples& s,
+                 Visit& visit) {
+  const std::uint32_t size = grid.size(), first = (face * size + y) * size;
+  s.column.clear();
+  for (std::uint32_t x = 0; x < size; ++x)
+    if (!horizon.below(face, x, y)) s.column.push_back(x);
+  for (std::size_t t = 0; t < s.column.size(); ++t) {
+    sample_positions(vertex_key, first + s.column[t], s.column[t], y, samples, k, s,
+                     s.u.data() + t * samples, s.v.data() + t * samples);
+  }
+  grid.sample(face, s.column.size() * samples, s.u.data(), s.v.data(), s.w.data(),
+              s.jacobian.data(), s.on_grid.data());
+  for (std::size_t t = 0; t < s.column.size(); ++t) {
+    const std::uint32_t x = s.column[t], j = first + x;
+    const std::size_t at = t * samples;
+    double total = 0.0;
+    for (std::uint32_t i = 0; i < samples; ++i)
+      if (s.on_grid[at + i]) total += s.jacobian[at + i];
+    const double scale = grid.solid_angle(j) * kInvPi;
+    if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
+      glm::vec3 centre;
+      double ignored;
+      grid.sample(face, x + 0.5f, y + 0.5f, &centre, &ignored);
+      const float cosine = glm::dot(n, centre);
+      if (cosine > 0.0f) visit(j, centre, scale * cosine);
+      continue;
+    }
+    for (std::uint32_t i = 0; i < samples; ++i) {
+      if (!s.on_grid[at + i]) continue;
+      const float cosine = glm::dot(n, s.w[at + i]);
+      if (cosine > 0.0f) visit(j, s.w[at + i], scale * s.jacobian[at + i] * cosine / total);
+    }
+  }
+}
 
 template <typename Visit>
 void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::uint32_t vertex_key,
                      std::uint32_t samples, TexelSamples& scratch, Visit visit) {
   const std::uint32_t size = grid.size(),
                       k = static_cast<std::uint32_t>(std::lround(std::sqrt(samples)));
-  scratch.w.resize(samples);
-  scratch.jacobian.resize(samples);
-  scratch.on_grid.resize(samples);
+  const std::size_t row = std::size_t(size) * samples;
+  scratch.u.resize(row);
+  scratch.v.resize(row);
+  scratch.w.resize(row);
+  scratch.jacobian.resize(row);
+  scratch.on_grid.resize(row);
   scratch.stratum_u.resize(samples);
   scratch.stratum_v.resize(samples);
   for (std::uint32_t i = 0; i < samples; ++i) {
     scratch.stratum_u[i] = float(i % k);
     scratch.stratum_v[i] = float(i / k);
   }
-  glm::vec3* w = scratch.w.data();
-  double* jacobian = scratch.jacobian.data();
-  unsigned char* on_grid = scratch.on_grid.data();
-  const float* stratum_u = scratch.stratum_u.data();
-  const float* stratum_v = scratch.stratum_v.data();
   const wavelet::TexelGrid::Horizon horizon(grid, n, scratch.corner_above);
-  for (std::uint32_t face = 0, j = 0; face < grid.faces(); ++face) {
-    for (std::uint32_t y = 0; y < size; ++y) {
-      for (std::uint32_t x = 0; x < size; ++x, ++j) {
-        if (horizon.below(face, x, y)) continue;
-        // One sample per texel (k = 1) skips the division by 1, which is exact.
-        auto position = [&](std::uint32_t i, float* u, float* v) {
-          const std::uint32_t h = hash_key(vertex_key, j, i);
-          const float ju = (float(h & 0xFFFFu) + 0.5f) / 65536.0f,
-                      jv = (float(h >> 16) + 0.5f) / 65536.0f;
-          *u = float(x) + (k == 1 ? ju : (stratum_u[i] + ju) / float(k));
-          *v = float(y) + (k == 1 ? jv : (stratum_v[i] + jv) / float(k));
-        };
-        double total = 0.0;
-        float u, v;
-        for (std::uint32_t i = 0; i < samples; ++i) {
-          position(i, &u, &v);
-          on_grid[i] = grid.sample(face, u, v, &w[i], &jacobian[i]);
-          if (on_grid[i]) total += jacobian[i];
-        }
-        const double scale = grid.solid_angle(j) * kInvPi;
-        if (total == 0.0) {  // every jittered sample fell off the disc: the centre is inside
-          glm::vec3 centre;
-          double ignored;
-          grid.sample(face, x + 0.5f, y + 0.5f, &centre, &ignored);
-          const float cosine = glm::dot(n, centre);
-          if (cosine > 0.0f) visit(j, centre, scale * cosine);
-          continue;
-        }
-        for (std::uint32_t i = 0; i < samples; ++i) {
-          if (!on_grid[i]) continue;
-          const float cosine = glm::dot(n, w[i]);
-          if (cosine > 0.0f) visit(j, w[i], scale * jacobian[i] * cosine / total);
-        }
-      }
-    }
-  }
+  for (std::uint32_t face = 0; face < grid.faces(); ++face)
+    for (std::uint32_t y = 0; y < size; ++y)
+      row_samples(grid, horizon, n, vertex_key, samples, k, face, y, scratch, visit);
 }
 
 // One thread's buffers for bake_texels, reused from vertex to vertex.

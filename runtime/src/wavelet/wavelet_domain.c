@@ -29,14 +29,13 @@ static double disc_centre(uint32_t i, uint32_t size) {
   return (2.0 * (double)i + 1.0) / (double)size - 1.0;
 }
 
-int prt_wavelet_direction(prt_wavelet_param param, uint32_t size, uint32_t face, float u, float v,
-                          float dir[3]) {
+/* prt_wavelet_direction once param, size and face are known to be valid. */
+static inline int direction_at(prt_wavelet_param param, uint32_t size, uint32_t face, float u,
+                               float v, float dir[3]) {
   const double a = 2.0 * (double)u / (double)size - 1.0;
   const double b = 2.0 * (double)v / (double)size - 1.0;
   double d[3], scale;
-  if (!prt_wavelet_domain_valid(param, size) || face >= prt_wavelet_face_count(param) || !dir ||
-      !(u >= 0.0f && u <= (float)size && v >= 0.0f && v <= (float)size))
-    return 0;
+  if (!(u >= 0.0f && u <= (float)size && v >= 0.0f && v <= (float)size)) return 0;
   if (param == PRT_WAVELET_PARAM_CUBE) {
     prt_cube_direction(face, a, b, d);
     scale = 1.0 / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -51,6 +50,24 @@ int prt_wavelet_direction(prt_wavelet_param param, uint32_t size, uint32_t face,
   dir[0] = (float)(d[0] * scale);
   dir[1] = (float)(d[1] * scale);
   dir[2] = (float)(d[2] * scale);
+  return 1;
+}
+
+int prt_wavelet_direction(prt_wavelet_param param, uint32_t size, uint32_t face, float u, float v,
+                          float dir[3]) {
+  if (!prt_wavelet_domain_valid(param, size) || face >= prt_wavelet_face_count(param) || !dir)
+    return 0;
+  return direction_at(param, size, face, u, v, dir);
+}
+
+int prt_wavelet_directions(prt_wavelet_param param, uint32_t size, uint32_t face, uint32_t count,
+                           const float* u, const float* v, float* dirs, uint8_t* has_direction) {
+  uint32_t i;
+  if (!prt_wavelet_domain_valid(param, size) || face >= prt_wavelet_face_count(param) ||
+      (count > 0u && (!u || !v || !dirs || !has_direction)))
+    return 0;
+  for (i = 0; i < count; ++i)
+    has_direction[i] = (uint8_t)direction_at(param, size, face, u[i], v[i], dirs + 3u * (size_t)i);
   return 1;
 }
 

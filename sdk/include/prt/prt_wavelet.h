@@ -76,6 +76,14 @@ PRT_API uint32_t prt_wavelet_coefficient_count(prt_wavelet_param param, uint32_t
 PRT_API int prt_wavelet_direction(prt_wavelet_param param, uint32_t size, uint32_t face, float u,
                                   float v, float dir[3]);
 
+/* prt_wavelet_direction at `count` points (u[i], v[i]) of one face, with the same bits: writes
+ * dirs[3i..3i+2] and has_direction[i] = 1 where the point has a direction, has_direction[i] = 0
+ * (dirs[3i..] untouched) where it has none. Returns 0 and writes nothing for a bad param, size or
+ * face or a NULL array with count > 0, else 1. For bakes that place many samples at a time. */
+PRT_API int prt_wavelet_directions(prt_wavelet_param param, uint32_t size, uint32_t face,
+                                   uint32_t count, const float* u, const float* v, float* dirs,
+                                   uint8_t* has_direction);
+
 /* The solid angle of texel (x, y) of a face (§14; 0 for a paraboloid texel outside the disc or a
  * bad argument). Sums to 4 pi over a cube. */
 PRT_API double prt_wavelet_texel_solid_angle(prt_wavelet_param param, uint32_t size, uint32_t face,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -85,6 +86,46 @@ TEST(WaveletDomain, ParaboloidDirectionsFollowTheSpecFormula) {
   ASSERT_EQ(prt_wavelet_direction(kParaboloid, 16, 0, 12.0f, 8.0f, d), 1);
   EXPECT_NEAR(d[0], 0.8f, 1e-7);
   EXPECT_NEAR(d[1], 0.6f, 1e-7);
+}
+
+// The batch call is the single call point by point, bit for bit, including points with no
+// direction (off the disc, outside the face, NaN), whose outputs it leaves untouched.
+TEST(WaveletDomain, DirectionsAreTheSingleCallPointByPoint) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 17.0f);
+  for (prt_wavelet_param param : {kCube, kParaboloid}) {
+    for (uint32_t face = 0; face < prt_wavelet_face_count(param); ++face) {
+      std::vector<float> u(300), v(300);
+      for (size_t i = 0; i < u.size(); ++i) u[i] = coordinate(rng), v[i] = coordinate(rng);
+      u[0] = std::numeric_limits<float>::quiet_NaN();
+      u[1] = 16.0f, v[1] = 0.0f;  // the closed face's edge
+      std::vector<float> dirs(3 * u.size(), -7.0f);
+      std::vector<uint8_t> has(u.size(), 9);
+      ASSERT_EQ(prt_wavelet_directions(param, 16, face, uint32_t(u.size()), u.data(), v.data(),
+                                       dirs.data(), has.data()),
+                1);
+      for (size_t i = 0; i < u.size(); ++i) {
+        float d[3] = {-7.0f, -7.0f, -7.0f};
+        const int one = prt_wavelet_direction(param, 16, face, u[i], v[i], d);
+        ASSERT_EQ(int(has[i]), one) << i;
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(dirs[3 * i + c], d[c]) << i;  // -7 when none
+      }
+    }
+  }
+}
+
+TEST(WaveletDomain, DirectionsRejectBadArgumentsAndWriteNothing) {
+  const float u = 8.0f, v = 8.0f;
+  float dir[3] = {-7.0f, -7.0f, -7.0f};
+  uint8_t has = 9;
+  EXPECT_EQ(prt_wavelet_directions(kCube, 24, 0, 1, &u, &v, dir, &has), 0);
+  EXPECT_EQ(prt_wavelet_directions(kCube, 16, 6, 1, &u, &v, dir, &has), 0);
+  EXPECT_EQ(prt_wavelet_directions(kParaboloid, 16, 2, 1, &u, &v, dir, &has), 0);
+  EXPECT_EQ(prt_wavelet_directions(kCube, 16, 0, 1, nullptr, &v, dir, &has), 0);
+  EXPECT_EQ(prt_wavelet_directions(kCube, 16, 0, 1, &u, &v, dir, nullptr), 0);
+  EXPECT_EQ(dir[0], -7.0f);
+  EXPECT_EQ(has, 9);
+  EXPECT_EQ(prt_wavelet_directions(kCube, 16, 0, 0, nullptr, nullptr, nullptr, nullptr), 1);
 }
 
 TEST(WaveletDomain, DirectionLocateRoundTripOnEveryTexel) {
