@@ -18,20 +18,28 @@ std::uint32_t log2_size(std::uint32_t size) {
   return l;
 }
 
+// The band of every coefficient, looked up once instead of per stored pair.
+std::vector<std::uint32_t> band_table(const WaveletTransfer& t) {
+  std::vector<std::uint32_t> band(t.coefficient_count);
+  for (std::uint32_t j = 0; j < t.coefficient_count; ++j)
+    band[j] = wavelet_band(t.param, t.size, j);
+  return band;
+}
+
 // Largest |value| of each band over all vertices, or its `percentile` quantile when < 1.
-std::vector<float> band_magnitudes(const WaveletTransfer& t, std::uint32_t bands,
-                                   double percentile) {
+std::vector<float> band_magnitudes(const WaveletTransfer& t, const std::vector<std::uint32_t>& band,
+                                   std::uint32_t bands, double percentile) {
   std::vector<float> largest(bands, 0.0f);
   if (percentile >= 1.0) {
     for (std::size_t p = 0; p < t.index.size(); ++p) {
-      float& m = largest[wavelet_band(t.param, t.size, t.index[p])];
+      float& m = largest[band[t.index[p]]];
       m = std::max(m, std::abs(t.value[p]));
     }
     return largest;
   }
   std::vector<std::vector<float>> values(bands);
   for (std::size_t p = 0; p < t.index.size(); ++p) {
-    values[wavelet_band(t.param, t.size, t.index[p])].push_back(std::abs(t.value[p]));
+    values[band[t.index[p]]].push_back(std::abs(t.value[p]));
   }
   for (std::uint32_t b = 0; b < bands; ++b) {
     if (values[b].empty()) continue;
@@ -77,7 +85,7 @@ std::uint32_t wavelet_band_count(std::uint32_t param, std::uint32_t size) {
 }
 
 QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuantizer quantizer,
-                                            std::uint32_t keep, double band_percentile) {
+                                           std::uint32_t keep, double band_percentile) {
   if (prt_wavelet_coefficient_count(static_cast<prt_wavelet_param>(t.param), t.size) !=
           t.coefficient_count ||
       t.row_start.size() != t.vertex_count + 1 || t.index.size() != t.value.size() ||
@@ -90,6 +98,11 @@ QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuan
   for (float value : t.value) {
     if (!std::isfinite(value)) throw Error("wavelet quantisation: non-finite coefficient");
   }
+  for (std::uint32_t j : t.index) {
+    if (j >= t.coefficient_count)
+      throw Error("wavelet quantisation: coefficient index out of range");
+  }
+  const std::vector<std::uint32_t> band = band_table(t);
   QuantizedWavelet out;
   out.param = t.param;
   out.size = t.size;
@@ -100,7 +113,7 @@ QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuan
   const std::uint32_t bands = wavelet_band_count(t.param, t.size);
   out.band_scale.assign(bands, 1.0f);
   if (quantizer == WaveletQuantizer::Band) {
-    const std::vector<float> m = band_magnitudes(t, bands, band_percentile);
+    const std::vector<float> m = band_magnitudes(t, band, bands, band_percentile);
     for (std::uint32_t b = 0; b < bands; ++b) out.band_scale[b] = m[b] / 127.0f;
   }
   out.vertex_scale.resize(t.vertex_count * 3);
@@ -112,7 +125,7 @@ QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuan
     out.grey_step[v] = grey;
     for (int c = 0; c < 3; ++c) out.vertex_scale[v * 3 + c] = t.albedo[v][c] * grey;
     for (std::uint64_t p = t.row_start[v]; p < t.row_start[v + 1]; ++p) {
-      const double step = double(out.band_scale[wavelet_band(t.param, t.size, t.index[p])]) * grey;
+      const double step = double(out.band_scale[band[t.index[p]]]) * grey;
       double q = step > 0.0 ? std::round(double(t.value[p]) / step) : 0.0;
       if (std::abs(q) > 127.0) {
         q = std::clamp(q, -127.0, 127.0);
@@ -136,7 +149,7 @@ QuantizedWavelet quantize_wavelet_transfer(const WaveletTransfer& t, WaveletQuan
 }
 
 WaveletTransfer dequantize_wavelet_transfer(const QuantizedWavelet& quantized,
-                                              const WaveletTransfer& transfer) {
+                                            const WaveletTransfer& transfer) {
   WaveletTransfer out = transfer;
   out.index = quantized.index;
   out.value.resize(quantized.q.size());
