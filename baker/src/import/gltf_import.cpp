@@ -12,6 +12,7 @@
 
 #include "gltf_model.hpp"
 #include "import_detail.hpp"
+#include "prt/baker/animation.hpp"
 
 namespace prt::bake::detail {
 namespace {
@@ -376,30 +377,18 @@ Mesh read_primitive(const tinygltf::Model& model, const PrimitiveRef& ref,
 // at their rest (node default) transforms.
 void place_in_world(Mesh& mesh, const Scene& scene, const glm::mat4& node_world) {
   const bool skinned = mesh.skin >= 0;
-  std::vector<glm::mat4> joint_matrices;
+  std::vector<glm::mat4> joints;
   if (skinned) {
-    const Skin& skin = scene.skins[mesh.skin];
-    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
-      joint_matrices.push_back(scene.nodes[skin.joints[j]].world * skin.inverse_bind[j]);
-    }
+    std::vector<glm::mat4> rest_world;
+    for (const Node& node : scene.nodes) rest_world.push_back(node.world);
+    joints = joint_matrices(scene.skins[mesh.skin], rest_world);
   }
   const std::size_t n = mesh.local_positions.size();
   mesh.positions.resize(n);
   if (!mesh.local_normals.empty()) mesh.normals.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    glm::mat4 m = node_world;
-    if (skinned) {
-      const glm::vec4 w = mesh.weights0[i];
-      const float total = w.x + w.y + w.z + w.w;
-      if (total > 0.0f) {
-        m = glm::mat4(0.0f);
-        for (int k = 0; k < 4; ++k) {
-          const std::size_t joint = mesh.joints0[i][k];
-          if (w[k] != 0.0f && joint < joint_matrices.size())
-            m += (w[k] / total) * joint_matrices[joint];
-        }
-      }
-    }
+    const glm::mat4 m =
+        skinned ? blend_joints(mesh.joints0[i], mesh.weights0[i], joints, node_world) : node_world;
     mesh.positions[i] = glm::vec3(m * glm::vec4(mesh.local_positions[i], 1.0f));
     const glm::mat3 linear(m);
     if (!mesh.local_normals.empty()) {

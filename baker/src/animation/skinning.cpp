@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+// Joint matrices and linear blend skinning (glTF 2.0 §3.7.3): a mesh placed at a pose.
+#include <cmath>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "prt/baker/animation.hpp"
+
+namespace prt::bake {
+
+std::vector<glm::mat4> joint_matrices(const Skin& skin, const std::vector<glm::mat4>& world) {
+  std::vector<glm::mat4> joints;
+  joints.reserve(skin.joints.size());
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const std::size_t node = static_cast<std::size_t>(skin.joints[j]);
+    if (node >= world.size()) throw Error("skin '" + skin.name + "' names a missing joint node");
+    joints.push_back(world[node] * skin.inverse_bind[j]);
+  }
+  return joints;
+}
+
+glm::mat4 blend_joints(const glm::u16vec4& joints, const glm::vec4& weights,
+                       const std::vector<glm::mat4>& joint_matrices, const glm::mat4& fallback) {
+  // Files often store weights that do not quite sum to 1 (the spec asks for it, exporters
+  // round): dividing by the sum keeps a rigidly bound vertex rigid.
+  const float total = weights.x + weights.y + weights.z + weights.w;
+  if (!(total > 0.0f)) return fallback;
+  glm::mat4 m(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const std::size_t joint = joints[k];
+    if (weights[k] != 0.0f && joint < joint_matrices.size())
+      m += (weights[k] / total) * joint_matrices[joint];
+  }
+  return m;
+}
+
+namespace {
+
+// The transform of each vertex of `mesh` at the pose.
+std::vector<glm::mat4> vertex_transforms(const Scene& scene, const std::vector<glm::mat4>& world,
+                                         const Mesh& mesh) {
+  const glm::mat4 node_world = mesh.node >= 0 && static_cast<std::size_t>(mesh.node) < world.size()
+                                   ? world[static_cast<std::size_t>(mesh.node)]
+                                   : glm::mat4(1.0f);  // OBJ meshes are imported in world space
+  const std::size_t n = mesh.local_positions.size();
+  std::vector<glm::mat4> out(n, node_world);
+  if (mesh.skin < 0) return out;
+  if (static_cast<std::size_t>(mesh.skin) >= scene.skins.size() || mesh.joints0.size() != n ||
+      mesh.weights0.size() != n) {
+    throw Error("mesh '" + mesh.name + "' is skinned but its skin or joint attributes are missing");
+  }
+  const std::vector<glm::mat4> joints = joint_matrices(scene.skins[mesh.skin], world);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = blend_joints(mesh.joints0[i], mesh.weights0[i], joints, node_world);
+  return out;
+}
+
+}  // namespace
+
+void place_mesh(const Scene& scene, const std::vector<glm::mat4>& world, Mesh& mesh) {
+  const std::vector<glm::mat4> transform = vertex_transforms(scene, world, mesh);
+  const std::size_t n = transform.size();
+  mesh.positions.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    mesh.positions[i] = glm::vec3(transform[i] * glm::vec4(mesh.local_positions[i], 1.0f));
+  bool need_generated = mesh.normals_generated || mesh.local_normals.size() != n;
+  if (!need_generated) {
+    mesh.normals.resize(n);
+    for (std::size_t i = 0; i < n && !need_generated; ++i) {
+      // The importer's arithmetic: the inverse transpose, then a division by the length.
+      glm::vec3 normal = glm::inverseTranspose(glm::mat3(transform[i])) * mesh.local_normals[i];
+      const float len = glm::length(normal);
+      if (len > 1e-20f && std::isfinite(len)) {
+        normal /= len;
+        mesh.normals[i] = normal;
+      } else {
+        need_generated = true;  // a collapsed joint: the placed surface decides
+      }
+    }
+  }
+  if (need_generated) {
+    const bool generated = mesh.normals_generated;
+    generate_normals(mesh);
+    mesh.normals_generated = generated;
+  }
+  // World tangents cannot be carried through a pose (the mesh keeps no local ones): they are
+  // derived again from the UVs at the placed positions.
+  if (!mesh.tangents.empty()) generate_tangents(mesh);
+}
+
+Scene posed_scene(const Scene& scene, const ScenePose& pose) {
+  Scene posed = scene;
+  const std::vector<glm::mat4> world = pose.world_matrices();
+  for (Mesh& mesh : posed.meshes) place_mesh(scene, world, mesh);
+  return posed;
+}
+
+}  // namespace prt::bake
