@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Joint matrices and linear blend skinning (glTF 2.0 §3.7.3): a mesh placed at a pose.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -17,6 +18,47 @@ std::vector<glm::mat4> joint_matrices(const Skin& skin, const std::vector<glm::m
     joints.push_back(world[node] * skin.inverse_bind[j]);
   }
   return joints;
+}
+
+namespace {
+
+// The rotation of a matrix's linear part: its orthogonal polar factor, found by averaging with
+// the inverse transpose until it settles (Higham's iteration; it converges quadratically for
+// the well-conditioned transforms of a rig).
+glm::quat rotation_of(const glm::mat4& m) {
+  glm::dmat3 r(m);
+  for (int i = 0; i < 32; ++i) {
+    const glm::dmat3 next = 0.5 * (r + glm::transpose(glm::inverse(r)));
+    double change = 0.0;
+    for (int c = 0; c < 3; ++c) change = std::max(change, glm::length(next[c] - r[c]));
+    r = next;
+    if (change < 1e-15) break;
+  }
+  if (glm::determinant(r) < 0.0) r = -r;  // a mirrored joint: keep a proper rotation
+  return glm::normalize(glm::quat(glm::quat_cast(r)));
+}
+
+}  // namespace
+
+std::vector<glm::quat> bind_local_rotations(const Scene& scene, const Skin& skin) {
+  std::vector<int> joint_of_node(scene.nodes.size(), -1);
+  for (std::size_t j = 0; j < skin.joints.size(); ++j)
+    joint_of_node.at(static_cast<std::size_t>(skin.joints[j])) = static_cast<int>(j);
+  std::vector<glm::quat> out;
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const Node& node = scene.nodes[static_cast<std::size_t>(skin.joints[j])];
+    const int parent = node.parent >= 0 ? joint_of_node[static_cast<std::size_t>(node.parent)] : -1;
+    if (parent < 0) {
+      out.push_back(node.rotation);
+      continue;
+    }
+    // Both bind transforms map the skin's mesh space, so whatever places that space in the
+    // world cancels out of the parent-to-child transform.
+    const glm::dmat4 local = glm::dmat4(skin.inverse_bind[static_cast<std::size_t>(parent)]) *
+                             glm::inverse(glm::dmat4(skin.inverse_bind[j]));
+    out.push_back(rotation_of(glm::mat4(local)));
+  }
+  return out;
 }
 
 glm::mat4 blend_joints(const glm::u16vec4& joints, const glm::vec4& weights,

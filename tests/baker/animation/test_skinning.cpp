@@ -224,5 +224,48 @@ TEST(ScenePose, DracoCharactersPoseLikeTheirOriginals) {
   }
 }
 
+// The rotation between two unit quaternions, in radians (q and -q are the same rotation).
+double angle_between(const glm::quat& a, const glm::quat& b) {
+  const double d = std::min(1.0, std::abs(double(glm::dot(a, b))));
+  return 2.0 * std::acos(d);
+}
+
+// A two-joint skin whose bind pose (rotations about Y and about an oblique axis, a scaled root)
+// differs from the nodes' rest transforms: the child's bind rotation comes from the inverse bind
+// matrices alone; the root, whose placement they cannot tell, keeps its rest rotation.
+TEST(BindLocalRotations, RecoversTheBindPoseFromTheInverseBindMatrices) {
+  Scene scene;
+  scene.nodes.resize(2);
+  scene.nodes[0].children = {1};
+  scene.nodes[1].parent = 0;
+  scene.nodes[0].rotation = glm::angleAxis(0.9f, glm::vec3(1, 0, 0));
+  const glm::quat root = glm::angleAxis(0.4f, glm::vec3(0, 1, 0));
+  const glm::quat child = glm::angleAxis(-1.1f, glm::normalize(glm::vec3(1, 2, 3)));
+  const glm::mat4 root_bind = NodeTRS{{0, 1, 0}, root, {2, 2, 2}}.matrix();
+  const glm::mat4 child_bind = root_bind * NodeTRS{{0, 0.5f, 0}, child, {1, 1, 1}}.matrix();
+  Skin skin;
+  skin.joints = {0, 1};
+  skin.inverse_bind = {glm::inverse(root_bind), glm::inverse(child_bind)};
+  const std::vector<glm::quat> bind = bind_local_rotations(scene, skin);
+  ASSERT_EQ(bind.size(), 2u);
+  EXPECT_EQ(bind[0], scene.nodes[0].rotation);
+  EXPECT_LT(angle_between(bind[1], child), 1e-6);
+}
+
+// The sample characters are bound in their rest pose: the rest rotations are the bind ones.
+TEST(BindLocalRotations, AreTheRestRotationsOfTheSampleCharacters) {
+  for (const char* relative : kCharacters) {
+    SCOPED_TRACE(relative);
+    IMPORT_OR_SKIP(scene, relative);
+    for (const Skin& skin : scene.skins) {
+      const std::vector<glm::quat> bind = bind_local_rotations(scene, skin);
+      double worst = 0.0;
+      for (std::size_t j = 0; j < skin.joints.size(); ++j)
+        worst = std::max(worst, angle_between(bind[j], scene.nodes[skin.joints[j]].rotation));
+      EXPECT_LT(worst, 1e-3);  // RiggedFigure rests slightly off its bind pose
+    }
+  }
+}
+
 }  // namespace
 }  // namespace prt::bake

@@ -56,6 +56,14 @@ class ScenePose {
 // world(joint_j) * inverse_bind_j for each joint of `skin`.
 std::vector<glm::mat4> joint_matrices(const Skin& skin, const std::vector<glm::mat4>& world);
 
+// Each joint's local rotation in the bind pose the inverse bind matrices describe (which need
+// not be the file's rest pose): the rotation of IBM_parent * inverse(IBM_joint). A joint whose
+// parent is not a joint of `skin` gets its rest rotation: the matrices say where the skin's mesh
+// space is relative to each joint, not where that space is in the world, so a root's bind
+// rotation is only defined up to that placement. Scale and shear are removed by polar
+// decomposition before taking the rotation.
+std::vector<glm::quat> bind_local_rotations(const Scene& scene, const Skin& skin);
+
 // The linear-blend skinning matrix of one vertex: sum_k (w_k / sum w) J[joint_k] over the
 // non-zero weights naming existing joints; `fallback` when the weights sum to zero or less.
 glm::mat4 blend_joints(const glm::u16vec4& joints, const glm::vec4& weights,
