@@ -31,6 +31,7 @@ struct NodeTRS {
 glm::vec4 sample_channel(const AnimationChannel& channel, float time);
 
 // Every node's local transform at one instant: the file's own transforms until a clip is applied.
+// It refers to `scene`, which must outlive it.
 class ScenePose {
  public:
   explicit ScenePose(const Scene& scene);
