@@ -97,6 +97,29 @@ std::vector<glm::mat4> vertex_transforms(const Scene& scene, const std::vector<g
   return out;
 }
 
+// Normals through each vertex's inverse transpose, divided by their length (the importer's
+// arithmetic). A vertex whose transform collapsed its normal takes the area-weighted normal of the
+// placed surface, as the importer does for a zero normal in the file.
+void place_normals(const std::vector<glm::mat4>& transform, Mesh& mesh) {
+  std::vector<glm::vec3> fallback;
+  mesh.normals.resize(transform.size());
+  for (std::size_t i = 0; i < transform.size(); ++i) {
+    glm::vec3 normal = glm::inverseTranspose(glm::mat3(transform[i])) * mesh.local_normals[i];
+    const float len = glm::length(normal);
+    if (len > 1e-20f && std::isfinite(len)) {
+      normal /= len;
+    } else {
+      if (fallback.empty()) {  // rare: a copy keeps the normals placed so far
+        Mesh surface = mesh;
+        generate_normals(surface);
+        fallback = surface.normals;
+      }
+      normal = fallback[i];
+    }
+    mesh.normals[i] = normal;
+  }
+}
+
 }  // namespace
 
 void place_mesh(const Scene& scene, const std::vector<glm::mat4>& world, Mesh& mesh) {
@@ -105,25 +128,11 @@ void place_mesh(const Scene& scene, const std::vector<glm::mat4>& world, Mesh& m
   mesh.positions.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     mesh.positions[i] = glm::vec3(transform[i] * glm::vec4(mesh.local_positions[i], 1.0f));
-  bool need_generated = mesh.normals_generated || mesh.local_normals.size() != n;
-  if (!need_generated) {
-    mesh.normals.resize(n);
-    for (std::size_t i = 0; i < n && !need_generated; ++i) {
-      // The importer's arithmetic: the inverse transpose, then a division by the length.
-      glm::vec3 normal = glm::inverseTranspose(glm::mat3(transform[i])) * mesh.local_normals[i];
-      const float len = glm::length(normal);
-      if (len > 1e-20f && std::isfinite(len)) {
-        normal /= len;
-        mesh.normals[i] = normal;
-      } else {
-        need_generated = true;  // a collapsed joint: the placed surface decides
-      }
-    }
-  }
-  if (need_generated) {
-    const bool generated = mesh.normals_generated;
-    generate_normals(mesh);
-    mesh.normals_generated = generated;
+  if (mesh.normals_generated || mesh.local_normals.size() != n) {
+    generate_normals(mesh);  // the file had none: the placed surface decides
+    mesh.normals_generated = true;
+  } else {
+    place_normals(transform, mesh);
   }
   // World tangents cannot be carried through a pose (the mesh keeps no local ones): they are
   // derived again from the UVs at the placed positions.

@@ -172,6 +172,35 @@ TEST(PlaceMesh, NormalsStayPerpendicularUnderNonUniformScale) {
   }
 }
 
+// A triangle in z = 0 whose first vertex hangs on a joint scaled to nothing: that vertex's normal
+// has no inverse transpose and takes the placed surface's (+Z); the other two, on an untouched
+// joint, keep the tilted normal the file gives them.
+TEST(PlaceMesh, ACollapsedJointTakesTheSurfaceNormalForItsVerticesOnly) {
+  Scene scene;
+  scene.nodes.resize(2);
+  scene.nodes[1].scale = glm::vec3(0.0f);
+  scene.nodes[1].local = NodeTRS{{}, {}, glm::vec3(0.0f)}.matrix();
+  Skin skin;
+  skin.joints = {0, 1};
+  skin.inverse_bind = {glm::mat4(1.0f), glm::mat4(1.0f)};
+  scene.skins.push_back(skin);
+  Mesh mesh;
+  mesh.skin = 0;
+  mesh.local_positions = {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+  const glm::vec3 tilted(0.6f, 0.0f, 0.8f);
+  mesh.local_normals = {tilted, tilted, tilted};
+  mesh.joints0 = {{1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+  mesh.weights0 = {{1, 0, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}};
+  mesh.indices = {0, 1, 2};
+  scene.meshes.push_back(mesh);
+  const Scene posed = posed_scene(scene, ScenePose(scene));
+  const std::vector<glm::vec3>& normals = posed.meshes[0].normals;
+  ASSERT_EQ(normals.size(), 3u);
+  EXPECT_NEAR(glm::length(normals[0] - glm::vec3(0.0f, 0.0f, 1.0f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(normals[1] - tilted), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(normals[2] - tilted), 0.0f, 1e-6f);
+}
+
 TEST(BlendJoints, NormalisesWeightsAndFallsBackWhenThereAreNone) {
   const std::vector<glm::mat4> joints = {glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 0)),
                                          glm::translate(glm::mat4(1.0f), glm::vec3(0, 4, 0))};
