@@ -37,9 +37,10 @@ RayBatch::RayBatch(const EmbreeScene& scene, RayBatchMode mode)
 
 RayBatch::~RayBatch() = default;
 
-std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
-                           const glm::vec3* directions, std::size_t count, unsigned char* visible,
-                           float tnear, float tfar) {
+const std::vector<std::uint32_t>& RayBatch::above_horizon(const glm::vec3& normal,
+                                                          const glm::vec3* directions,
+                                                          std::size_t count, unsigned char* flags,
+                                                          unsigned char below) {
   std::vector<std::uint32_t>& above = scratch_->above;
   above.clear();
   for (std::size_t i = 0; i < count; ++i) {
@@ -47,9 +48,16 @@ std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
     if (glm::dot(normal, directions[i]) > 0.0f) {
       above.push_back(static_cast<std::uint32_t>(i));
     } else {
-      visible[i] = 0;
+      flags[i] = below;
     }
   }
+  return above;
+}
+
+std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
+                           const glm::vec3* directions, std::size_t count, unsigned char* visible,
+                           float tnear, float tfar) {
+  const std::vector<std::uint32_t>& above = above_horizon(normal, directions, count, visible, 0);
   if (above.empty()) return 0;
   RTCScene scene = scene_.impl_->scene;
   RTCIntersectContext context;
@@ -102,6 +110,58 @@ std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
         visible[above[k]] = rays[k].tfar < 0.0f ? 0 : 1;
       }
       break;
+    }
+  }
+  return above.size();
+}
+
+std::size_t RayBatch::intersect(const glm::vec3& origin, const glm::vec3& normal,
+                                const glm::vec3* directions, std::size_t count, RayHit* hits,
+                                unsigned char* found, float tnear, float tfar) {
+  const std::vector<std::uint32_t>& above = above_horizon(normal, directions, count, found, 0);
+  if (above.empty()) return 0;
+  const EmbreeScene::Impl& im = *scene_.impl_;
+  if (mode_ != RayBatchMode::Packet16) {  // the reference: one ray at a time
+    for (std::uint32_t i : above)
+      found[i] = scene_.intersect(origin, directions[i], &hits[i], tnear, tfar) ? 1 : 0;
+    return above.size();
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (std::size_t first = 0; first < above.size(); first += kPacket) {
+    const std::size_t lanes = std::min(kPacket, above.size() - first);
+    alignas(64) int valid[kPacket];
+    alignas(64) RTCRayHit16 packet;
+    for (std::size_t k = 0; k < kPacket; ++k) {
+      const bool on = k < lanes;
+      valid[k] = on ? -1 : 0;
+      const glm::vec3 d = on ? directions[above[first + k]] : glm::vec3(0.0f, 0.0f, 1.0f);
+      packet.ray.org_x[k] = origin.x;
+      packet.ray.org_y[k] = origin.y;
+      packet.ray.org_z[k] = origin.z;
+      packet.ray.dir_x[k] = d.x;
+      packet.ray.dir_y[k] = d.y;
+      packet.ray.dir_z[k] = d.z;
+      packet.ray.tnear[k] = tnear;
+      packet.ray.tfar[k] = tfar;
+      packet.ray.time[k] = 0.0f;
+      packet.ray.mask[k] = kEmbreeAllMask;
+      packet.ray.id[k] = 0;
+      packet.ray.flags[k] = 0;
+      packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      packet.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, im.scene, &context, &packet);
+    for (std::size_t k = 0; k < lanes; ++k) {
+      const std::uint32_t i = above[first + k], geometry = packet.hit.geomID[k];
+      found[i] = geometry == RTC_INVALID_GEOMETRY_ID ? 0 : 1;
+      if (!found[i]) continue;
+      hits[i].t = packet.ray.tfar[k];
+      hits[i].mesh = im.geometry_mesh[geometry];
+      hits[i].triangle = im.geometry_prims[geometry][packet.hit.primID[k]];
+      hits[i].u = packet.hit.u[k];
+      hits[i].v = packet.hit.v[k];
     }
   }
   return above.size();

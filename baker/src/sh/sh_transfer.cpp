@@ -136,20 +136,22 @@ class TransferBaker {
     const std::string stage = "sh transfer: bounce " + std::to_string(index);
     render::parallel_tasks(tasks_, ctx, stage, [&](std::size_t task) {
       std::vector<double> sum(3 * coeffs_);
+      std::vector<glm::vec3> w(settings_.rays);
+      std::vector<RayHit> hits(settings_.rays);
+      std::vector<unsigned char> found(settings_.rays);
+      RayBatch batch(*rays_);
       std::uint64_t traced = 0;
       for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
-        const glm::vec3 origin = rays_->offset_origin(vertices_.position[v], n);
         const VertexDirections directions(settings_.seed, v, n);
+        for (std::uint32_t i = 0; i < settings_.rays; ++i) w[i] = directions(i);
+        // Directions on the horizon get no weight; the batch marks them not found.
+        traced += batch.intersect(rays_->offset_origin(vertices_.position[v], n), n, w.data(),
+                                  w.size(), hits.data(), found.data());
         std::fill(sum.begin(), sum.end(), 0.0);
-        for (std::uint32_t i = 0; i < settings_.rays; ++i) {
-          const glm::vec3 w = directions(i);
-          if (!(glm::dot(n, w) > 0.0f)) continue;
-          ++traced;
-          RayHit hit;
-          if (rays_->intersect(origin, w, &hit)) gather(hit, w, previous, &sum);
-        }
+        for (std::uint32_t i = 0; i < settings_.rays; ++i)
+          if (found[i]) gather(hits[i], w[i], previous, &sum);
         store(v, sum, coeffs_, &out);
       }
       task_rays_[task] += traced;

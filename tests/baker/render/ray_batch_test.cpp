@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The ray batch: every mode gives each direction the bit EmbreeScene::occluded (rtcOccluded1)
-// gives it, on the demo scene and on a sphere above a plane whose occlusion cone is known;
-// directions on or below the horizon are never cast.
+// gives it, on the demo scene and on a sphere above a plane whose occlusion cone is known, and
+// the hit EmbreeScene::intersect gives it; directions on or below the horizon are never cast.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -87,6 +87,52 @@ TEST(RayBatch, ModesAgreeWithSingleRaysOnTheDemoScene) {
   }
   EXPECT_GT(vertices, 100u);
   EXPECT_GT(occluded_some, vertices / 10);  // the scene shadows itself: the test sees both bits
+}
+
+// Nearest hits: every mode reports exactly EmbreeScene::intersect's hit (rtcIntersect1), bit for
+// bit in t and the barycentrics, since the bounce passes interpolate with them; below the horizon
+// nothing is cast and the hit is left alone.
+TEST(RayBatch, IntersectGivesEmbreeScenesHitsBitForBit) {
+  const Scene scene = make_demo_scene();
+  const EmbreeScene rays(scene, Context{});
+  const std::vector<glm::vec3> dirs = sphere_directions(333, 12);
+  std::size_t hits_seen = 0, misses_seen = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    for (std::size_t v = 0; v < mesh.vertex_count(); v += 131) {
+      const glm::vec3 n = glm::normalize(mesh.normals[v]);
+      const glm::vec3 origin = rays.offset_origin(mesh.positions[v], n);
+      for (RayBatchMode mode : kModes) {
+        RayBatch batch(rays, mode);
+        RayHit untouched;
+        untouched.t = -7.0f;
+        std::vector<RayHit> hits(dirs.size(), untouched);
+        std::vector<unsigned char> found(dirs.size(), 7);
+        std::size_t cast = 0;
+        reference(rays, origin, n, dirs, 0.0f, INFINITY, &cast);
+        ASSERT_EQ(batch.intersect(origin, n, dirs.data(), dirs.size(), hits.data(), found.data()),
+                  cast);
+        for (std::size_t i = 0; i < dirs.size(); ++i) {
+          RayHit want;
+          const bool above = glm::dot(n, dirs[i]) > 0.0f;
+          const bool hit = above && rays.intersect(origin, dirs[i], &want);
+          ASSERT_EQ(found[i], hit ? 1 : 0) << ray_batch_mode_name(mode) << " direction " << i;
+          if (!hit) {
+            EXPECT_EQ(hits[i].t, -7.0f);
+            ++misses_seen;
+            continue;
+          }
+          ++hits_seen;
+          EXPECT_EQ(hits[i].mesh, want.mesh);
+          EXPECT_EQ(hits[i].triangle, want.triangle);
+          EXPECT_EQ(hits[i].t, want.t);
+          EXPECT_EQ(hits[i].u, want.u);
+          EXPECT_EQ(hits[i].v, want.v);
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits_seen, 1000u);
+  EXPECT_GT(misses_seen, 1000u);
 }
 
 TEST(RayBatch, SphereAbovePlaneOccludesItsCone) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The bakes' shared visibility core: one vertex's directions cast from one origin as occlusion
-// rays, in Embree packets by default.
+// or nearest-hit rays, in Embree packets by default.
 //
 // A direction on or below the horizon of the normal (!(dot(n, d) > 0)) is never cast and counts
 // as not visible: the bakes give it no weight. The others are cast with the EmbreeScene's
@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -43,10 +44,22 @@ class RayBatch {
                    std::size_t count, unsigned char* visible, float tnear = 0.0f,
                    float tfar = INFINITY);
 
+  // found[i] = 1 and hits[i] = the nearest hit, as EmbreeScene::intersect reports it, when
+  // directions[i] is above the horizon of `normal` and the ray hits within [tnear, tfar]; else
+  // found[i] = 0 and hits[i] is left alone. Packet16 casts rtcIntersect16 packets, the other
+  // modes one ray at a time. Returns the rays cast.
+  std::size_t intersect(const glm::vec3& origin, const glm::vec3& normal,
+                        const glm::vec3* directions, std::size_t count, RayHit* hits,
+                        unsigned char* found, float tnear = 0.0f, float tfar = INFINITY);
+
   RayBatchMode mode() const { return mode_; }
 
  private:
   struct Scratch;  // Embree ray buffers, kept out of this header
+  // The input indices of the directions above the horizon of `normal`; the others get `below`.
+  const std::vector<std::uint32_t>& above_horizon(const glm::vec3& normal,
+                                                  const glm::vec3* directions, std::size_t count,
+                                                  unsigned char* flags, unsigned char below);
   const EmbreeScene& scene_;
   RayBatchMode mode_;
   std::unique_ptr<Scratch> scratch_;
