@@ -336,32 +336,42 @@ std::uint64_t gather_bounce(std::uint32_t v, const WaveletTransfer& previous,
                             const VertexTable& vertices, const Scene& scene,
                             const EmbreeScene& rays, const wavelet::TexelGrid& grid,
                             const WaveletTransferSettings& s, std::vector<float>& row) {
-  const glm::vec3 n = vertices.normal[v], origin = rays.offset_origin(vertices.position[v], n);
-  std::vector<std::pair<std::uint32_t, double>> hits;
-  std::uint64_t traced = 0;
+  const glm::vec3 n = vertices.normal[v];
+  std::vector<glm::vec3> directions;
+  std::vector<double> weights;
   TexelSamples scratch;
-  for_each_sample(
-      grid, n, hash_key(s.seed, v, kJitterTag), s.samples, scratch,
-      [&](std::uint32_t, const glm::vec3& w, double weight) {
-        ++traced;
-        RayHit hit;
-        if (!rays.intersect(origin, w, &hit)) return;
-        const Mesh& mesh = scene.meshes[hit.mesh];
-        const std::size_t first = vertices.first_of_mesh[hit.mesh];
-        const float bary[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};
-        std::uint32_t corner[3];
-        glm::vec3 normal(0.0f);
-        for (int c = 0; c < 3; ++c) {
-          corner[c] =
-              static_cast<std::uint32_t>(first + mesh.indices[3 * std::size_t(hit.triangle) + c]);
-          normal += bary[c] * vertices.normal[corner[c]];
-        }
-        if (glm::dot(normal, w) >= 0.0f) return;  // the back, or no normal
-        for (int c = 0; c < 3; ++c) {
-          const glm::vec3& rho = vertices.albedo[corner[c]];
-          hits.emplace_back(corner[c], weight * bary[c] * (rho.r + rho.g + rho.b) / 3.0);
-        }
-      });
+  for_each_sample(grid, n, hash_key(s.seed, v, kJitterTag), s.samples, scratch,
+                  [&](std::uint32_t, const glm::vec3& w, double weight) {
+                    directions.push_back(w);
+                    weights.push_back(weight);
+                  });
+  // Every visited sample is above the horizon (cos > 0), so the batch casts them all.
+  std::vector<RayHit> found_hits(directions.size());
+  std::vector<unsigned char> found(directions.size());
+  RayBatch batch(rays);
+  const std::uint64_t traced =
+      batch.intersect(rays.offset_origin(vertices.position[v], n), n, directions.data(),
+                      directions.size(), found_hits.data(), found.data());
+  std::vector<std::pair<std::uint32_t, double>> hits;
+  for (std::size_t k = 0; k < directions.size(); ++k) {
+    if (!found[k]) continue;
+    const RayHit& hit = found_hits[k];
+    const Mesh& mesh = scene.meshes[hit.mesh];
+    const std::size_t first = vertices.first_of_mesh[hit.mesh];
+    const float bary[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};
+    std::uint32_t corner[3];
+    glm::vec3 normal(0.0f);
+    for (int c = 0; c < 3; ++c) {
+      corner[c] =
+          static_cast<std::uint32_t>(first + mesh.indices[3 * std::size_t(hit.triangle) + c]);
+      normal += bary[c] * vertices.normal[corner[c]];
+    }
+    if (glm::dot(normal, directions[k]) >= 0.0f) continue;  // the back, or no normal
+    for (int c = 0; c < 3; ++c) {
+      const glm::vec3& rho = vertices.albedo[corner[c]];
+      hits.emplace_back(corner[c], weights[k] * bary[c] * (rho.r + rho.g + rho.b) / 3.0);
+    }
+  }
   std::sort(hits.begin(), hits.end());
   std::vector<double> sum(row.size(), 0.0);
   for (std::size_t i = 0; i < hits.size();) {
