@@ -13,6 +13,30 @@ namespace {
 
 constexpr std::size_t kPacket = 16;
 
+// Lanes [0, lanes) of a packet carry directions[above[first + k]] from `origin`; the rest are
+// switched off (valid = 0) with a harmless direction.
+void fill_packet(const glm::vec3& origin, const glm::vec3* directions,
+                 const std::vector<std::uint32_t>& above, std::size_t first, std::size_t lanes,
+                 float tnear, float tfar, int* valid, RTCRay16& packet) {
+  for (std::size_t k = 0; k < kPacket; ++k) {
+    const bool on = k < lanes;
+    valid[k] = on ? -1 : 0;
+    const glm::vec3 d = on ? directions[above[first + k]] : glm::vec3(0.0f, 0.0f, 1.0f);
+    packet.org_x[k] = origin.x;
+    packet.org_y[k] = origin.y;
+    packet.org_z[k] = origin.z;
+    packet.dir_x[k] = d.x;
+    packet.dir_y[k] = d.y;
+    packet.dir_z[k] = d.z;
+    packet.tnear[k] = tnear;
+    packet.tfar[k] = tfar;
+    packet.time[k] = 0.0f;
+    packet.mask[k] = kEmbreeAllMask;
+    packet.id[k] = 0;
+    packet.flags[k] = 0;
+  }
+}
+
 }  // namespace
 
 struct RayBatch::Scratch {
@@ -75,23 +99,7 @@ std::size_t RayBatch::cast(const glm::vec3& origin, const glm::vec3& normal,
         const std::size_t lanes = std::min(kPacket, above.size() - first);
         alignas(64) int valid[kPacket];
         alignas(64) RTCRay16 packet;
-        for (std::size_t k = 0; k < kPacket; ++k) {
-          const bool on = k < lanes;
-          valid[k] = on ? -1 : 0;
-          const glm::vec3 d = on ? directions[above[first + k]] : glm::vec3(0.0f, 0.0f, 1.0f);
-          packet.org_x[k] = origin.x;
-          packet.org_y[k] = origin.y;
-          packet.org_z[k] = origin.z;
-          packet.dir_x[k] = d.x;
-          packet.dir_y[k] = d.y;
-          packet.dir_z[k] = d.z;
-          packet.tnear[k] = tnear;
-          packet.tfar[k] = tfar;
-          packet.time[k] = 0.0f;
-          packet.mask[k] = kEmbreeAllMask;
-          packet.id[k] = 0;
-          packet.flags[k] = 0;
-        }
+        fill_packet(origin, directions, above, first, lanes, tnear, tfar, valid, packet);
         rtcOccluded16(valid, scene, &context, &packet);
         for (std::size_t k = 0; k < lanes; ++k) {
           visible[above[first + k]] = packet.tfar[k] < 0.0f ? 0 : 1;
@@ -132,22 +140,8 @@ std::size_t RayBatch::intersect(const glm::vec3& origin, const glm::vec3& normal
     const std::size_t lanes = std::min(kPacket, above.size() - first);
     alignas(64) int valid[kPacket];
     alignas(64) RTCRayHit16 packet;
+    fill_packet(origin, directions, above, first, lanes, tnear, tfar, valid, packet.ray);
     for (std::size_t k = 0; k < kPacket; ++k) {
-      const bool on = k < lanes;
-      valid[k] = on ? -1 : 0;
-      const glm::vec3 d = on ? directions[above[first + k]] : glm::vec3(0.0f, 0.0f, 1.0f);
-      packet.ray.org_x[k] = origin.x;
-      packet.ray.org_y[k] = origin.y;
-      packet.ray.org_z[k] = origin.z;
-      packet.ray.dir_x[k] = d.x;
-      packet.ray.dir_y[k] = d.y;
-      packet.ray.dir_z[k] = d.z;
-      packet.ray.tnear[k] = tnear;
-      packet.ray.tfar[k] = tfar;
-      packet.ray.time[k] = 0.0f;
-      packet.ray.mask[k] = kEmbreeAllMask;
-      packet.ray.id[k] = 0;
-      packet.ray.flags[k] = 0;
       packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
