@@ -11,13 +11,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
 std::uint32_t reverse_bits(std::uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
@@ -115,13 +108,6 @@ float cell_density(const double* row_cdf, const double* column_cdf, int r, int c
 }
 
 }  // namespace
-
-std::uint32_t hash_key(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
-  std::uint64_t h = splitmix64(a);
-  h = splitmix64(h ^ b);
-  h = splitmix64(h ^ c);
-  return static_cast<std::uint32_t>(h >> 32);
-}
 
 SampleStream::SampleStream(std::uint32_t seed) : seed_(seed) {
   for (std::uint32_t pair = 0; pair < kCachedPairs; ++pair) cached_[pair] = keys(pair);

@@ -54,6 +54,11 @@ TexelGrid::TexelGrid(std::uint32_t param, std::uint32_t size)
       }
     }
   }
+  for (const glm::vec3& d : corner_) {
+    corner_x_.push_back(d.x);
+    corner_y_.push_back(d.y);
+    corner_z_.push_back(d.z);
+  }
 }
 
 bool TexelGrid::below_horizon(std::uint32_t j, const glm::vec3& n) const {
@@ -82,9 +87,15 @@ TexelGrid::Horizon::Horizon(const TexelGrid& grid, const glm::vec3& n,
                             std::vector<unsigned char>& above)
     : grid_(grid), n_(n), above_(nullptr) {
   if (grid.param_ != PRT_WAVELET_PARAM_CUBE) return;
-  above.resize(grid.corner_.size());
-  for (std::size_t i = 0; i < grid.corner_.size(); ++i)
-    above[i] = glm::dot(n, grid.corner_[i]) > 0.0f ? 1 : 0;
+  const std::size_t count = grid.corner_.size();
+  const float* cx = grid.corner_x_.data();
+  const float* cy = grid.corner_y_.data();
+  const float* cz = grid.corner_z_.data();
+  const float nx = n.x, ny = n.y, nz = n.z;  // locals: the byte stores cannot alias them
+  above.resize(count);
+  unsigned char* out = above.data();
+  // glm::dot's order of additions, so every corner falls on the same side as with it.
+  for (std::size_t i = 0; i < count; ++i) out[i] = (nx * cx[i] + ny * cy[i]) + nz * cz[i] > 0.0f;
   above_ = above.data();
 }
 
@@ -116,13 +127,6 @@ void TexelGrid::sample(std::uint32_t face, std::size_t count, const float* u, co
   }
   for (std::size_t i = 0; i < count; ++i)
     if (on_grid[i]) jacobian[i] = this->jacobian(u[i], v[i]);
-}
-
-double TexelGrid::jacobian(float u, float v) const {
-  const double a = 2.0 * u / size_ - 1.0, b = 2.0 * v / size_ - 1.0, r2 = a * a + b * b;
-  // Cube: d omega = ds dt / (1 + s^2 + t^2)^(3/2); paraboloid: 4 da db / (1 + r^2)^2.
-  const double q = 1.0 + r2;
-  return param_ == PRT_WAVELET_PARAM_CUBE ? 1.0 / (q * std::sqrt(q)) : 1.0 / (q * q);
 }
 
 }  // namespace prt::bake::wavelet

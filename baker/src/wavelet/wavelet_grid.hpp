@@ -5,10 +5,12 @@
 // so bake and runtime cannot disagree on the texel layout.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include <prt/prt_wavelet.h>
 #include <glm/glm.hpp>
 
 namespace prt::bake::wavelet {
@@ -50,12 +52,19 @@ class TexelGrid {
               double* jacobian, unsigned char* on_grid) const;
 
  private:
-  // The Jacobian at (u, v), which has a direction.
-  double jacobian(float u, float v) const;
+  // The Jacobian at (u, v), which has a direction. Inline: called once per texel sample.
+  double jacobian(float u, float v) const {
+    const double a = 2.0 * u / size_ - 1.0, b = 2.0 * v / size_ - 1.0, r2 = a * a + b * b;
+    // Cube: d omega = ds dt / (1 + s^2 + t^2)^(3/2); paraboloid: 4 da db / (1 + r^2)^2.
+    const double q = 1.0 + r2;
+    return param_ == PRT_WAVELET_PARAM_CUBE ? 1.0 / (q * std::sqrt(q)) : 1.0 / (q * q);
+  }
 
   std::uint32_t param_, size_, faces_;
   std::vector<double> solid_angle_;
   std::vector<glm::vec3> corner_;  // cube: (size+1)^2 corner directions per face
+  // The same corners by component, so that Horizon's dot products over all of them vectorise.
+  std::vector<float> corner_x_, corner_y_, corner_z_;
 };
 
 }  // namespace prt::bake::wavelet

@@ -154,7 +154,6 @@ void for_each_sample(const wavelet::TexelGrid& grid, const glm::vec3& n, std::ui
 // One thread's buffers for bake_texels, reused from vertex to vertex.
 struct TexelScratch {
   TexelSamples samples;
-  std::vector<double> sum;
   std::vector<std::uint32_t> texel;
   std::vector<double> weight;
   std::vector<glm::vec3> direction;
@@ -166,12 +165,10 @@ struct TexelScratch {
 std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
                           const glm::vec3& origin, RayBatch* batch, std::uint32_t vertex_key,
                           std::uint32_t samples, TexelScratch& scratch, float* row) {
-  std::vector<double>& sum = scratch.sum;
   std::vector<std::uint32_t>& texel = scratch.texel;
   std::vector<double>& weight = scratch.weight;
   std::vector<glm::vec3>& direction = scratch.direction;
   std::vector<unsigned char>& visible = scratch.visible;
-  sum.assign(grid.count(), 0.0);
   texel.clear();
   weight.clear();
   direction.clear();
@@ -185,12 +182,16 @@ std::uint64_t bake_texels(const wavelet::TexelGrid& grid, const glm::vec3& n,
   std::uint64_t traced = 0;
   // Every sample is above the horizon (cosine > 0), so the batch casts all of them.
   if (batch) traced = batch->cast(origin, n, direction.data(), direction.size(), visible.data());
-  for (std::size_t i = 0; i < texel.size(); ++i) {
-    if (visible[i]) sum[texel[i]] += weight[i];
-  }
-  // The samples' weights integrate over the texel; the transfer is the texel's mean (§14).
-  for (std::uint32_t j = 0; j < grid.count(); ++j) {
-    row[j] = sum[j] == 0.0 ? 0.0f : static_cast<float>(sum[j] / grid.solid_angle(j));
+  // A texel's samples come one after another, so its sum is the run's (from 0.0, in sample
+  // order); the texels no sample reached stay 0. The samples' weights integrate over the texel;
+  // the transfer is the texel's mean (§14).
+  std::fill(row, row + grid.count(), 0.0f);
+  for (std::size_t i = 0; i < texel.size();) {
+    const std::uint32_t j = texel[i];
+    double sum = 0.0;
+    for (; i < texel.size() && texel[i] == j; ++i)
+      if (visible[i]) sum += weight[i];
+    if (sum != 0.0) row[j] = static_cast<float>(sum / grid.solid_angle(j));
   }
   return traced;
 }
@@ -427,6 +428,30 @@ std::vector<std::uint32_t> select_wavelet_coefficients(const std::vector<float>&
 
 namespace {
 
+// The keys (|value|'s bits above the complemented index) of the entries of `order` whose
+// |value| is at least the keep-th largest's, rounded down to a histogram bin: every one of the
+// keep largest keys and few others, so nth_element sorts far fewer. A float's bits order as its
+// magnitude, so the bins (its top 12 bits: exponent and 3 mantissa bits) order as well.
+std::vector<std::uint64_t> largest_keys(const std::vector<float>& row,
+                                        const std::vector<std::uint32_t>& order,
+                                        std::uint32_t keep) {
+  constexpr int kBinShift = 20;
+  std::vector<std::uint32_t> bits(order.size());
+  std::vector<std::uint32_t> histogram(std::size_t(1) << (32 - kBinShift), 0);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const float magnitude = std::abs(row[order[i]]);
+    std::memcpy(&bits[i], &magnitude, sizeof bits[i]);
+    ++histogram[bits[i] >> kBinShift];
+  }
+  std::size_t bin = histogram.size(), above = 0;
+  while (above < keep && bin > 0) above += histogram[--bin];
+  std::vector<std::uint64_t> keys;
+  keys.reserve(above);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if ((bits[i] >> kBinShift) >= bin) keys.push_back((std::uint64_t(bits[i]) << 32) | ~order[i]);
+  return keys;
+}
+
 std::vector<std::uint32_t> select_and_measure(const std::vector<float>& row, std::uint32_t keep,
                                               double keep_energy, double* squared_norm,
                                               std::size_t* nonzeros) {
@@ -459,13 +484,7 @@ std::vector<std::uint32_t> select_and_measure(const std::vector<float>& row, std
     // `larger` as one integer comparison: |value|'s bits (ordered as |value|, being >= 0) above
     // the complemented index (lower index first on ties). The keys are distinct, so the kept
     // set is the one nth_element with `larger` picks.
-    std::vector<std::uint64_t> keys(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const float magnitude = std::abs(row[order[i]]);
-      std::uint32_t bits;
-      std::memcpy(&bits, &magnitude, sizeof bits);
-      keys[i] = (std::uint64_t(bits) << 32) | ~order[i];
-    }
+    std::vector<std::uint64_t> keys = largest_keys(row, order, keep);
     std::nth_element(keys.begin(), keys.begin() + keep, keys.end(), std::greater<>());
     order.resize(keep);
     for (std::size_t i = 0; i < keep; ++i) order[i] = ~std::uint32_t(keys[i]);

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <random>
 #include <vector>
 
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
@@ -168,6 +169,51 @@ TEST(WaveletTruncation, KeepsTheLargestMagnitudesTiesToTheLowerIndex) {
   EXPECT_EQ(select_wavelet_coefficients(row, 0, 0.0),
             (std::vector<std::uint32_t>{1, 2, 3, 4, 5, 7}));
   EXPECT_EQ(select_wavelet_coefficients(row, 100, 0.0).size(), 6u);
+}
+
+// The kept set against a full sort by (|value| descending, index ascending), on rows whose
+// values crowd into few magnitudes (many in the bin of the keep-th largest, exact ties, zeros,
+// subnormals, infinities), so the selection's pre-filter by magnitude bin is exercised.
+TEST(WaveletTruncation, KeepsWhatAFullSortKeeps) {
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<float> row(1 + random() % 3000);
+    const float base = std::ldexp(1.0f, int(random() % 60) - 30);
+    for (float& value : row) {
+      switch (random() % 6) {
+        case 0:
+          value = 0.0f;
+          break;
+        case 1:
+          value = base;
+          break;  // exact ties
+        case 2:
+          value = -base * (1.0f + float(random() % 8) / 64.0f);
+          break;  // one bin
+        case 3:
+          value = std::ldexp(float(random() % 1000), int(random() % 40) - 20);
+          break;
+        case 4:
+          value = trial % 10 == 0 ? 1e-42f : base;
+          break;  // subnormal
+        default:
+          value = trial % 25 == 0 ? -INFINITY : base * 2.0f;
+          break;
+      }
+    }
+    std::vector<std::uint32_t> nonzero;
+    for (std::uint32_t j = 0; j < row.size(); ++j)
+      if (row[j] != 0.0f) nonzero.push_back(j);
+    std::sort(nonzero.begin(), nonzero.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const float fa = std::abs(row[a]), fb = std::abs(row[b]);
+      return fa > fb || (fa == fb && a < b);
+    });
+    const std::uint32_t keep = 1 + random() % 1200;
+    std::vector<std::uint32_t> expected(
+        nonzero.begin(), nonzero.begin() + std::min<std::size_t>(keep, nonzero.size()));
+    std::sort(expected.begin(), expected.end());
+    ASSERT_EQ(select_wavelet_coefficients(row, keep, 0.0), expected) << "trial " << trial;
+  }
 }
 
 TEST(WaveletTruncation, KeepEnergyTakesTheFewestReachingTheFraction) {

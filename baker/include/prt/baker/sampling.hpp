@@ -19,8 +19,22 @@
 
 namespace prt::bake {
 
-// Mixes values into a well-distributed 32-bit key (splitmix64 finaliser).
-std::uint32_t hash_key(std::uint64_t a, std::uint64_t b = 0, std::uint64_t c = 0);
+// The splitmix64 finaliser.
+inline std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// Mixes values into a well-distributed 32-bit key (splitmix64 finaliser). Inline: bakes call it
+// once per texel sample.
+inline std::uint32_t hash_key(std::uint64_t a, std::uint64_t b = 0, std::uint64_t c = 0) {
+  std::uint64_t h = splitmix64(a);
+  h = splitmix64(h ^ b);
+  h = splitmix64(h ^ c);
+  return static_cast<std::uint32_t>(h >> 32);
+}
 
 class SampleStream {
  public:
