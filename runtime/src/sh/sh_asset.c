@@ -131,7 +131,7 @@ static prt_result shade_scalar(const prt_asset* asset, const float* light_rgb, u
  * (prt_backend_get_info applies the CPU, the ISA limit and the backend limit). */
 static prt_sh_simd_kernel simd_kernel(const prt_context* context) {
   const prt_simd_isa isa = prt_internal_simd_isa(context);
-  if (isa == PRT_SIMD_ISA_AVX2) return prt_sh_shade_avx2;
+  if (isa >= PRT_SIMD_ISA_AVX2) return prt_sh_shade_avx2; /* AVX-512 contexts too */
   if (isa == PRT_SIMD_ISA_SSE41) return prt_sh_shade_sse41;
   return NULL;
 }
