@@ -21,8 +21,10 @@
  * call (sh_asset.c): channel ch's weight k is D * unit[ch][0] for an integer D written as
  * PRT_SH_FIXED_LIMBS signed base-256 digits, digit l (in [-128, 127]) worth unit[ch][l] =
  * unit[ch][0] * 256^l, unit[ch][0] a power of two. Each limb's dot product with the u8 values is
- * then an exact int32 sum; only the final combination of the limbs rounds. */
-#define PRT_SH_FIXED_LIMBS 4
+ * then an exact int32 sum; only the rounding of the weights to D and the final combination of the
+ * limbs round. Three limbs (24 bits): a fourth costs a third more products for accuracy that
+ * prt_sh_fix_weights's check against the bound does not need. */
+#define PRT_SH_FIXED_LIMBS 3
 #define PRT_SH_FIXED_MAX_DWORDS 64 /* order 16: 256 coefficients, four per dword */
 
 typedef struct prt_sh_fixed_weights {

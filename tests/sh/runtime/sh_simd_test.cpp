@@ -239,8 +239,9 @@ INSTANTIATE_TEST_SUITE_P(Isa, ShSimd, kSimdIsas, isa_test_name);
 // --- The AVX-512 fixed-point kernel ------------------------------------------------------------
 
 // With AVX-512 VNNI, 8-bit values go through the fixed-point kernel: the weights are rounded to
-// 32-bit fixed point against each channel's largest, each limb's dot product is exact, and only
-// the combination of the limbs, the bias and the float weights round. These tests compare it with
+// 24-bit fixed point against each channel's largest (three 8-bit digits), each limb's dot product
+// is exact, and only that rounding, the combination of the limbs, the bias and the float weights
+// round. These tests compare it with
 // the AVX2 float kernel on the same asset: skipped on a CPU without AVX-512.
 class ShFixedPoint : public ::testing::Test {
  protected:
@@ -264,11 +265,12 @@ class ShFixedPoint : public ::testing::Test {
   prt::ContextPtr avx2 = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AVX2);
 };
 
-// Its error is that of a few float roundings of the whole sum (the limbs combine in three
-// multiply-adds, then the bias and the rounding of each float weight), so it stays within
-// 8 u M (u = 2^-24) at every order, where the float kernels' summation error grows with the
-// order. A wrong digit split or a lost tail would be off by far more. Its bits differ from the
-// AVX2 kernel's, which shows that it ran.
+// Its error is a few float roundings of the whole sum (the limbs combine in two multiply-adds,
+// then the bias, and each float weight is rounded) plus the fixed-point rounding, at most
+// 2^-24 max|w| sum q, about u M (u = 2^-24) for these lights, whose weights are within a small
+// factor of each other: it stays within 8 u M at every order, where the float kernels'
+// summation error grows with the order. A wrong digit split or a lost tail would be off by far
+// more. Its bits differ from the AVX2 kernel's, which shows that it ran.
 TEST_F(ShFixedPoint, EightBitIsShadedWithinAFewRoundingsOfTheExactSum) {
   double worst = 0.0;
   uint32_t seed = 700;
@@ -286,14 +288,14 @@ TEST_F(ShFixedPoint, EightBitIsShadedWithinAFewRoundingsOfTheExactSum) {
           const double magnitude = e.tolerance / ((order * order + 8) * std::ldexp(1.0, -23));
           const double error = std::fabs(fixed[3 * size_t(v) + ch] - e.value);
           worst = std::max(worst, error / magnitude);
-          ASSERT_LE(error, 8.0 * std::ldexp(1.0, -24) * magnitude) << "vertex " << v << " channel "
-                                                                   << ch;
+          ASSERT_LE(error, 8.0 * std::ldexp(1.0, -24) * magnitude)
+              << "vertex " << v << " channel " << ch;
         }
     }
   RecordProperty("worst_error_in_u_of_M", testing::PrintToString(worst / std::ldexp(1.0, -24)));
 }
 
-// A light whose weights span too wide a range for 32-bit fixed point to round the small ones
+// A light whose weights span too wide a range for 24-bit fixed point to round the small ones
 // within the bound (one coefficient 1e9 times the others, no offsets to widen the bound) is
 // shaded by the AVX2 kernel instead: its bits exactly, and within the bound.
 TEST_F(ShFixedPoint, WideRangeLightFallsBackToTheFloatKernel) {
