@@ -131,7 +131,7 @@ static prt_result shade_scalar(const prt_asset* asset, const float* light_rgb, u
  * (prt_backend_get_info applies the CPU, the ISA limit and the backend limit). */
 static prt_sh_simd_kernel simd_kernel(const prt_context* context) {
   const prt_simd_isa isa = prt_internal_simd_isa(context);
-  if (isa == PRT_SIMD_ISA_AVX512) return prt_sh_shade_avx512; /* 8-bit only: see shade_simd */
+  if (isa == PRT_SIMD_ISA_AVX512) return prt_sh_shade_avx512; /* 8-bit RGB: shade_simd */
   if (isa == PRT_SIMD_ISA_AVX2) return prt_sh_shade_avx2;
   if (isa == PRT_SIMD_ISA_SSE41) return prt_sh_shade_sse41;
   return NULL;
@@ -207,12 +207,13 @@ static prt_result shade_simd(const prt_asset* asset, const float* light_rgb, uin
   job.stride = (size_t)view->coefficients * (view->info.bits / 8u);
   job.fixed = NULL;
   if (kernel == prt_sh_shade_avx512) {
-    /* The fixed-point kernel takes 8-bit values, and only a light whose weights it rounds
-     * within the bound; the rest goes to the AVX2 kernel. The choice depends on the asset and
-     * the light alone, never on the range. */
+    /* The fixed-point kernel takes 8-bit RGB values (grey transfer, whose one value serves three
+     * channels, is quicker on the float kernel), and only a light whose weights it rounds within
+     * the bound; the rest goes to the AVX2 kernel. The choice depends on the asset and the light
+     * alone, never on the range. */
     double magnitude[3];
     offset_magnitude(view, light_rgb, magnitude);
-    if (job.bits == 8 &&
+    if (job.bits == 8 && view->info.channels == 3 &&
         prt_sh_fix_weights(&job, view->info.order * view->info.order, magnitude, &fixed))
       job.fixed = &fixed;
     else

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* `sh` shading kernel for 8-bit values with AVX-512 VNNI (this file is compiled with AVX-512
+/* `sh` shading kernel for 8-bit RGB values with AVX-512 VNNI (this file is compiled with AVX-512
  * F/BW/VL/VNNI flags and only called when the CPU and the OS have them): the weights in fixed
  * point (prt_sh_fixed_weights, sh_shade_simd.h), each limb's dot product an exact int32 sum by
  * vpdpbusd, four u8 values times four s8 digits per lane at a time. Eight vertices go through
@@ -61,15 +61,6 @@ PRT_KERNEL_INLINE void transpose4(rows r, size_t offset, int masked, __mmask16 m
   t[3] = _mm256_unpackhi_epi64(hi01, hi23);
 }
 
-/* The rows' dwords [p, p + 4) of the run at `start`, transposed; past the run's `dwords`, zeros
- * (nothing is read there). */
-PRT_KERNEL_INLINE void load_block(rows r, size_t start, uint32_t p, uint32_t dwords, __m256i t[4]) {
-  if (dwords - p >= 4u)
-    transpose4(r, start + 4u * p, 0, 0, t);
-  else
-    transpose4(r, start + 4u * p, 1, (__mmask16)((1u << (4u * (dwords - p))) - 1u), t);
-}
-
 /* acc[l] += the limb-l products of one dword of the eight runs (t) with `digits` (the LIMBS
  * digit words of the matching four weights). */
 PRT_KERNEL_INLINE void add_dword(const int32_t* digits, __m256i t, __m256i acc[LIMBS]) {
@@ -90,23 +81,6 @@ PRT_KERNEL_INLINE __m256 combine(const prt_sh_simd_job* job, int ch, const __m25
   for (l = LIMBS - 2; l >= 0; --l)
     sum = _mm256_fmadd_ps(_mm256_cvtepi32_ps(acc[l]), _mm256_set1_ps(unit[l]), sum);
   return _mm256_add_ps(sum, _mm256_set1_ps(job->bias[ch]));
-}
-
-/* Grey transfer: its one run into the three channels at once. */
-PRT_KERNEL_OUTLINE void shade_grey(const prt_sh_simd_job* job, rows r, __m256 rgb[3]) {
-  const uint32_t dwords = job->padded / 4u;
-  const int32_t(*digit)[LIMBS] = job->fixed->digit;
-  __m256i acc[3][LIMBS];
-  uint32_t p, i;
-  int c;
-  for (c = 0; c < 3; ++c) clear(acc[c]);
-  for (p = 0; p < dwords; p += 4u) {
-    __m256i t[4];
-    load_block(r, job->segment[0], p, dwords, t);
-    for (i = 0; i < 4u && p + i < dwords; ++i)
-      for (c = 0; c < 3; ++c) add_dword(digit[(uint32_t)c * dwords + p + i], t[i], acc[c]);
-  }
-  for (c = 0; c < 3; ++c) rgb[c] = combine(job, c, acc[c]);
 }
 
 /* Channel ch of an RGB transfer for `sets` (1 or 2) sets of eight rows, the second set eight
@@ -264,23 +238,12 @@ PRT_KERNEL_INLINE void store_rgb8(float* out, __m256 r, __m256 g, __m256 b, int 
 }
 
 /* The eight vertices from r.base on into out (the first n of them stored), or sixteen when
- * `sets` is 2 (all stored), by the layout of the call site: grey (one run for the three
- * channels) or RGB. */
-PRT_KERNEL_INLINE void shade_group(const prt_sh_simd_job* job, rows r, float* out, int n, int grey,
+ * `sets` is 2 (all stored), by the unrolled `shape` or, without one, channel by channel. */
+PRT_KERNEL_INLINE void shade_group(const prt_sh_simd_job* job, rows r, float* out, int n,
                                    rgb_shape shape, int sets) {
   __m256 rgb[3][2];
   int c;
-  if (grey) {
-    __m256 one[3];
-    shade_grey(job, r, one);
-    for (c = 0; c < 3; ++c) rgb[c][0] = one[c];
-    if (sets > 1) {
-      rows second = r;
-      second.base += GROUP * r.stride;
-      shade_grey(job, second, one);
-      for (c = 0; c < 3; ++c) rgb[c][1] = one[c];
-    }
-  } else if (shape) {
+  if (shape) {
     __m256 one[3];
     shape(job, r, one);
     for (c = 0; c < 3; ++c) rgb[c][0] = one[c];
@@ -304,8 +267,7 @@ PRT_KERNEL_INLINE void shade_group(const prt_sh_simd_job* job, rows r, float* ou
 
 /* Fewer than eight vertices in all: shaded from a copy padded with zero rows, so that every
  * lane reads memory. */
-static void shade_few(const prt_sh_simd_job* job, uint32_t count, float* out, int grey,
-                      rgb_shape shape) {
+static void shade_few(const prt_sh_simd_job* job, uint32_t count, float* out, rgb_shape shape) {
   /* The bytes a vertex's runs reach: at most three runs of 256 values. */
   uint8_t copy[GROUP * 3u * 4u * PRT_SH_FIXED_MAX_DWORDS];
   const size_t reach = job->segment[2] + job->padded;
@@ -315,38 +277,32 @@ static void shade_few(const prt_sh_simd_job* job, uint32_t count, float* out, in
   for (v = 0; v < count; ++v) memcpy(copy + v * reach, job->values + v * job->stride, reach);
   r.base = copy;
   r.stride = reach;
-  if (grey)
-    shade_group(job, r, out, (int)count, 1, NULL, 1);
-  else
-    shade_group(job, r, out, (int)count, 0, shape, 1);
+  shade_group(job, r, out, (int)count, shape, 1);
 }
 
 /* Sixteen vertices at a time, then eight; the last vertices of the range shaded as the last
  * eight of it (the overlap gets the same bits a second time). */
-PRT_KERNEL_INLINE void shade_vertices(const prt_sh_simd_job* job, uint32_t count, float* out,
-                                      int grey, rgb_shape shape) {
+static void shade_vertices(const prt_sh_simd_job* job, uint32_t count, float* out,
+                           rgb_shape shape) {
   rows r;
   uint32_t v;
   r.stride = job->stride;
   for (v = 0; count - v >= 2u * GROUP; v += 2u * GROUP) {
     r.base = job->values + (size_t)v * job->stride;
-    shade_group(job, r, out + 3u * (size_t)v, GROUP, grey, shape, 2);
+    shade_group(job, r, out + 3u * (size_t)v, GROUP, shape, 2);
   }
   for (; v < count; v += GROUP) {
     if (count - v < GROUP) v = count - GROUP;
     r.base = job->values + (size_t)v * job->stride;
-    shade_group(job, r, out + 3u * (size_t)v, GROUP, grey, shape, 1);
+    shade_group(job, r, out + 3u * (size_t)v, GROUP, shape, 1);
   }
 }
 
 void prt_sh_shade_avx512(const prt_sh_simd_job* shared, uint32_t count, float* out_rgb) {
   const prt_sh_simd_job job = *shared; /* a copy the stores to out_rgb cannot alias */
-  const int grey = job.segment[0] == job.segment[1] && job.segment[1] == job.segment[2];
-  const rgb_shape shape = grey ? NULL : unrolled_shape(&job);
+  const rgb_shape shape = unrolled_shape(&job);
   if (count < GROUP)
-    shade_few(&job, count, out_rgb, grey, shape);
-  else if (grey)
-    shade_vertices(&job, count, out_rgb, 1, NULL);
+    shade_few(&job, count, out_rgb, shape);
   else
-    shade_vertices(&job, count, out_rgb, 0, shape);
+    shade_vertices(&job, count, out_rgb, shape);
 }

@@ -63,7 +63,7 @@ typedef void (*prt_sh_simd_kernel)(const prt_sh_simd_job* job, uint32_t count, f
 #if defined(PRT_HAS_X86_SIMD)
 void prt_sh_shade_sse41(const prt_sh_simd_job* job, uint32_t count, float* out_rgb);
 void prt_sh_shade_avx2(const prt_sh_simd_job* job, uint32_t count, float* out_rgb);
-/* 8-bit values and job->fixed only. */
+/* 8-bit RGB transfer (three distinct segments) and job->fixed only. */
 void prt_sh_shade_avx512(const prt_sh_simd_job* job, uint32_t count, float* out_rgb);
 #endif
 
