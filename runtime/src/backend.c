@@ -2,14 +2,33 @@
 /* Backend query: which backends are compiled in and usable; SIMD ISA detection at run time. */
 #include "internal.h"
 
+#if !defined(PRT_NO_SIMD) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#include <cpuid.h>
+
+/* Whether the OS saves the AVX-512 state on a context switch: XCR0 bits 1-2 (SSE, AVX) and 5-7
+ * (opmask, upper halves of zmm0-15, zmm16-31), read by XGETBV once CPUID says OSXSAVE. */
+static int os_saves_avx512(void) {
+  unsigned eax, ebx, ecx, edx, xcr0_low, xcr0_high;
+  if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx) || !(ecx & (1u << 27))) return 0;
+  __asm__ volatile("xgetbv" : "=a"(xcr0_low), "=d"(xcr0_high) : "c"(0));
+  (void)xcr0_high;
+  return (xcr0_low & 0xE6u) == 0xE6u;
+}
+#endif
+
 prt_simd_isa prt_internal_detect_simd_isa(void) {
 #if defined(PRT_NO_SIMD)
   return PRT_SIMD_ISA_NONE;
 #elif (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
   __builtin_cpu_init();
   /* gcc returns a non-zero bit mask, not 1, for a supported feature. */
-  if (__builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("fma") != 0)
+  if (__builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("fma") != 0) {
+    if (__builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512bw") != 0 &&
+        __builtin_cpu_supports("avx512vl") != 0 && __builtin_cpu_supports("avx512vnni") != 0 &&
+        os_saves_avx512())
+      return PRT_SIMD_ISA_AVX512;
     return PRT_SIMD_ISA_AVX2;
+  }
   if (__builtin_cpu_supports("sse4.1") != 0) return PRT_SIMD_ISA_SSE41;
   return PRT_SIMD_ISA_NONE;
 #else
@@ -124,6 +143,8 @@ const char* prt_simd_isa_name(prt_simd_isa isa) {
       return "sse4.1";
     case PRT_SIMD_ISA_AVX2:
       return "avx2";
+    case PRT_SIMD_ISA_AVX512:
+      return "avx512";
   }
   return "unknown";
 }

@@ -110,7 +110,7 @@ static int lower_limit(int a, int b) {
 /* Applies PRT_BACKEND / PRT_SIMD_ISA; unknown values are reported and ignored. */
 static void apply_environment(prt_context* c, prt_simd_isa* isa_limit) {
   static const char* const kBackends[] = {"auto", "cpu", "simd", "gl"};
-  static const char* const kIsas[] = {"auto", "none", "sse4.1", "avx2"};
+  static const char* const kIsas[] = {"auto", "none", "sse4.1", "avx2", "avx512"};
   const char* backend = getenv("PRT_BACKEND");
   const char* isa = getenv("PRT_SIMD_ISA");
   int i, found;
@@ -125,14 +125,15 @@ static void apply_environment(prt_context* c, prt_simd_isa* isa_limit) {
                         "PRT_BACKEND must be auto, cpu, simd or gl; ignoring its value");
   }
   if (isa) {
-    for (i = 0, found = 0; i < 4; ++i)
+    for (i = 0, found = 0; i < 5; ++i)
       if (strcmp(isa, kIsas[i]) == 0) {
         *isa_limit = (prt_simd_isa)lower_limit(*isa_limit, i);
         found = 1;
       }
     if (!found)
-      prt_internal_note(c, PRT_SEVERITY_WARNING,
-                        "PRT_SIMD_ISA must be auto, none, sse4.1 or avx2; ignoring its value");
+      prt_internal_note(
+          c, PRT_SEVERITY_WARNING,
+          "PRT_SIMD_ISA must be auto, none, sse4.1, avx2 or avx512; ignoring its value");
   }
 }
 
@@ -160,7 +161,7 @@ prt_result prt_context_create(const prt_context_desc* caller_desc, prt_context**
     allocator = *desc.allocator;
   }
   if ((unsigned)desc.backend_limit > PRT_BACKEND_GL ||
-      (unsigned)desc.simd_isa_limit > PRT_SIMD_ISA_AVX2 ||
+      (unsigned)desc.simd_isa_limit > PRT_SIMD_ISA_AVX512 ||
       (desc.flags & ~(uint32_t)PRT_CONTEXT_READ_ENVIRONMENT) != 0)
     return PRT_ERROR_INVALID_ARGUMENT;
   c = (prt_context*)prt_internal_alloc(&allocator, sizeof *c, 16);

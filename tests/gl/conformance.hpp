@@ -55,7 +55,7 @@ struct Summary {
 // it; notes the ones it skips (not compiled, not usable, or above the CPU) in the summary.
 inline void for_each_simd_isa(Summary& summary,
                               const std::function<void(prt_context*, const std::string&)>& run) {
-  for (prt_simd_isa isa : {PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2}) {
+  for (prt_simd_isa isa : {PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2, PRT_SIMD_ISA_AVX512}) {
     const std::string name = std::string("simd/") + prt_simd_isa_name(isa);
     const prt::ContextPtr ctx = prt_test::limited_context(PRT_BACKEND_AUTO, isa);
     prt_backend_info info = prt::sized<prt_backend_info>();

@@ -2,6 +2,7 @@
 // Backend query: compiled-in set, CPU detection (checked against /proc/cpuinfo), forced limits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -36,12 +37,14 @@ prt_simd_isa isa_from_proc_cpuinfo() {
     if (line.rfind("flags", 0) != 0) continue;
     std::istringstream words(line.substr(line.find(':') + 1));
     bool avx2 = false, fma = false, sse41 = false;
+    int avx512 = 0;  // F, BW, VL and VNNI: the kernel lists them only where the OS saves the state
     for (std::string w; words >> w;) {
       avx2 |= w == "avx2";
       fma |= w == "fma";
       sse41 |= w == "sse4_1";
+      avx512 += w == "avx512f" || w == "avx512bw" || w == "avx512vl" || w == "avx512_vnni";
     }
-    if (avx2 && fma) return PRT_SIMD_ISA_AVX2;
+    if (avx2 && fma) return avx512 == 4 ? PRT_SIMD_ISA_AVX512 : PRT_SIMD_ISA_AVX2;
     return sse41 ? PRT_SIMD_ISA_SSE41 : PRT_SIMD_ISA_NONE;
   }
   return PRT_SIMD_ISA_AUTO;  // unknown
@@ -102,6 +105,15 @@ TEST(Backend, IsaLimitForcesALowerInstructionSet) {
   prt_context* ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_SSE41);
   EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa, PRT_SIMD_ISA_SSE41);
   prt_context_destroy(ctx);
+  if (isa_from_proc_cpuinfo() >= PRT_SIMD_ISA_AVX2) {
+    // A limit above the CPU is no limit; AVX2 below AVX-512 is one.
+    ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AVX512);
+    EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa, isa_from_proc_cpuinfo());
+    prt_context_destroy(ctx);
+    ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AVX2);
+    EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa, PRT_SIMD_ISA_AVX2);
+    prt_context_destroy(ctx);
+  }
   ctx = make(PRT_BACKEND_AUTO, PRT_SIMD_ISA_NONE);
   EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).usable, 0u);
   EXPECT_EQ(prt_context_backend(ctx), PRT_BACKEND_CPU);
@@ -137,6 +149,22 @@ TEST(Backend, EnvironmentVariablesLowerTheLimitsWhenAskedTo) {
     ctx = make();
     EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa, isa_from_proc_cpuinfo());
     prt_context_destroy(ctx);
+    // Every name is known (no warning); avx512 on a CPU without it leaves the CPU's best.
+    for (const char* name : {"avx2", "avx512"}) {
+      Warnings seen;
+      prt_context_desc desc = prt::sized<prt_context_desc>();
+      desc.message = &Warnings::sink;
+      desc.message_user = &seen;
+      desc.flags = PRT_CONTEXT_READ_ENVIRONMENT;
+      setenv("PRT_SIMD_ISA", name, 1);
+      ASSERT_EQ(prt_context_create(&desc, &ctx), PRT_OK);
+      EXPECT_EQ(seen.count, 0) << name;
+      EXPECT_EQ(info(ctx, PRT_BACKEND_SIMD).isa,
+                std::string(name) == "avx2" ? std::min(PRT_SIMD_ISA_AVX2, isa_from_proc_cpuinfo())
+                                            : isa_from_proc_cpuinfo())
+          << name;
+      prt_context_destroy(ctx);
+    }
     unsetenv("PRT_SIMD_ISA");
   }
 
@@ -159,6 +187,7 @@ TEST(Backend, Names) {
   EXPECT_STREQ(prt_backend_name(PRT_BACKEND_SIMD), "simd");
   EXPECT_STREQ(prt_backend_name(static_cast<prt_backend>(77)), "unknown");
   EXPECT_STREQ(prt_simd_isa_name(PRT_SIMD_ISA_AVX2), "avx2");
+  EXPECT_STREQ(prt_simd_isa_name(PRT_SIMD_ISA_AVX512), "avx512");
 }
 
 }  // namespace

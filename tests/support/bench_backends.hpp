@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // What the CPU shading benchmarks of every technique share: the backends they compare (scalar,
-// SIMD forced to SSE4.1, SIMD forced to AVX2), one context per backend that says why a backend
+// SIMD forced to SSE4.1, to AVX2 and to AVX-512), one context per backend that says why a backend
 // cannot run here, a benchmark thread's share of the vertices, and the timed shading loop that
 // measures by wall clock and by the thread's own CPU time (bench_triad.hpp).
 #pragma once
@@ -24,7 +24,8 @@ struct Backend {
 };
 constexpr Backend kBackends[] = {{"cpu", PRT_BACKEND_CPU, PRT_SIMD_ISA_AUTO},
                                  {"simd-sse4.1", PRT_BACKEND_SIMD, PRT_SIMD_ISA_SSE41},
-                                 {"simd-avx2", PRT_BACKEND_SIMD, PRT_SIMD_ISA_AVX2}};
+                                 {"simd-avx2", PRT_BACKEND_SIMD, PRT_SIMD_ISA_AVX2},
+                                 {"simd-avx512", PRT_BACKEND_SIMD, PRT_SIMD_ISA_AVX512}};
 constexpr int kBackendCount = int(sizeof kBackends / sizeof kBackends[0]);
 
 // A context per backend, limited to its instruction set, made on first use and shared by the

@@ -50,12 +50,20 @@ class SimdIsaTest : public ::testing::TestWithParam<prt_simd_isa> {
   prt_context* ctx = context.get();
 };
 
-// The instruction sets a SimdIsaTest runs for, named in the test names as sse41 and avx2:
-// INSTANTIATE_TEST_SUITE_P(Isa, Suite, prt_test::kSimdIsas, prt_test::isa_test_name).
-inline const auto kSimdIsas = ::testing::Values(PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2);
+// The instruction sets a SimdIsaTest runs for, named in the test names as sse41, avx2 and
+// avx512: INSTANTIATE_TEST_SUITE_P(Isa, Suite, prt_test::kSimdIsas, prt_test::isa_test_name).
+inline const auto kSimdIsas =
+    ::testing::Values(PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2, PRT_SIMD_ISA_AVX512);
 
 inline std::string isa_test_name(const ::testing::TestParamInfo<prt_simd_isa>& info) {
-  return info.param == PRT_SIMD_ISA_AVX2 ? "avx2" : "sse41";
+  switch (info.param) {
+    case PRT_SIMD_ISA_AVX512:
+      return "avx512";
+    case PRT_SIMD_ISA_AVX2:
+      return "avx2";
+    default:
+      return "sse41";
+  }
 }
 
 }  // namespace prt_test

@@ -131,6 +131,7 @@ static prt_result shade_scalar(const prt_asset* asset, const float* light_rgb, u
  * (prt_backend_get_info applies the CPU, the ISA limit and the backend limit). */
 static prt_sh_simd_kernel simd_kernel(const prt_context* context) {
   const prt_simd_isa isa = prt_internal_simd_isa(context);
+  if (isa == PRT_SIMD_ISA_AVX512) return prt_sh_shade_avx512; /* 8-bit RGB: shade_simd */
   if (isa == PRT_SIMD_ISA_AVX2) return prt_sh_shade_avx2;
   if (isa == PRT_SIMD_ISA_SSE41) return prt_sh_shade_sse41;
   return NULL;
@@ -177,12 +178,26 @@ static void run_in_bounds(prt_sh_simd_kernel kernel, prt_sh_simd_job* job, const
   }
 }
 
+/* sum_k |offset_j L_k| of each output channel: the part of the conformance bound's magnitude
+ * that does not depend on the vertex (prt_sh_fix_weights). */
+static void offset_magnitude(const prt_sh_view* view, const float* light_rgb, double out[3]) {
+  const uint32_t n2 = view->info.order * view->info.order;
+  uint32_t ch, k;
+  for (ch = 0; ch < 3; ++ch) {
+    const uint8_t* param = view->params + 8u * (size_t)((view->info.channels == 3 ? ch : 0u) * n2);
+    out[ch] = 0.0;
+    for (k = 0; k < n2; ++k)
+      out[ch] += fabs((double)load_f32(param + 8u * k) * (double)light_rgb[3u * k + ch]);
+  }
+}
+
 static prt_result shade_simd(const prt_asset* asset, const float* light_rgb, uint32_t first,
                              uint32_t count, float* out_rgb) {
   float weight[3][PRT_SH_MAX_COEFFICIENTS + PRT_SH_SIMD_BLOCK];
+  prt_sh_fixed_weights fixed;
   prt_sh_simd_job job;
   const prt_sh_view* view;
-  const prt_sh_simd_kernel kernel = simd_kernel(asset->context);
+  prt_sh_simd_kernel kernel = simd_kernel(asset->context);
   prt_result r;
   if (!kernel) return PRT_ERROR_UNSUPPORTED_BACKEND;
   r = open_shading(asset, light_rgb, first, count, out_rgb, &view);
@@ -190,6 +205,20 @@ static prt_result shade_simd(const prt_asset* asset, const float* light_rgb, uin
   fold_light(view, light_rgb, weight, &job);
   job.bits = view->info.bits;
   job.stride = (size_t)view->coefficients * (view->info.bits / 8u);
+  job.fixed = NULL;
+  if (kernel == prt_sh_shade_avx512) {
+    /* The fixed-point kernel takes 8-bit RGB values (grey transfer, whose one value serves three
+     * channels, is quicker on the float kernel), and only a light whose weights it rounds within
+     * the bound; the rest goes to the AVX2 kernel. The choice depends on the asset and the light
+     * alone, never on the range. */
+    double magnitude[3];
+    offset_magnitude(view, light_rgb, magnitude);
+    if (job.bits == 8 && view->info.channels == 3 &&
+        prt_sh_fix_weights(&job, view->info.order * view->info.order, magnitude, &fixed))
+      job.fixed = &fixed;
+    else
+      kernel = prt_sh_shade_avx2;
+  }
   run_in_bounds(kernel, &job, view, first, count, out_rgb);
   return PRT_OK;
 }

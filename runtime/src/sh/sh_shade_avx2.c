@@ -26,31 +26,38 @@ PRT_KERNEL_INLINE __m256 weight4_low(const float* w) {
   return _mm256_set_m128(_mm_setzero_ps(), _mm_loadu_ps(w));
 }
 
-/* sums[j] = (sum r, sum g, sum b, any) of acc[j][0..2] for j < n, by a tree of pairwise adds
- * shared by the vertices (fewer instructions than folding each accumulator on its own). Each
- * vertex's lanes add in the same order whatever n is and whichever slot it has: the other
- * slots only feed other lanes. */
+/* (a, b, c, d) of four accumulators' 128-bit halves summed: lanes 0-3 each the sum of the low
+ * half of a, b, c, d, lanes 4-7 of the high half. Unpacks and adds rather than horizontal adds,
+ * which take several shuffles each. Every accumulator's lanes add in the same order whichever
+ * slot it has. */
+PRT_KERNEL_INLINE __m256 sum_halves4(__m256 a, __m256 b, __m256 c, __m256 d) {
+  const __m256 ab = _mm256_add_ps(_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
+  const __m256 cd = _mm256_add_ps(_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
+  const __m256d ab2 = _mm256_castps_pd(ab), cd2 = _mm256_castps_pd(cd);
+  return _mm256_add_ps(_mm256_castpd_ps(_mm256_unpacklo_pd(ab2, cd2)),
+                       _mm256_castpd_ps(_mm256_unpackhi_pd(ab2, cd2)));
+}
+
+/* The halves of h added: four sums. */
+PRT_KERNEL_INLINE __m128 add_halves(__m256 h) {
+  return _mm_add_ps(_mm256_castps256_ps128(h), _mm256_extractf128_ps(h, 1));
+}
+
+/* sums[j] = (sum r, sum g, sum b, any) of acc[j][0..2] for j < n, by one tree shared by the
+ * vertices: with four vertices the twelve sums come out in output order (r0 g0 b0 r1 | g1 b1 r2
+ * g2 | b2 r3 g3 b3) and are spread into sums[] with the bias added by the caller. Each vertex's
+ * lanes add in the same order whatever n is. */
 PRT_KERNEL_INLINE void reduce(__m256 acc[][3], int n, __m128 sums[]) {
   if (n == 1) {
-    const __m256 v = _mm256_hadd_ps(_mm256_hadd_ps(acc[0][0], acc[0][1]),
-                                    _mm256_hadd_ps(acc[0][2], _mm256_setzero_ps()));
-    sums[0] = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    sums[0] = add_halves(sum_halves4(acc[0][0], acc[0][1], acc[0][2], _mm256_setzero_ps()));
   } else {
-    /* v0, v1 = (r, g, blue of the pair's first, blue of its second) of each vertex of a pair,
-     * each 128-bit half a partial sum: the halves of both are added at once, then the second's
-     * blue moves to lane 2. */
-    const __m256i blue_of_second = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 3, 3);
-    int j;
-    for (j = 0; j < n; j += 2) {
-      const __m256 blue = _mm256_hadd_ps(acc[j][2], acc[j + 1][2]);
-      const __m256 v0 = _mm256_hadd_ps(_mm256_hadd_ps(acc[j][0], acc[j][1]), blue);
-      const __m256 v1 = _mm256_hadd_ps(_mm256_hadd_ps(acc[j + 1][0], acc[j + 1][1]), blue);
-      const __m256 halves =
-          _mm256_add_ps(_mm256_permute2f128_ps(v0, v1, 0x20), _mm256_permute2f128_ps(v0, v1, 0x31));
-      const __m256 pair = _mm256_permutevar_ps(halves, blue_of_second);
-      sums[j] = _mm256_castps256_ps128(pair);
-      sums[j + 1] = _mm256_extractf128_ps(pair, 1);
-    }
+    const __m128 s0 = add_halves(sum_halves4(acc[0][0], acc[0][1], acc[0][2], acc[1][0]));
+    const __m128 s1 = add_halves(sum_halves4(acc[1][1], acc[1][2], acc[2][0], acc[2][1]));
+    const __m128 s2 = add_halves(sum_halves4(acc[2][2], acc[3][0], acc[3][1], acc[3][2]));
+    sums[0] = s0;
+    sums[1] = _mm_castsi128_ps(_mm_alignr_epi8(_mm_castps_si128(s1), _mm_castps_si128(s0), 12));
+    sums[2] = _mm_castsi128_ps(_mm_alignr_epi8(_mm_castps_si128(s2), _mm_castps_si128(s1), 8));
+    sums[3] = _mm_castsi128_ps(_mm_srli_si128(_mm_castps_si128(s2), 4));
   }
 }
 

@@ -174,7 +174,7 @@ static const uint8_t kSkipNothing[PRT_WAVELET_MAX_BLOCKS];
 static prt_wavelet_kernel simd_kernel(const prt_context* context) {
 #if defined(PRT_HAS_X86_SIMD)
   const prt_simd_isa isa = prt_internal_simd_isa(context);
-  if (isa == PRT_SIMD_ISA_AVX2) return prt_wavelet_shade_avx2;
+  if (isa >= PRT_SIMD_ISA_AVX2) return prt_wavelet_shade_avx2; /* AVX-512 contexts too */
   if (isa == PRT_SIMD_ISA_SSE41) return prt_wavelet_shade_sse41;
 #else
   (void)context; /* compiled out, or not an x86 build */
@@ -234,7 +234,7 @@ prt_result prt_wavelet_shade(const prt_asset* asset, prt_backend backend,
   rows.light = prepared_rgba;
   rows.skip = zero_blocks ? zero_blocks : kSkipNothing;
 #if defined(PRT_HAS_X86_SIMD)
-  /* The load's repack, made only for contexts whose SIMD ISA is AVX2 (wavelet_tiles.c). */
+  /* The load's repack, made only for contexts whose SIMD ISA is AVX2 or above (wavelet_tiles.c). */
   if (kernel == prt_wavelet_shade_avx2 && view->tiles) {
     prt_wavelet_tile_light light;
     if (prt_wavelet_tile_light_make(view->tiles, prepared_rgba, rows.skip, &light) &&

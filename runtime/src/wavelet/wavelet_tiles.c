@@ -162,7 +162,7 @@ prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_alloca
       off_fine_pairs;
   uint32_t shift = 0, tile, slabs = 0, fine = 0;
   uint8_t* memory;
-  if (prt_internal_simd_isa(context) != PRT_SIMD_ISA_AVX2 || vertices == 0) return PRT_OK;
+  if (prt_internal_simd_isa(context) < PRT_SIMD_ISA_AVX2 || vertices == 0) return PRT_OK;
   memset(&header, 0, sizeof header);
   header.tiles = (vertices + PRT_WAVELET_TILE - 1u) / PRT_WAVELET_TILE;
   header.faces = view->info.faces;

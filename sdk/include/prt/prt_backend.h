@@ -4,7 +4,8 @@
  *
  * cpu  : the scalar reference, always compiled and usable.
  * simd : compiled unless the library was built with PRT_ENABLE_SIMD=OFF; usable when the CPU
- *        has SSE4.1 (AVX2 + FMA preferred), detected at run time.
+ *        has SSE4.1 (AVX2 + FMA preferred, then AVX-512 F/BW/VL/VNNI where the OS saves its
+ *        state), detected at run time.
  * gl   : compiled when built with PRT_ENABLE_GL=ON; then reported usable unless the context's
  *        backend limit excludes it, meaning "usable with the application's GL 4.3+ context":
  *        the runtime owns no GL context, so whether one exists is only known when the game creates
@@ -47,7 +48,8 @@ PRT_API prt_backend prt_context_backend(const prt_context* context);
 /* Name of a backend ("auto", "cpu", "simd", "gl"; "unknown" otherwise), static string. */
 PRT_API const char* prt_backend_name(prt_backend backend);
 
-/* Name of an instruction set ("auto", "none", "sse4.1", "avx2"; "unknown"), static string. */
+/* Name of an instruction set ("auto", "none", "sse4.1", "avx2", "avx512"; "unknown"), static
+ * string. */
 PRT_API const char* prt_simd_isa_name(prt_simd_isa isa);
 
 #ifdef __cplusplus

@@ -23,10 +23,11 @@ PRT_API const char* prt_get_version_string(void);
 
 /* Bits of prt_context_desc.flags. */
 typedef enum prt_context_flag {
-  /* Let the environment variables PRT_BACKEND=cpu|simd|gl and PRT_SIMD_ISA=none|sse4.1|avx2
-   * lower the backend limits below. Off by default, so that a shipping game's backend does not
-   * depend on its players' environment; tools and samples set it, so that a user can force a
-   * lower backend without a rebuild. An unknown value is reported as a warning and ignored. */
+  /* Let the environment variables PRT_BACKEND=cpu|simd|gl and
+   * PRT_SIMD_ISA=none|sse4.1|avx2|avx512 lower the backend limits below. Off by default, so
+   * that a shipping game's backend does not depend on its players' environment; tools and
+   * samples set it, so that a user can force a lower backend without a rebuild. An unknown value
+   * is reported as a warning and ignored. */
   PRT_CONTEXT_READ_ENVIRONMENT = 0x1
 } prt_context_flag;
 

@@ -4,7 +4,8 @@
 //  - the memory-bandwidth roofline: STREAM triad on 1 and 2 threads;
 //  - CPU shading (prt_sh_shade) of the bunny's transfer, baked here (unshadowed: quick, and the
 //    SHTR layout is the same for every kind), at orders 2/4/6/8 and 8/16 bits on cpu, simd with
-//    SSE4.1 and simd with AVX2, on 1 thread and on 2 threads over split vertex ranges: vertices/s
+//    SSE4.1, AVX2 and AVX-512 (its fixed-point kernel for 8 bits, the AVX2 one for 16), on 1
+//    thread and on 2 threads over split vertex ranges: vertices/s
 //    and the share of the triad (on as many threads) that the quantised data read amounts to.
 //    The bunny's transfer (at most 14 MB) can stay in a large L3 cache, so one more case tiles it
 //    to 1M vertices (order 6, 8 bits, 108 MB) to measure shading streamed from memory;
@@ -60,7 +61,7 @@ struct ShadingRow {
   double bytes_per_vertex = 0.0;
   // [backend][threads - 1][benchmark thread]: vertices/s (wall, own CPU time); their sum over
   // benchmark threads is the throughput.
-  prt_bench::Rate per_thread[3][2][2];
+  prt_bench::Rate per_thread[kBackendCount][2][2];
   prt_bench::Rate total(int backend, int threads) const {
     prt_bench::Rate sum;
     for (const prt_bench::Rate& r : per_thread[backend][threads - 1])
@@ -335,12 +336,12 @@ void print_shading(const Figures& f, bool by_cpu) {
   std::printf("  order bits B/vert |");
   for (const Backend& backend : kBackends) std::printf(" %-25s|", backend.name);
   std::printf("\n  %17s |", "");
-  for (int b = 0; b < 3; ++b) std::printf(" %12s %12s|", "1 thread", "2 threads");
+  for (int b = 0; b < kBackendCount; ++b) std::printf(" %12s %12s|", "1 thread", "2 threads");
   std::printf("\n");
   for (const ShadingRow& row : f.shading) {
     if (row.vertices == 0) continue;  // filtered out
     std::printf("  %5u %4u %6.0f |", row.order, row.bits, row.bytes_per_vertex);
-    for (int b = 0; b < 3; ++b)
+    for (int b = 0; b < kBackendCount; ++b)
       for (int threads = 1; threads <= 2; ++threads) {
         const prt_bench::Rate rate = row.total(b, threads);
         const double vertices = by_cpu ? rate.cpu : rate.wall;

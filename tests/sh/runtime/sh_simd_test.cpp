@@ -9,6 +9,7 @@
 
 #include <prt/format/blob_writer.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -234,6 +235,90 @@ TEST_P(ShSimd, RejectsWhatTheScalarPathRejects) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Isa, ShSimd, kSimdIsas, isa_test_name);
+
+// --- The AVX-512 fixed-point kernel ------------------------------------------------------------
+
+// With AVX-512 VNNI, 8-bit RGB values go through the fixed-point kernel: the weights are rounded to
+// 24-bit fixed point against each channel's largest (three 8-bit digits), each limb's dot product
+// is exact, and only that rounding, the combination of the limbs, the bias and the float weights
+// round. These tests compare it with
+// the AVX2 float kernel on the same asset: skipped on a CPU without AVX-512.
+class ShFixedPoint : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    prt_backend_info info = prt::sized<prt_backend_info>();
+    ASSERT_EQ(prt_backend_get_info(avx512.get(), PRT_BACKEND_SIMD, &info), PRT_OK);
+    if (!info.usable || info.isa != PRT_SIMD_ISA_AVX512)
+      GTEST_SKIP() << "this CPU lacks AVX-512 VNNI (" << info.note << ")";
+  }
+  // All vertices of `t` shaded in `ctx` under `light`.
+  static std::vector<float> shade(prt_context* ctx, const Transfer& t,
+                                  const std::vector<float>& light) {
+    LoadedAsset a(ctx, make_blob(encode(t), t.vertices));
+    EXPECT_EQ(a.result, PRT_OK) << prt_context_last_message(ctx);
+    std::vector<float> out(size_t(t.vertices) * 3);
+    EXPECT_EQ(prt_sh_shade(a.asset, PRT_BACKEND_SIMD, light.data(), 0, t.vertices, out.data()),
+              PRT_OK);
+    return out;
+  }
+  prt::ContextPtr avx512 = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AVX512);
+  prt::ContextPtr avx2 = limited_context(PRT_BACKEND_AUTO, PRT_SIMD_ISA_AVX2);
+};
+
+// Its error is a few float roundings of the whole sum (the limbs combine in two multiply-adds,
+// then the bias, and each float weight is rounded) plus the fixed-point rounding, at most
+// 2^-24 max|w| sum q, about u M (u = 2^-24) for these lights, whose weights are within a small
+// factor of each other: it stays within 8 u M at every order, where the float kernels'
+// summation error grows with the order. A wrong digit split or a lost tail would be off by far
+// more. Its bits differ from the AVX2 kernel's, which shows that it ran.
+TEST_F(ShFixedPoint, EightBitIsShadedWithinAFewRoundingsOfTheExactSum) {
+  double worst = 0.0;
+  uint32_t seed = 700;
+  for (uint32_t order : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 10u, 12u, 16u}) {
+    SCOPED_TRACE(testing::Message() << "order " << order);
+    const Transfer t = random_transfer(order, 203, 3, 8, ++seed);
+    const std::vector<float> light = random_light(order, seed);
+    const std::vector<float> fixed = shade(avx512.get(), t, light);
+    EXPECT_NE(std::memcmp(fixed.data(), shade(avx2.get(), t, light).data(), fixed.size() * 4), 0)
+        << "the AVX2 kernel's bits: the fixed-point kernel did not run";
+    for (uint32_t v = 0; v < t.vertices; ++v)
+      for (uint32_t ch = 0; ch < 3; ++ch) {
+        const Expected e = expected_radiance(t, light, v, ch);
+        const double magnitude = e.tolerance / ((order * order + 8) * std::ldexp(1.0, -23));
+        const double error = std::fabs(fixed[3 * size_t(v) + ch] - e.value);
+        worst = std::max(worst, error / magnitude);
+        ASSERT_LE(error, 8.0 * std::ldexp(1.0, -24) * magnitude)
+            << "vertex " << v << " channel " << ch;
+      }
+  }
+  RecordProperty("worst_error_in_u_of_M", testing::PrintToString(worst / std::ldexp(1.0, -24)));
+}
+
+// A light whose weights span too wide a range for 24-bit fixed point to round the small ones
+// within the bound (one coefficient 1e9 times the others, no offsets to widen the bound) is
+// shaded by the AVX2 kernel instead: its bits exactly, and within the bound.
+TEST_F(ShFixedPoint, WideRangeLightFallsBackToTheFloatKernel) {
+  Transfer t = random_transfer(6, 65, 3, 8, 800);
+  for (float& offset : t.offset) offset = 0.0f;
+  std::vector<float> light = random_light(6, 801, 1e-3f);
+  for (uint32_t ch = 0; ch < 3; ++ch) light[ch] = 1e6f;
+  const std::vector<float> fixed = shade(avx512.get(), t, light);
+  EXPECT_EQ(std::memcmp(fixed.data(), shade(avx2.get(), t, light).data(), fixed.size() * 4), 0);
+  expect_matches_double_sum(t, light, 0, fixed);
+}
+
+// 16-bit values and grey transfer (one value for three channels) stay on the AVX2 kernel.
+TEST_F(ShFixedPoint, SixteenBitAndGreyAreTheAvx2Kernels) {
+  for (uint32_t bits : {8u, 16u})
+    for (uint32_t channels : {1u, 3u}) {
+      if (bits == 8 && channels == 3) continue;
+      const Transfer t = random_transfer(6, 65, channels, bits, 810 + channels + bits);
+      const std::vector<float> light = random_light(6, 812);
+      const std::vector<float> fixed = shade(avx512.get(), t, light);
+      EXPECT_EQ(std::memcmp(fixed.data(), shade(avx2.get(), t, light).data(), fixed.size() * 4), 0)
+          << bits << "-bit, " << channels << " channel(s)";
+    }
+}
 
 // --- Dispatch -------------------------------------------------------------------------------
 

@@ -256,10 +256,13 @@ void time_backends(const char* title, const WvltTransfer& t) {
       "%s: frame reads %.1f MB, light %.0f KB; STREAM triad %.2f GB/s -> roofline %.2f "
       "ms/frame\n",
       title, frame_bytes * 1e-6, 16e-3 * t.coefficients(), triad * 1e-9, 1e3 * frame_bytes / triad);
-  const prt_simd_isa isas[] = {PRT_SIMD_ISA_NONE, PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2};
+  const prt_simd_isa isas[] = {PRT_SIMD_ISA_NONE, PRT_SIMD_ISA_SSE41, PRT_SIMD_ISA_AVX2,
+                               PRT_SIMD_ISA_AVX512};
   for (prt_simd_isa isa : isas) {
     const prt::ContextPtr limited = limited_context(PRT_BACKEND_AUTO, isa);
-    if (isa != PRT_SIMD_ISA_NONE && !simd_usable(limited.get())) continue;
+    prt_backend_info info = prt::sized<prt_backend_info>();
+    prt_backend_get_info(limited.get(), PRT_BACKEND_SIMD, &info);
+    if (isa != PRT_SIMD_ISA_NONE && (!info.usable || info.isa != isa)) continue;
     LoadedAsset a(limited.get(), blob);
     ASSERT_EQ(a.result, PRT_OK);
     std::vector<float> prepared(light.size()), rgb(3 * size_t(t.vertices));
