@@ -95,6 +95,19 @@ prt_simd_isa prt_internal_simd_isa(const prt_context* context) {
   return info.isa;
 }
 
+int prt_internal_simd_avx512(const prt_context* context) {
+#if !defined(PRT_NO_SIMD) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+  if (!context || !context->simd_unlimited || prt_internal_simd_isa(context) != PRT_SIMD_ISA_AVX2)
+    return 0;
+  __builtin_cpu_init();
+  /* gcc's check includes the OS saving the AVX-512 state (XCR0). */
+  return __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512dq") != 0;
+#else
+  (void)context;
+  return 0;
+#endif
+}
+
 prt_backend prt_context_backend(const prt_context* context) {
   if (context && prt_internal_simd_isa(context) != PRT_SIMD_ISA_NONE) return PRT_BACKEND_SIMD;
   return PRT_BACKEND_CPU;

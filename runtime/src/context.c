@@ -173,6 +173,7 @@ prt_result prt_context_create(const prt_context_desc* caller_desc, prt_context**
   isa_limit = desc.simd_isa_limit;
   if (desc.flags & PRT_CONTEXT_READ_ENVIRONMENT) apply_environment(c, &isa_limit);
   c->simd_isa = (prt_simd_isa)lower_limit(prt_internal_detect_simd_isa(), isa_limit);
+  c->simd_unlimited = isa_limit == PRT_SIMD_ISA_AUTO;
   c->last_result = PRT_OK;
   *out_context = c;
   return PRT_OK;

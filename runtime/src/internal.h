@@ -39,6 +39,7 @@ struct prt_context {
   void* message_user;
   prt_backend backend_limit; /* effective (desc + environment); AUTO = none */
   prt_simd_isa simd_isa;     /* what the SIMD backend uses: min(CPU, limits); NONE if unusable */
+  int simd_unlimited;        /* no SIMD ISA limit given (desc or environment) */
   prt_result last_result;
   char last_message[PRT_MESSAGE_CAPACITY];
 };
@@ -109,5 +110,9 @@ prt_simd_isa prt_internal_detect_simd_isa(void);
 /* The instruction set the context's SIMD backend uses: NONE when the SIMD backend is not usable
  * there (compiled out, CPU, ISA limit or backend limit), as prt_backend_get_info reports it. */
 prt_simd_isa prt_internal_simd_isa(const prt_context* context);
+/* 1 when kernels may go beyond AVX2 to AVX-512 F + DQ: the context uses AVX2 and was given no
+ * ISA limit (a limit of AVX2 means no more than AVX2; prt_simd_isa has no AVX-512 value), and
+ * the CPU and OS support it. */
+int prt_internal_simd_avx512(const prt_context* context);
 
 #endif /* PRT_RUNTIME_INTERNAL_H */
