@@ -20,6 +20,7 @@ static float sanitised(float value) {
 /* The source map, for the nearest-texel fill of empty targets. */
 typedef struct light_source {
   const prt_env_view* env;
+  const float* banded;  /* a lat-long map's texels in bands (see PRT_WAVELET_BAND_ROWS), or NULL */
   double largest_texel; /* the largest source texel's solid angle */
 } light_source;
 
@@ -55,8 +56,12 @@ static void load_rotation(const float* rotation, double r[9]) {
   for (i = 0; i < 9u; ++i) r[i] = rotation ? (double)rotation[i] : (i % 4u == 0u ? 1.0 : 0.0);
 }
 
-static const float* nearest_source_texel(const light_source* source, const double e[3]) {
+/* The RGB of the source's texel in direction e, sanitised. */
+static void nearest_source_texel(const light_source* source, const double e[3], float rgb[3]) {
   const prt_env_view* env = source->env;
+  const float* texel;
+  size_t channel_step = 1u;
+  uint32_t c;
   if (env->layout == PRT_ENV_LATLONG) {
     const double u = 0.5 + atan2(e[0], -e[2]) / (2.0 * PRT_SPHERE_PI);
     const double cos_theta = e[1] > 1.0 ? 1.0 : (e[1] < -1.0 ? -1.0 : e[1]);
@@ -64,13 +69,19 @@ static const float* nearest_source_texel(const light_source* source, const doubl
     uint32_t x = (uint32_t)(u * (double)env->width), y = (uint32_t)(v * (double)env->height);
     if (x >= env->width) x = env->width - 1u;
     if (y >= env->height) y = env->height - 1u;
-    return prt_env_texel(env, 0u, x, y);
+    if (source->banded) {
+      texel = source->banded + prt_wavelet_banded_at(env->width, x, y);
+      channel_step = PRT_WAVELET_BAND_ROWS;
+    } else {
+      texel = prt_env_texel(env, 0u, x, y);
+    }
   } else {
     const uint32_t n = env->width;
     double sc, tc;
     const uint32_t face = prt_cube_face_coords(e[0], e[1], e[2], &sc, &tc);
-    return prt_env_texel(env, face, prt_face_texel(sc, n), prt_face_texel(tc, n));
+    texel = prt_env_texel(env, face, prt_face_texel(sc, n), prt_face_texel(tc, n));
   }
+  for (c = 0; c < 3u; ++c) rgb[c] = sanitised(texel[c * channel_step]);
 }
 
 /* The value of a target texel nothing landed in: the source's nearest texel in direction R^T c
@@ -79,7 +90,6 @@ static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint3
                              const double r[9], const light_source* source, float* texel) {
   float centre[3];
   double e[3];
-  const float* nearest;
   uint32_t c;
   if (!prt_wavelet_texel_inside(param, size, x, y)) {
     texel[0] = texel[1] = texel[2] = 0.0f;
@@ -87,8 +97,7 @@ static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint3
   }
   prt_wavelet_direction(param, size, face, (float)x + 0.5f, (float)y + 0.5f, centre);
   for (c = 0; c < 3u; ++c) e[c] = r[c] * centre[0] + r[3 + c] * centre[1] + r[6 + c] * centre[2];
-  nearest = nearest_source_texel(source, e);
-  for (c = 0; c < 3u; ++c) texel[c] = sanitised(nearest[c]);
+  nearest_source_texel(source, e, texel);
 }
 
 /* Turns what landed in every target texel (sum of L dw in RGB, sum of dw in the 4th float) into
@@ -256,6 +265,7 @@ prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size, const pr
   load_rotation(env.rotation, r);
   memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
   source.env = &env;
+  source.banded = NULL;
   if (env.layout == PRT_ENV_LATLONG) {
     splat_latlong(param, size, &env, r, out_rgba);
     source.largest_texel = prt_wavelet_latlong_largest_texel(env.width, env.height);
@@ -268,10 +278,11 @@ prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size, const pr
 }
 
 void prt_wavelet_finish_resample(uint32_t param, uint32_t size, const double r[9],
-                                 const prt_env_view* env, double largest_texel,
+                                 const prt_env_view* env, const float* banded, double largest_texel,
                                  const double* solid_angles, float* out_rgba) {
   light_source source;
   source.env = env;
+  source.banded = banded;
   source.largest_texel = largest_texel;
   finish_resample(param, size, r, &source, solid_angles, out_rgba);
 }

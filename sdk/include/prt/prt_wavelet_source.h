@@ -48,7 +48,8 @@ typedef struct prt_wavelet_source_desc {
   uint32_t flags; /* prt_wavelet_source_flag bits */
 } prt_wavelet_source_desc;
 
-/* Prepares a source with the context's allocator (about 16 bytes per source texel plus tables).
+/* Prepares a source with the context's allocator (about 12 bytes per source texel of a lat-long
+ * map, 16 of a cube map, plus tables).
  * On success *out_source receives it; on failure *out_source is NULL (when out_source is not
  * NULL). PRT_ERROR_INVALID_ARGUMENT for a NULL context, desc or out_source, a struct_size below
  * 1.0's, a bad param or size, an env that prt_env_image_validate rejects or whose rotation is not
