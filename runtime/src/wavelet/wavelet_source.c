@@ -190,6 +190,7 @@ prt_result prt_wavelet_source_create(prt_context* context, const prt_wavelet_sou
   s->allocator = context->allocator;
   s->bytes = bytes;
   s->isa = prt_internal_simd_isa(context);
+  s->avx512 = prt_internal_simd_avx512(context);
   s->param = d.param;
   s->size = d.size;
   at = (unsigned char*)s + round_up(sizeof *s, 64u);
@@ -323,7 +324,9 @@ prt_result prt_wavelet_source_resample(const prt_wavelet_source* source, const f
     splat_cube_map(source, r, out_rgba);
   } else if (source->param == PRT_WAVELET_PARAM_CUBE) {
 #if defined(PRT_HAS_X86_SIMD)
-    if (source->isa >= PRT_SIMD_ISA_AVX2)
+    if (source->avx512)
+      prt_wavelet_source_splat_cube_avx512(source, r, out_rgba);
+    else if (source->isa >= PRT_SIMD_ISA_AVX2)
       prt_wavelet_source_splat_cube_avx2(source, r, out_rgba);
     else
 #endif

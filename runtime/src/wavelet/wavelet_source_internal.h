@@ -18,6 +18,7 @@ struct prt_wavelet_source {
   prt_allocator allocator;
   size_t bytes;     /* of the allocation holding the struct and its tables */
   prt_simd_isa isa; /* the context's SIMD instruction set at creation */
+  int avx512;       /* the context allows AVX-512 F + DQ (prt_internal_simd_avx512) */
   uint32_t param, size;
   /* The map's layout and size (env.texels: the cube map's copy; NULL for a lat-long map). */
   prt_env_view env;
@@ -46,10 +47,12 @@ uint32_t prt_wavelet_source_locate_latlong(const prt_wavelet_source* source, con
                                            uint32_t x, uint32_t y);
 
 #if defined(PRT_HAS_X86_SIMD)
-/* Accumulates (L dw, dw) of every texel of a lat-long source into its cube target texel, each
- * texel where the scalar path puts it (AVX2 + FMA; the caller checked the CPU). */
+/* Accumulate (L dw, dw) of every texel of a lat-long source into its cube target texel, each
+ * texel where the scalar path puts it (AVX2 + FMA, AVX-512 F + DQ; the caller checked the CPU). */
 void prt_wavelet_source_splat_cube_avx2(const prt_wavelet_source* source, const double r[9],
                                         float* out_rgba);
+void prt_wavelet_source_splat_cube_avx512(const prt_wavelet_source* source, const double r[9],
+                                          float* out_rgba);
 #endif
 
 #endif /* PRT_RUNTIME_WAVELET_SOURCE_INTERNAL_H */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* Private to the SIMD kernels of the prepared wavelet source (wavelet_source_avx2.c):
- * what they share about locating lat-long texels on the cube in float.
+/* Private to the SIMD kernels of the prepared wavelet source (wavelet_source_avx2.c,
+ * wavelet_source_avx512.c): what they share about locating lat-long texels on the cube in float.
  *
  * Each lane is a row of a band of the banded copy; a column's direction is
  * R d = sin t g(f) + cos t R e_y, from a float table of g per column block and sin t, cos t R e_y

@@ -7,7 +7,8 @@
  * once: it copies the map sanitised, with each texel's direction set-up and solid angle, and the
  * target texels' solid angles. prt_wavelet_source_resample then only turns the directions by the
  * frame's rotation and accumulates, on the context's SIMD instruction set where there is a kernel
- * for it (AVX2: a lat-long map onto the cube; otherwise the scalar path). Its result equals
+ * for it (a lat-long map onto the cube: AVX2, or AVX-512 F + DQ where the CPU has it and the
+ * context was given no SIMD ISA limit; otherwise the scalar path). Its result equals
  * prt_wavelet_resample's for the same map and rotation up to the order of the float sums: every
  * source texel lands in the same target texel (a direction whose texel a float computation could
  * get wrong is located again exactly as prt_wavelet_resample does). */

@@ -188,8 +188,9 @@ TEST(WaveletSource, ScalarPathGivesTheReferenceBits) {
       }
 }
 
-// ---- The context's SIMD path (AVX2 for a lat-long map onto the cube; the scalar path for the
-// rest, where this is the test above again). ----
+// ---- The SIMD paths (a lat-long map onto the cube: AVX2, and AVX-512 in a context without an
+// ISA limit where the CPU has it; the scalar path for the rest, where this is the test above
+// again). ----
 
 // The context's path against the reference on random maps, under random rotations and under
 // rotations that put thousands of texels within a rounding of a texel edge or a face boundary,
@@ -235,6 +236,11 @@ class WaveletSourceSimd : public prt_test::SimdIsaTest {};
 
 TEST_P(WaveletSourceSimd, EqualsTheReferenceUpToSummationOrder) {
   expect_reference_up_to_summation_order(ctx);
+}
+
+TEST(WaveletSource, UnlimitedContextEqualsTheReferenceUpToSummationOrder) {
+  auto context = prt_test::limited_context();
+  expect_reference_up_to_summation_order(context.get());
 }
 
 INSTANTIATE_TEST_SUITE_P(Isa, WaveletSourceSimd, prt_test::kSimdIsas, prt_test::isa_test_name);
