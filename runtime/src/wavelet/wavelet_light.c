@@ -302,6 +302,10 @@ prt_result prt_wavelet_transform_light(prt_wavelet_param param, uint32_t size, f
 
 #define DIGIT_BITS 11u
 #define HISTOGRAM_SIZE (1u << DIGIT_BITS)
+/* The detail coefficients whose weights share the threshold's first digit are listed for the
+ * passes over the later digits, so that those read a few instead of every coefficient; when
+ * more share it (a flat light), those passes read every coefficient. */
+#define CANDIDATES 2048u
 
 typedef struct selection {
   uint32_t prefix;      /* the threshold's bits found so far */
@@ -309,6 +313,8 @@ typedef struct selection {
   uint32_t remaining;   /* how many to keep among the weights matching the prefix */
   uint32_t histogram[HISTOGRAM_SIZE];
   uint32_t area[PRT_WAVELET_MAX_SIZE]; /* support area of a detail coefficient by max(x, y) */
+  uint32_t listed;                     /* coefficients sharing the first digit */
+  uint32_t candidate[CANDIDATES + 1u]; /* their indices (the last slot takes the overflow) */
 } selection;
 
 /* The digit of pass 0, 1, 2: bits 21..31, 10..20, 0..9. */
@@ -342,36 +348,59 @@ static void tabulate_areas(uint32_t size, uint32_t* area) {
   }
 }
 
-/* One pass over every detail coefficient in index order: passes 0..2 histogram the next digit
- * of the weights that match the prefix; pass 3 keeps those above the threshold and the first
- * `remaining` equal to it, and zeroes the rest. The first pass computes each weight's bits and
- * parks them in the coefficient's padding float, which the later passes read and the last one
- * writes back as 0. */
-static void selection_pass(uint32_t faces, uint32_t size, uint32_t pass, uint32_t first_pass,
-                           selection* state, float* rgba) {
+/* The weight bits parked in coefficient k's padding float. */
+static uint32_t parked_bits(const float* rgba, size_t k) {
+  uint32_t bits;
+  memcpy(&bits, rgba + 4u * k + 3u, sizeof bits);
+  return bits;
+}
+
+/* Pass 0: every detail coefficient's weight bits, parked in its padding float for the later
+ * passes (the last one writes it back as 0), and the histogram of their first digit. */
+static void first_pass(uint32_t faces, uint32_t size, selection* state, float* rgba) {
   uint32_t f, x, y;
-  for (f = 0; f < faces; ++f) {
-    for (y = 0; y < size; ++y) {
+  for (f = 0; f < faces; ++f)
+    for (y = 0; y < size; ++y)
       for (x = (y == 0u ? 1u : 0u); x < size; ++x) {
         float* coefficient = rgba + 4u * (((size_t)f * size + y) * size + x);
-        uint32_t bits;
-        if (pass == first_pass) {
-          bits = weight_bits(coefficient, state->area[x > y ? x : y]);
-          memcpy(coefficient + 3, &bits, sizeof bits);
-        } else {
-          memcpy(&bits, coefficient + 3, sizeof bits);
-        }
-        if (pass < 3u) {
-          if ((bits & state->prefix_mask) == state->prefix)
-            ++state->histogram[(bits >> digit_shift(pass)) & digit_mask(pass)];
-        } else if (bits > state->prefix || (bits == state->prefix && state->remaining > 0u)) {
-          if (bits == state->prefix) --state->remaining;
-          coefficient[3] = 0.0f;
-        } else {
-          memset(coefficient, 0, 4u * sizeof(float));
-        }
+        const uint32_t bits = weight_bits(coefficient, state->area[x > y ? x : y]);
+        memcpy(coefficient + 3, &bits, sizeof bits);
+        ++state->histogram[bits >> digit_shift(0u)];
       }
+}
+
+/* Lists the detail coefficients whose first digit is the threshold's (state->listed may exceed
+ * CANDIDATES: then the list is incomplete and not used). */
+static void list_candidates(uint32_t faces, uint32_t size, selection* state, const float* rgba) {
+  const uint32_t area = size * size;
+  uint32_t f, k, listed = 0u;
+  for (f = 0; f < faces; ++f)
+    for (k = f * area + 1u; k < (f + 1u) * area; ++k) { /* past the face's scaling coefficient */
+      state->candidate[listed < CANDIDATES ? listed : CANDIDATES] = k;
+      listed += (parked_bits(rgba, k) & state->prefix_mask) == state->prefix;
     }
+  state->listed = listed;
+}
+
+/* Passes 1 and 2: the histogram of the next digit of the weights that match the prefix. */
+static void digit_pass(uint32_t faces, uint32_t size, uint32_t pass, selection* state,
+                       const float* rgba) {
+  const uint32_t shift = digit_shift(pass), mask = digit_mask(pass);
+  if (state->listed <= CANDIDATES) {
+    uint32_t i;
+    for (i = 0; i < state->listed; ++i) {
+      const uint32_t bits = parked_bits(rgba, state->candidate[i]);
+      if ((bits & state->prefix_mask) == state->prefix) ++state->histogram[(bits >> shift) & mask];
+    }
+  } else {
+    const uint32_t area = size * size;
+    uint32_t f, k;
+    for (f = 0; f < faces; ++f)
+      for (k = f * area + 1u; k < (f + 1u) * area; ++k) {
+        const uint32_t bits = parked_bits(rgba, k);
+        if ((bits & state->prefix_mask) == state->prefix)
+          ++state->histogram[(bits >> shift) & mask];
+      }
   }
 }
 
@@ -388,24 +417,50 @@ static void choose_digit(uint32_t pass, selection* state) {
   state->prefix_mask |= digit_mask(pass) << digit_shift(pass);
 }
 
+/* The last pass, in index order: keeps the weights above the threshold and the first
+ * `remaining` equal to it (their padding float back to 0), zeroes the rest. */
+static void keep_pass(uint32_t faces, uint32_t size, selection* state, float* rgba) {
+  const uint32_t area = size * size;
+  uint32_t f, k;
+  for (f = 0; f < faces; ++f)
+    for (k = f * area + 1u; k < (f + 1u) * area; ++k) {
+      float* coefficient = rgba + 4u * (size_t)k;
+      const uint32_t bits = parked_bits(rgba, k);
+      if (bits > state->prefix || (bits == state->prefix && state->remaining > 0u)) {
+        if (bits == state->prefix) --state->remaining;
+        coefficient[3] = 0.0f;
+      } else {
+        memset(coefficient, 0, 4u * sizeof(float));
+      }
+    }
+}
+
 prt_result prt_wavelet_select_light(prt_wavelet_param param, uint32_t size, uint32_t m,
                                     float* rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
   selection state;
-  uint32_t pass, first_pass;
+  uint32_t pass, f;
   if (!prt_wavelet_domain_valid(param, size) || !rgba) return PRT_ERROR_INVALID_ARGUMENT;
   if (m >= faces * (size * size - 1u)) return PRT_OK;
+  if (m == 0u) { /* keep only the scaling coefficients */
+    for (f = 0; f < faces; ++f)
+      memset(rgba + 4u * ((size_t)f * size * size + 1u), 0,
+             4u * sizeof(float) * ((size_t)size * size - 1u));
+    return PRT_OK;
+  }
   state.prefix = 0u;
   state.prefix_mask = 0u;
   state.remaining = m;
   tabulate_areas(size, state.area);
-  /* m = 0: the threshold stays above every weight (none equal with remaining 0 is kept). */
-  if (m == 0u) state.prefix = 0xFFFFFFFFu;
-  first_pass = m == 0u ? 3u : 0u;
-  for (pass = first_pass; pass <= 3u; ++pass) {
-    if (pass < 3u) memset(state.histogram, 0, sizeof state.histogram);
-    selection_pass(faces, size, pass, first_pass, &state, rgba);
-    if (pass < 3u) choose_digit(pass, &state);
+  memset(state.histogram, 0, sizeof state.histogram);
+  first_pass(faces, size, &state, rgba);
+  choose_digit(0u, &state);
+  list_candidates(faces, size, &state, rgba);
+  for (pass = 1u; pass < 3u; ++pass) {
+    memset(state.histogram, 0, sizeof state.histogram);
+    digit_pass(faces, size, pass, &state, rgba);
+    choose_digit(pass, &state);
   }
+  keep_pass(faces, size, &state, rgba);
   return PRT_OK;
 }
