@@ -68,18 +68,17 @@ PRT_SOURCE_INLINE located locate_any(__m256 x, __m256 y, __m256 z, __m256 half_s
                   log2_size);
 }
 
-/* All lanes >= (or >) both others' magnitudes: the face test of locate_on. */
-PRT_SOURCE_INLINE int all_major(__m256 m, __m256 a, __m256 b, int a_strict, int b_strict) {
-  const __m256 over_a =
-      a_strict ? _mm256_cmp_ps(m, abs_ps(a), _CMP_GT_OQ) : _mm256_cmp_ps(m, abs_ps(a), _CMP_GE_OQ);
-  const __m256 over_b =
-      b_strict ? _mm256_cmp_ps(m, abs_ps(b), _CMP_GT_OQ) : _mm256_cmp_ps(m, abs_ps(b), _CMP_GE_OQ);
-  return _mm256_movemask_ps(_mm256_and_ps(over_a, over_b)) == 0xFF;
+/* 1 when every lane's m is at least |a| and |b|. */
+PRT_SOURCE_INLINE int all_major(__m256 m, __m256 a, __m256 b) {
+  return _mm256_movemask_ps(_mm256_cmp_ps(m, _mm256_max_ps(abs_ps(a), abs_ps(b)), _CMP_GE_OQ)) ==
+         0xFF;
 }
 
 /* The same when every lane is on face f, which the lanes of a column mostly are: the face test
- * is two compares per lane (as prt_cube_face_coords decides, ties to X, then Y) and the signs
- * fold into the multiply-adds. 0 when some lane is on another face. */
+ * is one compare per lane and the signs fold into the multiply-adds. 0 when some lane is on
+ * another face. A lane on a tie between two faces may be taken for this face where
+ * prt_cube_face_coords picks the other: its coordinate along the other is then +-1, an edge, so
+ * it is located again exactly. */
 PRT_SOURCE_INLINE int locate_on(uint32_t f, __m256 x, __m256 y, __m256 z, __m256 half_size,
                                 uint32_t area, __m128i log2_size, located* out) {
   const __m256 sign = _mm256_set1_ps(-0.0f);
@@ -87,40 +86,40 @@ PRT_SOURCE_INLINE int locate_on(uint32_t f, __m256 x, __m256 y, __m256 z, __m256
   __m256 m, q;
   switch (f) {
     case 0:
-      if (!all_major(x, y, z, 0, 0)) return 0;
+      if (!all_major(x, y, z)) return 0;
       q = _mm256_div_ps(half_size, x);
       *out = texel_of(_mm256_fnmadd_ps(z, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
       return 1;
     case 1:
       m = _mm256_xor_ps(x, sign);
-      if (!all_major(m, y, z, 0, 0)) return 0;
+      if (!all_major(m, y, z)) return 0;
       q = _mm256_div_ps(half_size, m);
       *out = texel_of(_mm256_fmadd_ps(z, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
       return 1;
     case 2:
-      if (!all_major(y, x, z, 1, 0)) return 0;
+      if (!all_major(y, x, z)) return 0;
       q = _mm256_div_ps(half_size, y);
       *out = texel_of(_mm256_fmadd_ps(x, q, half_size), _mm256_fmadd_ps(z, q, half_size), offset,
                       log2_size);
       return 1;
     case 3:
       m = _mm256_xor_ps(y, sign);
-      if (!all_major(m, x, z, 1, 0)) return 0;
+      if (!all_major(m, x, z)) return 0;
       q = _mm256_div_ps(half_size, m);
       *out = texel_of(_mm256_fmadd_ps(x, q, half_size), _mm256_fnmadd_ps(z, q, half_size), offset,
                       log2_size);
       return 1;
     case 4:
-      if (!all_major(z, x, y, 1, 1)) return 0;
+      if (!all_major(z, x, y)) return 0;
       q = _mm256_div_ps(half_size, z);
       *out = texel_of(_mm256_fmadd_ps(x, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
       return 1;
     default:
       m = _mm256_xor_ps(z, sign);
-      if (!all_major(m, x, y, 1, 1)) return 0;
+      if (!all_major(m, x, y)) return 0;
       q = _mm256_div_ps(half_size, m);
       *out = texel_of(_mm256_fnmadd_ps(x, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
                       log2_size);

@@ -64,9 +64,16 @@ PRT_SOURCE_INLINE located locate_any(__m512 x, __m512 y, __m512 z, __m512 half_s
                   log2_size);
 }
 
+/* 1 when every lane's m is at least |a| and |b|: range 0x0B is the larger magnitude. */
+PRT_SOURCE_INLINE int all_major(__m512 m, __m512 a, __m512 b) {
+  return _mm512_cmp_ps_mask(m, _mm512_range_ps(a, b, 0x0B), _CMP_GE_OQ) == 0xFFFFu;
+}
+
 /* The same when every lane is on face f, which the lanes of a column mostly are: the face test
- * is two compares per lane (as prt_cube_face_coords decides, ties to X, then Y) and the signs
- * fold into the multiply-adds. 0 when some lane is on another face. */
+ * is one compare per lane and the signs fold into the multiply-adds. 0 when some lane is on
+ * another face. A lane on a tie between two faces may be taken for this face where
+ * prt_cube_face_coords picks the other: its coordinate along the other is then +-1, an edge, so
+ * it is located again exactly. */
 PRT_SOURCE_INLINE int locate_on(uint32_t f, __m512 x, __m512 y, __m512 z, __m512 half_size,
                                 uint32_t area, __m128i log2_size, located* out) {
   const __m512 sign = _mm512_set1_ps(-0.0f);
@@ -74,52 +81,40 @@ PRT_SOURCE_INLINE int locate_on(uint32_t f, __m512 x, __m512 y, __m512 z, __m512
   __m512 m, q;
   switch (f) {
     case 0:
-      if (_mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(x, _mm512_abs_ps(y), _CMP_GE_OQ), x,
-                                  _mm512_abs_ps(z), _CMP_GE_OQ) != 0xFFFFu)
-        return 0;
+      if (!all_major(x, y, z)) return 0;
       q = _mm512_div_ps(half_size, x);
       *out = texel_of(_mm512_fnmadd_ps(z, q, half_size), _mm512_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
       return 1;
     case 1:
       m = _mm512_xor_ps(x, sign);
-      if (_mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(m, _mm512_abs_ps(y), _CMP_GE_OQ), m,
-                                  _mm512_abs_ps(z), _CMP_GE_OQ) != 0xFFFFu)
-        return 0;
+      if (!all_major(m, y, z)) return 0;
       q = _mm512_div_ps(half_size, m);
       *out = texel_of(_mm512_fmadd_ps(z, q, half_size), _mm512_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
       return 1;
     case 2:
-      if (_mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(y, _mm512_abs_ps(x), _CMP_GT_OQ), y,
-                                  _mm512_abs_ps(z), _CMP_GE_OQ) != 0xFFFFu)
-        return 0;
+      if (!all_major(y, x, z)) return 0;
       q = _mm512_div_ps(half_size, y);
       *out = texel_of(_mm512_fmadd_ps(x, q, half_size), _mm512_fmadd_ps(z, q, half_size), offset,
                       log2_size);
       return 1;
     case 3:
       m = _mm512_xor_ps(y, sign);
-      if (_mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(m, _mm512_abs_ps(x), _CMP_GT_OQ), m,
-                                  _mm512_abs_ps(z), _CMP_GE_OQ) != 0xFFFFu)
-        return 0;
+      if (!all_major(m, x, z)) return 0;
       q = _mm512_div_ps(half_size, m);
       *out = texel_of(_mm512_fmadd_ps(x, q, half_size), _mm512_fnmadd_ps(z, q, half_size), offset,
                       log2_size);
       return 1;
     case 4:
-      if (_mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(z, _mm512_abs_ps(x), _CMP_GT_OQ), z,
-                                  _mm512_abs_ps(y), _CMP_GT_OQ) != 0xFFFFu)
-        return 0;
+      if (!all_major(z, x, y)) return 0;
       q = _mm512_div_ps(half_size, z);
       *out = texel_of(_mm512_fmadd_ps(x, q, half_size), _mm512_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
       return 1;
     default:
       m = _mm512_xor_ps(z, sign);
-      if (_mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(m, _mm512_abs_ps(x), _CMP_GT_OQ), m,
-                                  _mm512_abs_ps(y), _CMP_GT_OQ) != 0xFFFFu)
-        return 0;
+      if (!all_major(m, x, y)) return 0;
       q = _mm512_div_ps(half_size, m);
       *out = texel_of(_mm512_fnmadd_ps(x, q, half_size), _mm512_fnmadd_ps(y, q, half_size), offset,
                       log2_size);
