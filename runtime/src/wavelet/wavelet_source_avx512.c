@@ -214,18 +214,18 @@ static void splat_band(const band* b, const prt_wavelet_column_block* block, pen
   const size_t column_step = 3u * LANES;
   uint32_t face = 0u, runs = 0u, column = 0u, x;
   __m512i previous = locate_column(b, block, 0u, &face);
-  __m512 sum_r = _mm512_mul_ps(_mm512_load_ps(texels), b->solid_angle);
-  __m512 sum_g = _mm512_mul_ps(_mm512_load_ps(texels + LANES), b->solid_angle);
-  __m512 sum_b = _mm512_mul_ps(_mm512_load_ps(texels + 2u * LANES), b->solid_angle);
+  __m512 sum_r = _mm512_mul_ps(_mm512_loadu_ps(texels), b->solid_angle);
+  __m512 sum_g = _mm512_mul_ps(_mm512_loadu_ps(texels + LANES), b->solid_angle);
+  __m512 sum_b = _mm512_mul_ps(_mm512_loadu_ps(texels + 2u * LANES), b->solid_angle);
   __m512 sum_w = b->solid_angle;
   for (x = 1u; x < block->count; ++x) {
     const float* texel = texels + column_step * x;
     const __m512i index = locate_column(b, block, x, &face);
     const __mmask16 same = _mm512_cmpeq_epi32_mask(index, previous);
     /* L dw rounds as prt_wavelet_resample's product; only the order of the sums differs. */
-    const __m512 r = _mm512_mul_ps(_mm512_load_ps(texel), b->solid_angle);
-    const __m512 g = _mm512_mul_ps(_mm512_load_ps(texel + LANES), b->solid_angle);
-    const __m512 bl = _mm512_mul_ps(_mm512_load_ps(texel + 2u * LANES), b->solid_angle);
+    const __m512 r = _mm512_mul_ps(_mm512_loadu_ps(texel), b->solid_angle);
+    const __m512 g = _mm512_mul_ps(_mm512_loadu_ps(texel + LANES), b->solid_angle);
+    const __m512 bl = _mm512_mul_ps(_mm512_loadu_ps(texel + 2u * LANES), b->solid_angle);
     runs = queue_runs(p, runs, column, (__mmask16)(~same & b->rows), previous, sum_r, sum_g, sum_b,
                       sum_w);
     if (++column == CHUNK) {
