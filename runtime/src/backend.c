@@ -24,8 +24,8 @@ prt_simd_isa prt_internal_detect_simd_isa(void) {
   /* gcc returns a non-zero bit mask, not 1, for a supported feature. */
   if (__builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("fma") != 0) {
     if (__builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512bw") != 0 &&
-        __builtin_cpu_supports("avx512vl") != 0 && __builtin_cpu_supports("avx512vnni") != 0 &&
-        os_saves_avx512())
+        __builtin_cpu_supports("avx512dq") != 0 && __builtin_cpu_supports("avx512vl") != 0 &&
+        __builtin_cpu_supports("avx512vnni") != 0 && os_saves_avx512())
       return PRT_SIMD_ISA_AVX512;
     return PRT_SIMD_ISA_AVX2;
   }

@@ -20,6 +20,7 @@ static float sanitised(float value) {
 /* The source map, for the nearest-texel fill of empty targets. */
 typedef struct light_source {
   const prt_env_view* env;
+  const float* banded;  /* a lat-long map's texels in bands (see PRT_WAVELET_BAND_ROWS), or NULL */
   double largest_texel; /* the largest source texel's solid angle */
 } light_source;
 
@@ -55,8 +56,12 @@ static void load_rotation(const float* rotation, double r[9]) {
   for (i = 0; i < 9u; ++i) r[i] = rotation ? (double)rotation[i] : (i % 4u == 0u ? 1.0 : 0.0);
 }
 
-static const float* nearest_source_texel(const light_source* source, const double e[3]) {
+/* The RGB of the source's texel in direction e, sanitised. */
+static void nearest_source_texel(const light_source* source, const double e[3], float rgb[3]) {
   const prt_env_view* env = source->env;
+  const float* texel;
+  size_t channel_step = 1u;
+  uint32_t c;
   if (env->layout == PRT_ENV_LATLONG) {
     const double u = 0.5 + atan2(e[0], -e[2]) / (2.0 * PRT_SPHERE_PI);
     const double cos_theta = e[1] > 1.0 ? 1.0 : (e[1] < -1.0 ? -1.0 : e[1]);
@@ -64,13 +69,19 @@ static const float* nearest_source_texel(const light_source* source, const doubl
     uint32_t x = (uint32_t)(u * (double)env->width), y = (uint32_t)(v * (double)env->height);
     if (x >= env->width) x = env->width - 1u;
     if (y >= env->height) y = env->height - 1u;
-    return prt_env_texel(env, 0u, x, y);
+    if (source->banded) {
+      texel = source->banded + prt_wavelet_banded_at(env->width, x, y);
+      channel_step = PRT_WAVELET_BAND_ROWS;
+    } else {
+      texel = prt_env_texel(env, 0u, x, y);
+    }
   } else {
     const uint32_t n = env->width;
     double sc, tc;
     const uint32_t face = prt_cube_face_coords(e[0], e[1], e[2], &sc, &tc);
-    return prt_env_texel(env, face, prt_face_texel(sc, n), prt_face_texel(tc, n));
+    texel = prt_env_texel(env, face, prt_face_texel(sc, n), prt_face_texel(tc, n));
   }
+  for (c = 0; c < 3u; ++c) rgb[c] = sanitised(texel[c * channel_step]);
 }
 
 /* The value of a target texel nothing landed in: the source's nearest texel in direction R^T c
@@ -79,7 +90,6 @@ static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint3
                              const double r[9], const light_source* source, float* texel) {
   float centre[3];
   double e[3];
-  const float* nearest;
   uint32_t c;
   if (!prt_wavelet_texel_inside(param, size, x, y)) {
     texel[0] = texel[1] = texel[2] = 0.0f;
@@ -87,8 +97,7 @@ static void fill_empty_texel(uint32_t param, uint32_t size, uint32_t face, uint3
   }
   prt_wavelet_direction(param, size, face, (float)x + 0.5f, (float)y + 0.5f, centre);
   for (c = 0; c < 3u; ++c) e[c] = r[c] * centre[0] + r[3 + c] * centre[1] + r[6 + c] * centre[2];
-  nearest = nearest_source_texel(source, e);
-  for (c = 0; c < 3u; ++c) texel[c] = sanitised(nearest[c]);
+  nearest_source_texel(source, e, texel);
 }
 
 /* Turns what landed in every target texel (sum of L dw in RGB, sum of dw in the 4th float) into
@@ -256,6 +265,7 @@ prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size, const pr
   load_rotation(env.rotation, r);
   memset(out_rgba, 0, 4u * sizeof(float) * prt_wavelet_coefficient_count(param, size));
   source.env = &env;
+  source.banded = NULL;
   if (env.layout == PRT_ENV_LATLONG) {
     splat_latlong(param, size, &env, r, out_rgba);
     source.largest_texel = prt_wavelet_latlong_largest_texel(env.width, env.height);
@@ -268,10 +278,11 @@ prt_result prt_wavelet_resample(prt_wavelet_param param, uint32_t size, const pr
 }
 
 void prt_wavelet_finish_resample(uint32_t param, uint32_t size, const double r[9],
-                                 const prt_env_view* env, double largest_texel,
+                                 const prt_env_view* env, const float* banded, double largest_texel,
                                  const double* solid_angles, float* out_rgba) {
   light_source source;
   source.env = env;
+  source.banded = banded;
   source.largest_texel = largest_texel;
   finish_resample(param, size, r, &source, solid_angles, out_rgba);
 }
@@ -291,6 +302,10 @@ prt_result prt_wavelet_transform_light(prt_wavelet_param param, uint32_t size, f
 
 #define DIGIT_BITS 11u
 #define HISTOGRAM_SIZE (1u << DIGIT_BITS)
+/* The detail coefficients whose weights share the threshold's first digit are listed for the
+ * passes over the later digits, so that those read a few instead of every coefficient; when
+ * more share it (a flat light), those passes read every coefficient. */
+#define CANDIDATES 2048u
 
 typedef struct selection {
   uint32_t prefix;      /* the threshold's bits found so far */
@@ -298,6 +313,8 @@ typedef struct selection {
   uint32_t remaining;   /* how many to keep among the weights matching the prefix */
   uint32_t histogram[HISTOGRAM_SIZE];
   uint32_t area[PRT_WAVELET_MAX_SIZE]; /* support area of a detail coefficient by max(x, y) */
+  uint32_t listed;                     /* coefficients sharing the first digit */
+  uint32_t candidate[CANDIDATES + 1u]; /* their indices (the last slot takes the overflow) */
 } selection;
 
 /* The digit of pass 0, 1, 2: bits 21..31, 10..20, 0..9. */
@@ -331,36 +348,59 @@ static void tabulate_areas(uint32_t size, uint32_t* area) {
   }
 }
 
-/* One pass over every detail coefficient in index order: passes 0..2 histogram the next digit
- * of the weights that match the prefix; pass 3 keeps those above the threshold and the first
- * `remaining` equal to it, and zeroes the rest. The first pass computes each weight's bits and
- * parks them in the coefficient's padding float, which the later passes read and the last one
- * writes back as 0. */
-static void selection_pass(uint32_t faces, uint32_t size, uint32_t pass, uint32_t first_pass,
-                           selection* state, float* rgba) {
+/* The weight bits parked in coefficient k's padding float. */
+static uint32_t parked_bits(const float* rgba, size_t k) {
+  uint32_t bits;
+  memcpy(&bits, rgba + 4u * k + 3u, sizeof bits);
+  return bits;
+}
+
+/* Pass 0: every detail coefficient's weight bits, parked in its padding float for the later
+ * passes (the last one writes it back as 0), and the histogram of their first digit. */
+static void first_pass(uint32_t faces, uint32_t size, selection* state, float* rgba) {
   uint32_t f, x, y;
-  for (f = 0; f < faces; ++f) {
-    for (y = 0; y < size; ++y) {
+  for (f = 0; f < faces; ++f)
+    for (y = 0; y < size; ++y)
       for (x = (y == 0u ? 1u : 0u); x < size; ++x) {
         float* coefficient = rgba + 4u * (((size_t)f * size + y) * size + x);
-        uint32_t bits;
-        if (pass == first_pass) {
-          bits = weight_bits(coefficient, state->area[x > y ? x : y]);
-          memcpy(coefficient + 3, &bits, sizeof bits);
-        } else {
-          memcpy(&bits, coefficient + 3, sizeof bits);
-        }
-        if (pass < 3u) {
-          if ((bits & state->prefix_mask) == state->prefix)
-            ++state->histogram[(bits >> digit_shift(pass)) & digit_mask(pass)];
-        } else if (bits > state->prefix || (bits == state->prefix && state->remaining > 0u)) {
-          if (bits == state->prefix) --state->remaining;
-          coefficient[3] = 0.0f;
-        } else {
-          memset(coefficient, 0, 4u * sizeof(float));
-        }
+        const uint32_t bits = weight_bits(coefficient, state->area[x > y ? x : y]);
+        memcpy(coefficient + 3, &bits, sizeof bits);
+        ++state->histogram[bits >> digit_shift(0u)];
       }
+}
+
+/* Lists the detail coefficients whose first digit is the threshold's (state->listed may exceed
+ * CANDIDATES: then the list is incomplete and not used). */
+static void list_candidates(uint32_t faces, uint32_t size, selection* state, const float* rgba) {
+  const uint32_t area = size * size;
+  uint32_t f, k, listed = 0u;
+  for (f = 0; f < faces; ++f)
+    for (k = f * area + 1u; k < (f + 1u) * area; ++k) { /* past the face's scaling coefficient */
+      state->candidate[listed < CANDIDATES ? listed : CANDIDATES] = k;
+      listed += (parked_bits(rgba, k) & state->prefix_mask) == state->prefix;
     }
+  state->listed = listed;
+}
+
+/* Passes 1 and 2: the histogram of the next digit of the weights that match the prefix. */
+static void digit_pass(uint32_t faces, uint32_t size, uint32_t pass, selection* state,
+                       const float* rgba) {
+  const uint32_t shift = digit_shift(pass), mask = digit_mask(pass);
+  if (state->listed <= CANDIDATES) {
+    uint32_t i;
+    for (i = 0; i < state->listed; ++i) {
+      const uint32_t bits = parked_bits(rgba, state->candidate[i]);
+      if ((bits & state->prefix_mask) == state->prefix) ++state->histogram[(bits >> shift) & mask];
+    }
+  } else {
+    const uint32_t area = size * size;
+    uint32_t f, k;
+    for (f = 0; f < faces; ++f)
+      for (k = f * area + 1u; k < (f + 1u) * area; ++k) {
+        const uint32_t bits = parked_bits(rgba, k);
+        if ((bits & state->prefix_mask) == state->prefix)
+          ++state->histogram[(bits >> shift) & mask];
+      }
   }
 }
 
@@ -377,24 +417,50 @@ static void choose_digit(uint32_t pass, selection* state) {
   state->prefix_mask |= digit_mask(pass) << digit_shift(pass);
 }
 
+/* The last pass, in index order: keeps the weights above the threshold and the first
+ * `remaining` equal to it (their padding float back to 0), zeroes the rest. */
+static void keep_pass(uint32_t faces, uint32_t size, selection* state, float* rgba) {
+  const uint32_t area = size * size;
+  uint32_t f, k;
+  for (f = 0; f < faces; ++f)
+    for (k = f * area + 1u; k < (f + 1u) * area; ++k) {
+      float* coefficient = rgba + 4u * (size_t)k;
+      const uint32_t bits = parked_bits(rgba, k);
+      if (bits > state->prefix || (bits == state->prefix && state->remaining > 0u)) {
+        if (bits == state->prefix) --state->remaining;
+        coefficient[3] = 0.0f;
+      } else {
+        memset(coefficient, 0, 4u * sizeof(float));
+      }
+    }
+}
+
 prt_result prt_wavelet_select_light(prt_wavelet_param param, uint32_t size, uint32_t m,
                                     float* rgba) {
   const uint32_t faces = prt_wavelet_face_count(param);
   selection state;
-  uint32_t pass, first_pass;
+  uint32_t pass, f;
   if (!prt_wavelet_domain_valid(param, size) || !rgba) return PRT_ERROR_INVALID_ARGUMENT;
   if (m >= faces * (size * size - 1u)) return PRT_OK;
+  if (m == 0u) { /* keep only the scaling coefficients */
+    for (f = 0; f < faces; ++f)
+      memset(rgba + 4u * ((size_t)f * size * size + 1u), 0,
+             4u * sizeof(float) * ((size_t)size * size - 1u));
+    return PRT_OK;
+  }
   state.prefix = 0u;
   state.prefix_mask = 0u;
   state.remaining = m;
   tabulate_areas(size, state.area);
-  /* m = 0: the threshold stays above every weight (none equal with remaining 0 is kept). */
-  if (m == 0u) state.prefix = 0xFFFFFFFFu;
-  first_pass = m == 0u ? 3u : 0u;
-  for (pass = first_pass; pass <= 3u; ++pass) {
-    if (pass < 3u) memset(state.histogram, 0, sizeof state.histogram);
-    selection_pass(faces, size, pass, first_pass, &state, rgba);
-    if (pass < 3u) choose_digit(pass, &state);
+  memset(state.histogram, 0, sizeof state.histogram);
+  first_pass(faces, size, &state, rgba);
+  choose_digit(0u, &state);
+  list_candidates(faces, size, &state, rgba);
+  for (pass = 1u; pass < 3u; ++pass) {
+    memset(state.histogram, 0, sizeof state.histogram);
+    digit_pass(faces, size, pass, &state, rgba);
+    choose_digit(pass, &state);
   }
+  keep_pass(faces, size, &state, rgba);
   return PRT_OK;
 }

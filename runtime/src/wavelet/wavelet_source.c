@@ -21,11 +21,12 @@ static float sanitised(float value) {
   return (value > 0.0f && value <= FLT_MAX) ? value : 0.0f; /* NaN fails both */
 }
 
-/* ---- The single allocation: radiance first (32-byte aligned), then the tables. ---- */
+/* ---- The single allocation: the texels first (64-byte aligned), then the tables. ---- */
 
 typedef struct source_layout {
-  size_t texels, columns, rows, plane; /* plane: texels of one cube face, or 0 */
-  size_t total;                        /* bytes after the struct */
+  size_t texel_bytes;          /* of the cube map's RGBA or the lat-long map's bands */
+  size_t columns, rows, plane; /* plane: texels of one cube face, or 0 */
+  size_t total;                /* bytes after the struct */
 } source_layout;
 
 static size_t round_up(size_t n, size_t to) {
@@ -36,12 +37,14 @@ static size_t round_up(size_t n, size_t to) {
 static int plan_layout(const prt_env_view* env, uint32_t size, source_layout* out) {
   const size_t w = env->width, h = env->height;
   const size_t limit = SIZE_MAX / 64u;
+  /* The bands' rows: h rounded up to whole bands (h < 2^32, so this cannot wrap). */
+  const size_t band_rows = round_up(h, PRT_WAVELET_BAND_ROWS);
   out->columns = w;
   out->rows = h;
-  if (w > limit / h || w * h > limit / env->faces) return 0;
-  out->texels = w * h * env->faces;
+  if (w > limit / band_rows || w * band_rows > limit / env->faces) return 0;
   out->plane = env->layout == PRT_ENV_CUBE ? w * h : 0u;
-  out->total = round_up(16u * out->texels, 32u) + 8u * (2u * w + 2u * h + out->plane) +
+  out->texel_bytes = env->layout == PRT_ENV_CUBE ? 16u * w * h * env->faces : 12u * w * band_rows;
+  out->total = round_up(out->texel_bytes, 64u) + 8u * (2u * w + 2u * h + out->plane) +
                8u * (size_t)size * size + 4u * (env->layout == PRT_ENV_CUBE ? out->plane : h);
   return 1;
 }
@@ -92,7 +95,7 @@ static void fill_cube_tables(prt_wavelet_source* s) {
   s->largest_texel = prt_wavelet_cube_largest_texel(face_size);
 }
 
-static void copy_radiance(const prt_env_view* env, float* radiance) {
+static void copy_cube_radiance(const prt_env_view* env, float* radiance) {
   uint32_t f, x, y, c;
   for (f = 0; f < env->faces; ++f)
     for (y = 0; y < env->height; ++y)
@@ -104,6 +107,17 @@ static void copy_radiance(const prt_env_view* env, float* radiance) {
       }
 }
 
+/* The lat-long map into its bands (the rows past the last stay 0: the allocation is zeroed). */
+static void copy_banded_radiance(const prt_env_view* env, float* banded) {
+  uint32_t x, y, c;
+  for (y = 0; y < env->height; ++y)
+    for (x = 0; x < env->width; ++x) {
+      const float* texel = prt_env_texel(env, 0u, x, y);
+      float* to = banded + prt_wavelet_banded_at(env->width, x, y);
+      for (c = 0; c < 3u; ++c) to[c * PRT_WAVELET_BAND_ROWS] = sanitised(texel[c]);
+    }
+}
+
 /* The lat-long solid angle of row y of `height` rows, `width` columns (SPEC §12). */
 static double latlong_row_solid_angle(uint32_t width, uint32_t height, uint32_t y) {
   return 2.0 * PRT_SPHERE_PI / (double)width *
@@ -113,7 +127,7 @@ static double latlong_row_solid_angle(uint32_t width, uint32_t height, uint32_t 
 
 /* PRT_WAVELET_SOURCE_REDUCE_2X2: texel (x, y) of the half-size map gets the power of the full
  * map's 2x2 block over the block's solid angle (the half-size texel's, as lat-long rows add). */
-static void copy_reduced_radiance(const prt_env_view* env, float* radiance) {
+static void copy_reduced_radiance(const prt_env_view* env, float* banded) {
   const uint32_t width = env->width / 2u, height = env->height / 2u;
   uint32_t x, y, c, i;
   for (y = 0; y < height; ++y) {
@@ -122,13 +136,12 @@ static void copy_reduced_radiance(const prt_env_view* env, float* radiance) {
     const double block = 2.0 * (dw[0] + dw[1]);
     for (x = 0; x < width; ++x) {
       double power[3] = {0.0, 0.0, 0.0};
-      float* to = radiance + 4u * ((size_t)y * width + x);
+      float* to = banded + prt_wavelet_banded_at(width, x, y);
       for (i = 0; i < 4u; ++i) {
         const float* texel = prt_env_texel(env, 0u, 2u * x + (i & 1u), 2u * y + (i >> 1));
         for (c = 0; c < 3u; ++c) power[c] += (double)sanitised(texel[c]) * dw[i >> 1];
       }
-      for (c = 0; c < 3u; ++c) to[c] = (float)(power[c] / block);
-      to[3] = 1.0f;
+      for (c = 0; c < 3u; ++c) to[c * PRT_WAVELET_BAND_ROWS] = (float)(power[c] / block);
     }
   }
 }
@@ -168,20 +181,24 @@ prt_result prt_wavelet_source_create(prt_context* context, const prt_wavelet_sou
   if (!plan_layout(&reduced, d.size, &layout))
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY,
                              "prt_wavelet_source_create: the map is too large");
-  bytes = round_up(sizeof *s, 32u) + layout.total;
-  s = (prt_wavelet_source*)prt_internal_alloc(&context->allocator, bytes, 32u);
+  bytes = round_up(sizeof *s, 64u) + layout.total;
+  s = (prt_wavelet_source*)prt_internal_alloc(&context->allocator, bytes, 64u);
   if (!s)
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY,
                              "prt_wavelet_source_create: out of memory");
-  memset(s, 0, sizeof *s);
+  memset(s, 0, bytes);
   s->allocator = context->allocator;
   s->bytes = bytes;
   s->isa = prt_internal_simd_isa(context);
+  s->avx512 = prt_internal_simd_isa(context) >= PRT_SIMD_ISA_AVX512;
   s->param = d.param;
   s->size = d.size;
-  at = (unsigned char*)s + round_up(sizeof *s, 32u);
-  s->radiance = (float*)(void*)at;
-  at += round_up(16u * layout.texels, 32u);
+  at = (unsigned char*)s + round_up(sizeof *s, 64u);
+  if (env.layout == PRT_ENV_CUBE)
+    s->radiance = (float*)(void*)at;
+  else
+    s->banded = (float*)(void*)at;
+  at += round_up(layout.texel_bytes, 64u);
   s->column_sin = (double*)(void*)at;
   s->column_cos = s->column_sin + layout.columns;
   s->row_sin = s->column_cos + layout.columns;
@@ -195,9 +212,11 @@ prt_result prt_wavelet_source_create(prt_context* context, const prt_wavelet_sou
   s->env.row_stride = 4u * (size_t)reduced.width;
   s->env.face_stride = s->env.row_stride * reduced.height;
   if (d.flags & PRT_WAVELET_SOURCE_REDUCE_2X2)
-    copy_reduced_radiance(&env, s->radiance);
+    copy_reduced_radiance(&env, s->banded);
+  else if (env.layout == PRT_ENV_CUBE)
+    copy_cube_radiance(&env, s->radiance);
   else
-    copy_radiance(&env, s->radiance);
+    copy_banded_radiance(&env, s->banded);
   if (env.layout == PRT_ENV_LATLONG)
     fill_latlong_tables(s);
   else
@@ -219,12 +238,13 @@ void prt_wavelet_source_destroy(prt_wavelet_source* source) {
 
 /* ---- Scalar resampling: wavelet_light.c's loops over the tables. ---- */
 
-static inline void accumulate(float* out_rgba, uint32_t target, const float* radiance,
+/* out[target] += (L dw, dw), L's channels `step` floats apart. */
+static inline void accumulate(float* out_rgba, uint32_t target, const float* radiance, size_t step,
                               float solid_angle) {
   float* to = out_rgba + 4u * (size_t)target;
   to[0] += radiance[0] * solid_angle;
-  to[1] += radiance[1] * solid_angle;
-  to[2] += radiance[2] * solid_angle;
+  to[1] += radiance[step] * solid_angle;
+  to[2] += radiance[2u * step] * solid_angle;
   to[3] += solid_angle;
 }
 
@@ -265,11 +285,11 @@ static inline void splat_latlong_for_param(const prt_wavelet_source* s, uint32_t
                                : PRT_WAVELET_SOURCE_COLUMN_BLOCK;
     for (x = 0; x < count; ++x) turned_azimuth(s, r, first + x, g + 3 * x);
     for (y = 0; y < height; ++y) {
-      const float* radiance = s->radiance + 4u * ((size_t)y * width + first);
+      const float* radiance = s->banded + prt_wavelet_banded_at(width, first, y);
       const float solid_angle = s->texel_solid_angle[y];
       for (x = 0; x < count; ++x)
-        accumulate(out_rgba, locate_latlong(s, param, r, g + 3 * x, y), radiance + 4u * x,
-                   solid_angle);
+        accumulate(out_rgba, locate_latlong(s, param, r, g + 3 * x, y),
+                   radiance + 3u * PRT_WAVELET_BAND_ROWS * x, PRT_WAVELET_BAND_ROWS, solid_angle);
     }
   }
 }
@@ -286,7 +306,7 @@ static void splat_cube_map(const prt_wavelet_source* s, const double r[9], float
       for (f = 0; f < 6u; ++f)
         accumulate(out_rgba,
                    prt_wavelet_locate_cube_texel(s->param, s->size, r, f, sc, tc, inv_length),
-                   s->radiance + 4u * ((size_t)f * face_size * face_size + at), solid_angle);
+                   s->radiance + 4u * ((size_t)f * face_size * face_size + at), 1u, solid_angle);
     }
   }
 }
@@ -304,7 +324,9 @@ prt_result prt_wavelet_source_resample(const prt_wavelet_source* source, const f
     splat_cube_map(source, r, out_rgba);
   } else if (source->param == PRT_WAVELET_PARAM_CUBE) {
 #if defined(PRT_HAS_X86_SIMD)
-    if (source->isa >= PRT_SIMD_ISA_AVX2)
+    if (source->avx512)
+      prt_wavelet_source_splat_cube_avx512(source, r, out_rgba);
+    else if (source->isa >= PRT_SIMD_ISA_AVX2)
       prt_wavelet_source_splat_cube_avx2(source, r, out_rgba);
     else
 #endif
@@ -312,7 +334,7 @@ prt_result prt_wavelet_source_resample(const prt_wavelet_source* source, const f
   } else {
     splat_latlong_for_param(source, PRT_WAVELET_PARAM_DUAL_PARABOLOID, r, out_rgba);
   }
-  prt_wavelet_finish_resample(source->param, source->size, r, &source->env, source->largest_texel,
-                              source->target_solid_angle, out_rgba);
+  prt_wavelet_finish_resample(source->param, source->size, r, &source->env, source->banded,
+                              source->largest_texel, source->target_solid_angle, out_rgba);
   return PRT_OK;
 }

@@ -1,40 +1,44 @@
 /* SPDX-License-Identifier: MIT */
 /* Resampling a prepared lat-long source onto the cube with AVX2 + FMA (this file is compiled
- * with -mavx2 -mfma and only called when the CPU has both): eight columns of a row at a time,
- * their turned directions sin t g(f) + cos t R e_y from a float table of g per column block,
- * the cube face and texel found in float. A float texel can differ from the double one of
- * prt_wavelet_resample only for a direction near a texel edge or near a face boundary: such
- * lanes (a small margin around every texel edge, far wider than the float error) are located again
- * by the scalar path's exact function, so every source texel lands where it does there. */
+ * with -mavx2 -mfma and only called when the CPU has both). A band's 16 rows are two halves of 8
+ * lanes, walked over the columns together, so a run of texels of a row that land in one target
+ * is summed in its lane's registers and only a finished run is written out; see
+ * wavelet_source_simd.h for how the texels are located and why every texel lands where
+ * prt_wavelet_resample puts it. */
 #include <immintrin.h>
 #include <stdint.h>
 
 #include "wavelet_source_internal.h"
+#include "wavelet_source_simd.h"
 
-/* The margin, in texels, around a texel edge within which a float texel coordinate is taken
- * from the exact path; the float error is orders of magnitude smaller. It also covers the face
- * choice: float and double can only pick different faces where two |components| are nearly
- * equal, and there the face coordinate is nearly +-1, a texel edge. */
-#define EDGE_MARGIN (1.0f / 2048.0f)
+#define LANES 8u /* of a half */
 
-typedef struct cube_lanes {
-  __m256i index;    /* target texel f S^2 + y S + x */
-  __m256 uncertain; /* all-ones where the float texel may differ from the exact one */
-} cube_lanes;
+typedef struct located {
+  __m256i index; /* target texel f S^2 + y S + x */
+  int uncertain; /* lane bits: within EDGE_MARGIN of a texel edge */
+} located;
 
-static inline __m256 abs_ps(__m256 v) {
+PRT_SOURCE_INLINE __m256 abs_ps(__m256 v) {
   return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v);
 }
 
-/* 1 near an integer (a texel edge) of t, the texel coordinate. */
-static inline __m256 near_edge(__m256 t) {
-  const __m256 fraction = _mm256_sub_ps(t, _mm256_floor_ps(t));
-  return _mm256_or_ps(_mm256_cmp_ps(fraction, _mm256_set1_ps(EDGE_MARGIN), _CMP_LT_OQ),
-                      _mm256_cmp_ps(fraction, _mm256_set1_ps(1.0f - EDGE_MARGIN), _CMP_GT_OQ));
+/* The texel of coordinates (ts, tt) (already (c + 1) S / 2) on the face at face_offset. Every
+ * lane whose truncation could leave 0..S-1 is within the margin of an edge, so it is uncertain
+ * and located again: no clamp is needed. */
+PRT_SOURCE_INLINE located texel_of(__m256 ts, __m256 tt, __m256i face_offset, __m128i log2_size) {
+  const int nearest = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+  const __m256 ds = abs_ps(_mm256_sub_ps(ts, _mm256_round_ps(ts, nearest)));
+  const __m256 dt = abs_ps(_mm256_sub_ps(tt, _mm256_round_ps(tt, nearest)));
+  const __m256i tx = _mm256_cvttps_epi32(ts), ty = _mm256_cvttps_epi32(tt);
+  located out;
+  out.uncertain = _mm256_movemask_ps(
+      _mm256_cmp_ps(_mm256_min_ps(ds, dt), _mm256_set1_ps(EDGE_MARGIN), _CMP_LT_OQ));
+  out.index = _mm256_add_epi32(_mm256_add_epi32(face_offset, _mm256_sll_epi32(ty, log2_size)), tx);
+  return out;
 }
 
-/* prt_cube_face_coords and prt_face_texel on eight directions. */
-static inline cube_lanes locate_cube(__m256 x, __m256 y, __m256 z, __m256 half_size, __m256i last,
+/* prt_cube_face_coords and prt_face_texel on 8 directions, any face each. */
+PRT_SOURCE_INLINE located locate_any(__m256 x, __m256 y, __m256 z, __m256 half_size, __m256i area,
                                      __m128i log2_size) {
   const __m256 sign = _mm256_set1_ps(-0.0f), zero = _mm256_setzero_ps();
   const __m256 ax = abs_ps(x), ay = abs_ps(y), az = abs_ps(z);
@@ -53,142 +57,278 @@ static inline cube_lanes locate_cube(__m256 x, __m256 y, __m256 z, __m256 half_s
   const __m256 major = _mm256_blendv_ps(_mm256_blendv_ps(az, ay, y_major), ax, x_major);
   const __m256 positive =
       _mm256_blendv_ps(_mm256_blendv_ps(z_positive, y_positive, y_major), x_positive, x_major);
-  const __m256 face_base =
-      _mm256_blendv_ps(_mm256_blendv_ps(_mm256_set1_ps(5.0f), _mm256_set1_ps(3.0f), y_major),
-                       _mm256_set1_ps(1.0f), x_major);
-  const __m256 face = _mm256_sub_ps(face_base, _mm256_and_ps(positive, _mm256_set1_ps(1.0f)));
-  const __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), major);
-  /* Texel coordinate (c + 1) S / 2, its texel clamped to 0..S-1 (max also turns NaN to 0). */
-  const __m256 ts = _mm256_mul_ps(_mm256_fmadd_ps(sc, inv, _mm256_set1_ps(1.0f)), half_size);
-  const __m256 tt = _mm256_mul_ps(_mm256_fmadd_ps(tc, inv, _mm256_set1_ps(1.0f)), half_size);
-  const __m256i tx = _mm256_min_epi32(_mm256_cvttps_epi32(_mm256_max_ps(ts, zero)), last);
-  const __m256i ty = _mm256_min_epi32(_mm256_cvttps_epi32(_mm256_max_ps(tt, zero)), last);
-  cube_lanes out;
-  out.index = _mm256_add_epi32(
-      _mm256_sll_epi32(_mm256_add_epi32(_mm256_sll_epi32(_mm256_cvttps_epi32(face), log2_size), ty),
-                       log2_size),
-      tx);
-  out.uncertain = _mm256_or_ps(near_edge(ts), near_edge(tt));
-  return out;
+  /* Face 4, 2 or 0 by the major axis, + 1 where it is negative; times S^2. */
+  const __m256i face = _mm256_add_epi32(
+      _mm256_andnot_si256(_mm256_castps_si256(positive), area),
+      _mm256_blendv_epi8(_mm256_blendv_epi8(_mm256_slli_epi32(area, 2), _mm256_slli_epi32(area, 1),
+                                            _mm256_castps_si256(y_major)),
+                         _mm256_setzero_si256(), _mm256_castps_si256(x_major)));
+  const __m256 q = _mm256_div_ps(half_size, major);
+  return texel_of(_mm256_fmadd_ps(sc, q, half_size), _mm256_fmadd_ps(tc, q, half_size), face,
+                  log2_size);
 }
 
-/* out[target] += (L dw, dw) of one source texel. */
-static inline void accumulate(float* out_rgba, uint32_t target, const float* radiance,
-                              __m128 solid_angle) {
-  float* to = out_rgba + 4u * (size_t)target;
-  _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(to), _mm_mul_ps(_mm_loadu_ps(radiance), solid_angle)));
+/* 1 when every lane's m is at least |a| and |b|. */
+PRT_SOURCE_INLINE int all_major(__m256 m, __m256 a, __m256 b) {
+  return _mm256_movemask_ps(_mm256_cmp_ps(m, _mm256_max_ps(abs_ps(a), abs_ps(b)), _CMP_GE_OQ)) ==
+         0xFF;
 }
 
-static inline void add_to(float* to, __m128 value) {
-  _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(to), value));
-}
-
-/* A lane mask spread over the texel pairs of register k (lanes 2k, 2k + 1, four floats each). */
-static inline __m256 spread(__m256i mask, int k) {
-  return _mm256_castsi256_ps(_mm256_permutevar8x32_epi32(
-      mask,
-      _mm256_setr_epi32(2 * k, 2 * k, 2 * k, 2 * k, 2 * k + 1, 2 * k + 1, 2 * k + 1, 2 * k + 1)));
-}
-
-/* Accumulates eight consecutive texels (RGBA x dw in pairs[0..3], two texels each) into their
- * targets. Neighbouring columns mostly share a target (near the poles a whole block of them
- * does), and adding each into memory would chain every add on the previous store. So runs of
- * equal targets are summed in registers first (a segmented prefix sum over the lanes, steps of
- * 1, 2, 4), and only each run's last lane goes to memory; the other lanes add into a scratch
- * slot of their own, which keeps the loop free of data-dependent branches. */
-static inline void accumulate_runs(float* out_rgba, float* scratch, __m256i index,
-                                   __m256 pairs[4]) {
-  const __m256i previous =
-      _mm256_permutevar8x32_epi32(index, _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6));
-  const __m256i not_first = _mm256_setr_epi32(0, -1, -1, -1, -1, -1, -1, -1);
-  /* same1[l]: lane l - 1 has the same target; same2: lanes l - 3 .. l; same4: l - 7 .. l.
-   * Lane 0 of each is 0, so a shift that reads lane 0 for an underflow reads 0. */
-  const __m256i same1 = _mm256_and_si256(_mm256_cmpeq_epi32(index, previous), not_first);
-  const __m256i same2 = _mm256_and_si256(
-      same1, _mm256_permutevar8x32_epi32(same1, _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6)));
-  const __m256i same4 = _mm256_and_si256(
-      same2, _mm256_permutevar8x32_epi32(same2, _mm256_setr_epi32(0, 0, 0, 1, 2, 3, 4, 5)));
-  /* A run ends where the next lane does not continue it; lane 7 always ends one. */
-  const int continued = _mm256_movemask_ps(_mm256_castsi256_ps(same1)) >> 1;
-  uint32_t target[8];
-  int k;
-  for (k = 3; k >= 0; --k) { /* one texel back: (t[2k-1], t[2k]) */
-    const __m256 back = k > 0 ? _mm256_permute2f128_ps(pairs[k - 1], pairs[k], 0x21)
-                              : _mm256_permute2f128_ps(pairs[0], pairs[0], 0x08);
-    pairs[k] = _mm256_add_ps(pairs[k], _mm256_and_ps(spread(same1, k), back));
+/* The same when every lane is on face f, which the lanes of a column mostly are: the face test
+ * is one compare per lane and the signs fold into the multiply-adds. 0 when some lane is on
+ * another face. A lane on a tie between two faces may be taken for this face where
+ * prt_cube_face_coords picks the other: its coordinate along the other is then +-1, an edge, so
+ * it is located again exactly. */
+PRT_SOURCE_INLINE int locate_on(uint32_t f, __m256 x, __m256 y, __m256 z, __m256 half_size,
+                                uint32_t area, __m128i log2_size, located* out) {
+  const __m256 sign = _mm256_set1_ps(-0.0f);
+  const __m256i offset = _mm256_set1_epi32((int)(f * area));
+  __m256 m, q;
+  switch (f) {
+    case 0:
+      if (!all_major(x, y, z)) return 0;
+      q = _mm256_div_ps(half_size, x);
+      *out = texel_of(_mm256_fnmadd_ps(z, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
+                      log2_size);
+      return 1;
+    case 1:
+      m = _mm256_xor_ps(x, sign);
+      if (!all_major(m, y, z)) return 0;
+      q = _mm256_div_ps(half_size, m);
+      *out = texel_of(_mm256_fmadd_ps(z, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
+                      log2_size);
+      return 1;
+    case 2:
+      if (!all_major(y, x, z)) return 0;
+      q = _mm256_div_ps(half_size, y);
+      *out = texel_of(_mm256_fmadd_ps(x, q, half_size), _mm256_fmadd_ps(z, q, half_size), offset,
+                      log2_size);
+      return 1;
+    case 3:
+      m = _mm256_xor_ps(y, sign);
+      if (!all_major(m, x, z)) return 0;
+      q = _mm256_div_ps(half_size, m);
+      *out = texel_of(_mm256_fmadd_ps(x, q, half_size), _mm256_fnmadd_ps(z, q, half_size), offset,
+                      log2_size);
+      return 1;
+    case 4:
+      if (!all_major(z, x, y)) return 0;
+      q = _mm256_div_ps(half_size, z);
+      *out = texel_of(_mm256_fmadd_ps(x, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
+                      log2_size);
+      return 1;
+    default:
+      m = _mm256_xor_ps(z, sign);
+      if (!all_major(m, x, y)) return 0;
+      q = _mm256_div_ps(half_size, m);
+      *out = texel_of(_mm256_fnmadd_ps(x, q, half_size), _mm256_fnmadd_ps(y, q, half_size), offset,
+                      log2_size);
+      return 1;
   }
-  for (k = 3; k >= 1; --k)
-    pairs[k] = _mm256_add_ps(pairs[k], _mm256_and_ps(spread(same2, k), pairs[k - 1]));
-  for (k = 3; k >= 2; --k)
-    pairs[k] = _mm256_add_ps(pairs[k], _mm256_and_ps(spread(same4, k), pairs[k - 2]));
-  _mm256_storeu_si256((__m256i*)(void*)target, index);
-  for (k = 0; k < 4; ++k) {
-    float* low =
-        (continued >> (2 * k)) & 1 ? scratch + 8 * k : out_rgba + 4u * (size_t)target[2 * k];
-    float* high = (continued >> (2 * k + 1)) & 1 ? scratch + 8 * k + 4
-                                                 : out_rgba + 4u * (size_t)target[2 * k + 1];
-    add_to(low, _mm256_castps256_ps128(pairs[k]));
-    add_to(high, _mm256_extractf128_ps(pairs[k], 1));
+}
+
+/* What stays fixed over a column block's half band. */
+typedef struct half_band {
+  __m256 sin_theta, up_x, up_y, up_z, solid_angle;
+  uint32_t first_row; /* of the half */
+  int rows;           /* lane bits: the lanes that are rows of the map */
+} half_band;
+
+typedef struct frame {
+  const prt_wavelet_source* source;
+  const double* r;
+  __m256 half_size;
+  __m256i area;
+  __m128i log2_size;
+  uint32_t face_area, log2_area;
+  /* compress[m]: the set lanes of m in order, a lane index per 4 bits (AVX2 has no compress). */
+  uint32_t compress[256];
+} frame;
+
+/* The exact target texels of column x's 8 rows; *face: the face tried first. */
+PRT_SOURCE_INLINE __m256i locate_column(const frame* fr, const half_band* h,
+                                        const prt_wavelet_column_block* block, uint32_t x,
+                                        uint32_t* face) {
+  const __m256 dx = _mm256_fmadd_ps(h->sin_theta, _mm256_set1_ps(block->gx[x]), h->up_x);
+  const __m256 dy = _mm256_fmadd_ps(h->sin_theta, _mm256_set1_ps(block->gy[x]), h->up_y);
+  const __m256 dz = _mm256_fmadd_ps(h->sin_theta, _mm256_set1_ps(block->gz[x]), h->up_z);
+  located lanes;
+  int uncertain;
+  if (!locate_on(*face, dx, dy, dz, fr->half_size, fr->face_area, fr->log2_size, &lanes)) {
+    uint32_t lane0;
+    lanes = locate_any(dx, dy, dz, fr->half_size, fr->area, fr->log2_size);
+    lane0 = (uint32_t)_mm_cvtsi128_si32(_mm256_castsi256_si128(lanes.index)) >> fr->log2_area;
+    *face = lane0 < 5u ? lane0 : 5u; /* a guess only: locate_on checks it */
   }
+  uncertain = lanes.uncertain & h->rows;
+  if (uncertain) {
+    uint32_t index[LANES];
+    _mm256_storeu_si256((__m256i*)(void*)index, lanes.index);
+    while (uncertain) {
+      const uint32_t lane = (uint32_t)__builtin_ctz((unsigned)uncertain);
+      index[lane] = prt_wavelet_source_locate_latlong(fr->source, fr->r, block->first + x,
+                                                      h->first_row + lane);
+      uncertain &= uncertain - 1;
+    }
+    return _mm256_loadu_si256((const __m256i*)(const void*)index);
+  }
+  return lanes.index;
+}
+
+/* Finished runs waiting to be added to the targets: their (L dw, dw) sums, transposed to texels
+ * in `sums` by 16 lanes per column, and per run its slot there and its target. The counts stay
+ * in the caller's registers. */
+#define CHUNK 32u /* columns between flushes */
+typedef struct pending {
+  float sums[4u * 2u * LANES * CHUNK];
+  uint32_t slot[2u * LANES * CHUNK + LANES], target[2u * LANES * CHUNK + LANES];
+} pending;
+
+static void flush(const pending* p, uint32_t runs, float* out_rgba) {
+  uint32_t k;
+  for (k = 0; k < runs; ++k) {
+    float* to = out_rgba + 4u * (size_t)p->target[k];
+    _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(to), _mm_loadu_ps(p->sums + 4u * p->slot[k])));
+  }
+}
+
+/* Queues the runs of the lanes in `ended` (their sums so far in r, g, b, w; their target in
+ * `target`) of half `half` of column `column` of the chunk, after `runs` others; returns the new
+ * count. All 8 lanes are transposed and stored, which costs less than picking the few. */
+PRT_SOURCE_INLINE uint32_t queue_runs(const frame* fr, pending* p, uint32_t runs, uint32_t column,
+                                      uint32_t half, int ended, __m256i target, __m256 r, __m256 g,
+                                      __m256 b, __m256 w) {
+  /* 4x4 transposes in each 128-bit lane: lane j's texel goes to slot 2 (j & 3) + (j >> 2). */
+  const __m256i slot = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+  const __m256d rg_low = _mm256_castps_pd(_mm256_unpacklo_ps(r, g));
+  const __m256d rg_high = _mm256_castps_pd(_mm256_unpackhi_ps(r, g));
+  const __m256d bw_low = _mm256_castps_pd(_mm256_unpacklo_ps(b, w));
+  const __m256d bw_high = _mm256_castps_pd(_mm256_unpackhi_ps(b, w));
+  const uint32_t base = 2u * LANES * column + LANES * half;
+  const uint32_t packed = fr->compress[ended];
+  const __m256i order =
+      _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32((int)packed),
+                                         _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28)),
+                       _mm256_set1_epi32(15));
+  float* to = p->sums + 4u * base;
+  _mm256_storeu_pd((double*)(void*)to, _mm256_unpacklo_pd(rg_low, bw_low));
+  _mm256_storeu_pd((double*)(void*)(to + 8), _mm256_unpackhi_pd(rg_low, bw_low));
+  _mm256_storeu_pd((double*)(void*)(to + 16), _mm256_unpacklo_pd(rg_high, bw_high));
+  _mm256_storeu_pd((double*)(void*)(to + 24), _mm256_unpackhi_pd(rg_high, bw_high));
+  _mm256_storeu_si256(
+      (__m256i*)(void*)(p->slot + runs),
+      _mm256_add_epi32(_mm256_permutevar8x32_epi32(slot, order), _mm256_set1_epi32((int)base)));
+  _mm256_storeu_si256((__m256i*)(void*)(p->target + runs),
+                      _mm256_permutevar8x32_epi32(target, order));
+  return runs + (uint32_t)__builtin_popcount((unsigned)ended);
+}
+
+/* A half band's runs in progress. */
+typedef struct runs {
+  __m256i previous;
+  __m256 r, g, b, w;
+  uint32_t face;
+} run_state;
+
+PRT_SOURCE_INLINE void start_runs(const frame* fr, const half_band* h,
+                                  const prt_wavelet_column_block* block, const float* texel,
+                                  run_state* s) {
+  s->face = 0u;
+  s->previous = locate_column(fr, h, block, 0u, &s->face);
+  s->r = _mm256_mul_ps(_mm256_loadu_ps(texel), h->solid_angle);
+  s->g = _mm256_mul_ps(_mm256_loadu_ps(texel + 2u * LANES), h->solid_angle);
+  s->b = _mm256_mul_ps(_mm256_loadu_ps(texel + 4u * LANES), h->solid_angle);
+  s->w = h->solid_angle;
+}
+
+/* Column x of a half band: queues the runs it ends as column `column` of the chunk, after `runs`
+ * others, then adds its texels to the runs; returns the new count. */
+PRT_SOURCE_INLINE uint32_t step_runs(const frame* fr, const half_band* h,
+                                     const prt_wavelet_column_block* block, uint32_t x,
+                                     const float* texel, uint32_t half, pending* p, uint32_t runs,
+                                     uint32_t column, run_state* s) {
+  const __m256i index = locate_column(fr, h, block, x, &s->face);
+  const __m256 same = _mm256_castsi256_ps(_mm256_cmpeq_epi32(index, s->previous));
+  /* L dw rounds as prt_wavelet_resample's product; only the order of the sums differs. */
+  const __m256 r = _mm256_mul_ps(_mm256_loadu_ps(texel), h->solid_angle);
+  const __m256 g = _mm256_mul_ps(_mm256_loadu_ps(texel + 2u * LANES), h->solid_angle);
+  const __m256 b = _mm256_mul_ps(_mm256_loadu_ps(texel + 4u * LANES), h->solid_angle);
+  runs = queue_runs(fr, p, runs, column, half, ~_mm256_movemask_ps(same) & h->rows, s->previous,
+                    s->r, s->g, s->b, s->w);
+  s->r = _mm256_blendv_ps(r, _mm256_add_ps(s->r, r), same);
+  s->g = _mm256_blendv_ps(g, _mm256_add_ps(s->g, g), same);
+  s->b = _mm256_blendv_ps(b, _mm256_add_ps(s->b, b), same);
+  s->w = _mm256_blendv_ps(h->solid_angle, _mm256_add_ps(s->w, h->solid_angle), same);
+  s->previous = index;
+  return runs;
+}
+
+static void load_half(const prt_wavelet_band_rows* rows, uint32_t first_row, uint32_t half,
+                      half_band* h) {
+  const uint32_t at = LANES * half;
+  h->first_row = first_row + at;
+  h->rows = (int)((rows->mask >> at) & 0xFFu);
+  h->sin_theta = _mm256_loadu_ps(rows->sin_theta + at);
+  h->up_x = _mm256_loadu_ps(rows->up[0] + at);
+  h->up_y = _mm256_loadu_ps(rows->up[1] + at);
+  h->up_z = _mm256_loadu_ps(rows->up[2] + at);
+  h->solid_angle = _mm256_loadu_ps(rows->solid_angle + at);
+}
+
+/* One band (both halves, interleaved for independent work) over one column block. */
+static void splat_band(const frame* fr, const prt_wavelet_band_rows* rows, uint32_t first_row,
+                       const prt_wavelet_column_block* block, pending* p, float* out_rgba) {
+  const float* texels =
+      fr->source->banded + prt_wavelet_banded_at(fr->source->env.width, block->first, first_row);
+  const size_t column_step = 3u * PRT_WAVELET_BAND_ROWS;
+  half_band low, high;
+  run_state a, b;
+  uint32_t runs = 0u, column = 0u, x;
+  load_half(rows, first_row, 0u, &low);
+  load_half(rows, first_row, 1u, &high);
+  start_runs(fr, &low, block, texels, &a);
+  start_runs(fr, &high, block, texels + LANES, &b);
+  for (x = 1u; x < block->count; ++x) {
+    const float* texel = texels + column_step * x;
+    runs = step_runs(fr, &low, block, x, texel, 0u, p, runs, column, &a);
+    runs = step_runs(fr, &high, block, x, texel + LANES, 1u, p, runs, column, &b);
+    if (++column == CHUNK) {
+      flush(p, runs, out_rgba);
+      runs = column = 0u;
+    }
+  }
+  runs = queue_runs(fr, p, runs, column, 0u, low.rows, a.previous, a.r, a.g, a.b, a.w);
+  runs = queue_runs(fr, p, runs, column, 1u, high.rows, b.previous, b.r, b.g, b.b, b.w);
+  flush(p, runs, out_rgba);
 }
 
 void prt_wavelet_source_splat_cube_avx2(const prt_wavelet_source* source, const double r[9],
                                         float* out_rgba) {
   const uint32_t width = source->env.width, height = source->env.height, size = source->size;
-  const __m256 half_size = _mm256_set1_ps(0.5f * (float)size);
-  const __m256i last = _mm256_set1_epi32((int)size - 1);
-  float gx[PRT_WAVELET_SOURCE_COLUMN_BLOCK], gy[PRT_WAVELET_SOURCE_COLUMN_BLOCK],
-      gz[PRT_WAVELET_SOURCE_COLUMN_BLOCK];
-  uint32_t index[8];
-  float scratch[32] = {0}; /* the run sums that do not end a run go here, never read */
-  uint32_t log2_size = 0, first, x, y, lane;
-  __m128i shift;
+  prt_wavelet_column_block block;
+  prt_wavelet_band_rows rows;
+  pending p;
+  frame fr;
+  uint32_t log2_size = 0, first, first_row, m;
   while ((1u << log2_size) < size) ++log2_size;
-  shift = _mm_cvtsi32_si128((int)log2_size);
+  fr.source = source;
+  fr.r = r;
+  fr.half_size = _mm256_set1_ps(0.5f * (float)size);
+  fr.face_area = size * size;
+  fr.area = _mm256_set1_epi32((int)fr.face_area);
+  fr.log2_area = 2u * log2_size;
+  fr.log2_size = _mm_cvtsi32_si128((int)log2_size);
+  for (m = 0; m < 256u; ++m) {
+    uint32_t packed = 0u, n = 0u, lane;
+    for (lane = 0; lane < LANES; ++lane)
+      if (m >> lane & 1u) packed |= lane << (4u * n++);
+    fr.compress[m] = packed;
+  }
   for (first = 0; first < width; first += PRT_WAVELET_SOURCE_COLUMN_BLOCK) {
-    const uint32_t count = width - first < PRT_WAVELET_SOURCE_COLUMN_BLOCK
-                               ? width - first
-                               : PRT_WAVELET_SOURCE_COLUMN_BLOCK;
-    const uint32_t whole = count & ~7u;
-    for (x = 0; x < count; ++x) {
-      const double sin_phi = source->column_sin[first + x], cos_phi = source->column_cos[first + x];
-      gx[x] = (float)(r[0] * sin_phi - r[2] * cos_phi);
-      gy[x] = (float)(r[3] * sin_phi - r[5] * cos_phi);
-      gz[x] = (float)(r[6] * sin_phi - r[8] * cos_phi);
-    }
-    for (y = 0; y < height; ++y) {
-      const double cos_theta = source->row_cos[y];
-      const __m256 sin_theta = _mm256_set1_ps((float)source->row_sin[y]);
-      const __m256 up_x = _mm256_set1_ps((float)(cos_theta * r[1]));
-      const __m256 up_y = _mm256_set1_ps((float)(cos_theta * r[4]));
-      const __m256 up_z = _mm256_set1_ps((float)(cos_theta * r[7]));
-      const __m128 solid_angle = _mm_set1_ps(source->texel_solid_angle[y]);
-      const __m256 solid_angle8 = _mm256_set1_ps(source->texel_solid_angle[y]);
-      const float* radiance = source->radiance + 4u * ((size_t)y * width + first);
-      for (x = 0; x < whole; x += 8u) {
-        const cube_lanes lanes = locate_cube(
-            _mm256_fmadd_ps(sin_theta, _mm256_loadu_ps(gx + x), up_x),
-            _mm256_fmadd_ps(sin_theta, _mm256_loadu_ps(gy + x), up_y),
-            _mm256_fmadd_ps(sin_theta, _mm256_loadu_ps(gz + x), up_z), half_size, last, shift);
-        int uncertain = _mm256_movemask_ps(lanes.uncertain);
-        __m256i exact = lanes.index;
-        __m256 pairs[4];
-        if (uncertain) {
-          _mm256_storeu_si256((__m256i*)(void*)index, lanes.index);
-          while (uncertain) {
-            lane = (uint32_t)__builtin_ctz((unsigned)uncertain);
-            index[lane] = prt_wavelet_source_locate_latlong(source, r, first + x + lane, y);
-            uncertain &= uncertain - 1;
-          }
-          exact = _mm256_loadu_si256((const __m256i*)(const void*)index);
-        }
-        for (lane = 0; lane < 4u; ++lane)
-          pairs[lane] = _mm256_mul_ps(_mm256_loadu_ps(radiance + 4u * x + 8u * lane), solid_angle8);
-        accumulate_runs(out_rgba, scratch, exact, pairs);
-      }
-      for (x = whole; x < count; ++x)
-        accumulate(out_rgba, prt_wavelet_source_locate_latlong(source, r, first + x, y),
-                   radiance + 4u * x, solid_angle);
+    prt_wavelet_source_column_block(source, r, first, &block);
+    for (first_row = 0; first_row < height; first_row += PRT_WAVELET_BAND_ROWS) {
+      prt_wavelet_source_band_rows(source, r, first_row, &rows);
+      splat_band(&fr, &rows, first_row, &block, &p, out_rgba);
     }
   }
 }

@@ -104,7 +104,7 @@ typedef enum prt_simd_isa {
   PRT_SIMD_ISA_NONE = 1,
   PRT_SIMD_ISA_SSE41 = 2,
   PRT_SIMD_ISA_AVX2 = 3,  /* AVX2 + FMA */
-  PRT_SIMD_ISA_AVX512 = 4 /* AVX2 + FMA + AVX-512 F/BW/VL/VNNI, with the OS saving its state */
+  PRT_SIMD_ISA_AVX512 = 4 /* AVX2 + FMA + AVX-512 F/BW/DQ/VL/VNNI, with the OS saving its state */
 } prt_simd_isa;
 
 /* Opaque handles. */

@@ -7,10 +7,10 @@
  * once: it copies the map sanitised, with each texel's direction set-up and solid angle, and the
  * target texels' solid angles. prt_wavelet_source_resample then only turns the directions by the
  * frame's rotation and accumulates, on the context's SIMD instruction set where there is a kernel
- * for it (AVX2: a lat-long map onto the cube; otherwise the scalar path). Its result equals
- * prt_wavelet_resample's for the same map and rotation up to the order of the float sums: every
- * source texel lands in the same target texel (a direction whose texel a float computation could
- * get wrong is located again exactly as prt_wavelet_resample does). */
+ * for it (a lat-long map onto the cube: AVX2 or AVX512; otherwise the scalar path). Its result
+ * equals prt_wavelet_resample's for the same map and rotation up to the order of the float sums:
+ * every source texel lands in the same target texel (a direction whose texel a float computation
+ * could get wrong is located again exactly as prt_wavelet_resample does). */
 #ifndef PRT_WAVELET_SOURCE_H
 #define PRT_WAVELET_SOURCE_H
 
@@ -48,7 +48,8 @@ typedef struct prt_wavelet_source_desc {
   uint32_t flags; /* prt_wavelet_source_flag bits */
 } prt_wavelet_source_desc;
 
-/* Prepares a source with the context's allocator (about 16 bytes per source texel plus tables).
+/* Prepares a source with the context's allocator (about 12 bytes per source texel of a lat-long
+ * map, 16 of a cube map, plus tables).
  * On success *out_source receives it; on failure *out_source is NULL (when out_source is not
  * NULL). PRT_ERROR_INVALID_ARGUMENT for a NULL context, desc or out_source, a struct_size below
  * 1.0's, a bad param or size, an env that prt_env_image_validate rejects or whose rotation is not
