@@ -18,6 +18,9 @@ typedef struct located {
   int uncertain; /* lane bits: within EDGE_MARGIN of a texel edge */
 } located;
 
+/* A constant expression, as the rounding intrinsics need (clang checks). */
+#define PRT_NEAREST (_MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC)
+
 PRT_SOURCE_INLINE __m256 abs_ps(__m256 v) {
   return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v);
 }
@@ -26,9 +29,8 @@ PRT_SOURCE_INLINE __m256 abs_ps(__m256 v) {
  * lane whose truncation could leave 0..S-1 is within the margin of an edge, so it is uncertain
  * and located again: no clamp is needed. */
 PRT_SOURCE_INLINE located texel_of(__m256 ts, __m256 tt, __m256i face_offset, __m128i log2_size) {
-  const int nearest = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
-  const __m256 ds = abs_ps(_mm256_sub_ps(ts, _mm256_round_ps(ts, nearest)));
-  const __m256 dt = abs_ps(_mm256_sub_ps(tt, _mm256_round_ps(tt, nearest)));
+  const __m256 ds = abs_ps(_mm256_sub_ps(ts, _mm256_round_ps(ts, PRT_NEAREST)));
+  const __m256 dt = abs_ps(_mm256_sub_ps(tt, _mm256_round_ps(tt, PRT_NEAREST)));
   const __m256i tx = _mm256_cvttps_epi32(ts), ty = _mm256_cvttps_epi32(tt);
   located out;
   out.uncertain = _mm256_movemask_ps(
