@@ -200,7 +200,7 @@ static int tiles_pay(const prt_wavelet_tiles* tiles, const prt_wavelet_rows* row
   uint32_t k, kept = 0;
   for (k = 0; k < rows->blocks; ++k) kept += !rows->skip[k];
   return (uint64_t)TILED_GROUP_COST * light->lit_groups * rows->blocks <=
-         (uint64_t)kept * tiles->groups;
+         (uint64_t)kept * (tiles->units / (PRT_WAVELET_GROUP / PRT_WAVELET_UNIT));
 }
 #endif
 

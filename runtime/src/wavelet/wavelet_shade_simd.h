@@ -69,41 +69,51 @@ typedef prt_result (*prt_wavelet_kernel)(const prt_wavelet_rows* rows, uint32_t 
 /* The rows repacked at load for the tiled kernel (wavelet_tiles.c), 8 vertices per tile. Per tile
  * and face, the coarse corner (Mallat levels -1..2: the 8 x 8 coefficients x, y < 8) dense as i8
  * with the tile's vertices in lanes, stored only for the faces where some vertex of the tile has
- * a non-zero there; the other ("fine") pairs kept sparse in group-major order (a group is 64
- * coefficients, a quarter block): per tile and group the pairs of lane 0, then lane 1, ..., so
- * that a group whose fine light is zero skips one run for the whole tile. Lanes past the last
- * vertex hold zeros. */
+ * a non-zero there. The other ("fine") pairs by 32-coefficient unit: per tile and unit a mask of
+ * the coefficients some vertex of the tile stores, and per such coefficient a record (which
+ * lanes store it, where their values start) and the values of those lanes, in lane order. A
+ * kernel then visits, per tile, only the coefficients both stored and lit, and expands each one's
+ * values into the 8 lanes: its cost follows the non-zero light, not the pairs it shares a unit
+ * with. Lanes past the last vertex hold zeros. */
 #define PRT_WAVELET_TILE 8u
 #define PRT_WAVELET_CORNER 8u /* coarse corner side: levels -1..2 */
 #define PRT_WAVELET_CORNER_COEFFICIENTS (PRT_WAVELET_CORNER * PRT_WAVELET_CORNER)
 #define PRT_WAVELET_MAX_FACES 6u
-#define PRT_WAVELET_GROUP 64u
+#define PRT_WAVELET_GROUP 64u /* the granularity tiles_pay weighs (wavelet_asset.c) */
 #define PRT_WAVELET_GROUPS_PER_BLOCK (PRT_BLOB_WVLT_BLOCK / PRT_WAVELET_GROUP)
 #define PRT_WAVELET_MAX_GROUPS (PRT_WAVELET_MAX_BLOCKS * PRT_WAVELET_GROUPS_PER_BLOCK)
+/* A unit's values fill at most 32 x 8 = 256 bytes, so a record's offset fits a byte. */
+#define PRT_WAVELET_UNIT 32u
+#define PRT_WAVELET_UNITS_PER_BLOCK (PRT_BLOB_WVLT_BLOCK / PRT_WAVELET_UNIT)
+#define PRT_WAVELET_MAX_UNITS (PRT_WAVELET_MAX_BLOCKS * PRT_WAVELET_UNITS_PER_BLOCK)
 
 typedef struct prt_wavelet_tiles {
-  uint32_t tiles, faces, size, groups;
-  const uint8_t* face_mask;   /* u8[tiles]: bit f when face f has a stored corner slab */
-  const uint32_t* slab_start; /* u32[tiles]: index of the tile's first slab */
-  const int8_t* slabs;        /* i8[slabs][64 corner coefficients, y * 8 + x][8 lanes] */
-  const float* scale;         /* f32[tiles][3 channels][8 lanes]: vs */
-  const uint32_t* fine_start; /* u32[tiles + 1]: first fine pair of each tile */
-  const uint8_t* fine_count;  /* u8[tiles][groups][8 lanes] */
-  const uint8_t* fine_pairs;  /* u8[][2]: (index in the group, value) */
-  void* memory;               /* the one allocation holding the arrays */
+  uint32_t tiles, faces, size, units;
+  const uint8_t* face_mask;    /* u8[tiles]: bit f when face f has a stored corner slab */
+  const uint32_t* slab_start;  /* u32[tiles]: index of the tile's first slab */
+  const int8_t* slabs;         /* i8[slabs][64 corner coefficients, y * 8 + x][8 lanes] */
+  const float* scale;          /* f32[tiles][3 channels][8 lanes]: vs */
+  const uint32_t* tile_first;  /* u32[tiles + 1][2]: first record, first value of each tile */
+  const uint32_t* unit_stored; /* u32[tiles][units]: bit i when a lane stores coefficient i */
+  const uint16_t* unit_first;  /* u16[tiles][units][2]: first record, first value, in the tile */
+  const uint8_t* records;      /* u8[][2]: lane mask, offset of the values from the unit's */
+  const int8_t* values;        /* i8[]: the stored lanes' values, 8 bytes of padding after */
+  void* memory;                /* the one allocation holding the arrays */
   size_t bytes;
 } prt_wavelet_tiles;
 
-/* The light a tiled kernel reads in one call: the prepared light; per group whether its fine
- * pairs may meet a non-zero light (not skipped by the caller's mask, some light outside the
- * corner non-zero); per face the corner's RGBA light (zero where the mask skips its block) and
+/* The light a tiled kernel reads in one call: the prepared light; the units whose fine light is
+ * not all zero (not skipped by the caller's mask), each with the mask of its non-zero
+ * coefficients; per face the corner's RGBA light (zero where the mask skips its block) and
  * whether any of it is non-zero. */
 typedef struct prt_wavelet_tile_light {
   const float* light;
-  uint8_t group_lit[PRT_WAVELET_MAX_GROUPS];
+  uint32_t lit_units;  /* entries in unit and lit */
+  uint32_t lit_groups; /* 64-coefficient groups with a lit unit: what tiles_pay weighs */
+  uint16_t unit[PRT_WAVELET_MAX_UNITS];
+  uint32_t lit[PRT_WAVELET_MAX_UNITS];
   float corner[PRT_WAVELET_MAX_FACES][PRT_WAVELET_CORNER_COEFFICIENTS][4];
   uint8_t face_lit[PRT_WAVELET_MAX_FACES];
-  uint32_t lit_groups; /* how many group_lit are 1 */
 } prt_wavelet_tile_light;
 
 /* Shades vertices [first, first+count) of the tiles into out_rgb. Each vertex's sum is computed

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* `wavelet` tiled shading for AVX2 + FMA (compiled with -mavx2 -mfma, called only when the CPU
  * has both) over the repack of wavelet_tiles.c: per tile of 8 vertices, the lit faces' dense
- * corners as an 8-lane product with the broadcast corner light (no gathers), then the fine pairs
- * of the groups whose light is not zero, lane by lane, two pairs per 256-bit step. */
+ * corners as an 8-lane product with the broadcast corner light (no gathers), then each fine
+ * coefficient that is both lit and stored by some lane of the tile, its values expanded into the
+ * lanes, as the same 8-lane product. */
 #include <immintrin.h>
 #include <prt/format/blob_layout.h>
 #include <stddef.h>
@@ -47,96 +48,63 @@ static inline void shade_corners(const prt_wavelet_tiles* t, const prt_wavelet_t
   rgb[2] = _mm256_add_ps(b0, b1);
 }
 
-/* The RGBA light of the pair at `pair` in the group whose light starts at `block`. */
-static inline __m128 pair_light(const float* block, uint32_t index) {
-  return _mm_loadu_ps(block + 4u * index);
-}
+/* The byte shuffle that expands a record's values into its lanes: for lane mask m, lane i takes
+ * value (the number of lanes of m below i) when m has lane i, else 0 (index 0x80). A constant
+ * table: 256 masks of 8 bytes. */
+#define RANK(m, i) ((((m) >> (i)) & 1u) ? (int8_t)(POP(((m) & ((1u << (i)) - 1u)))) : (int8_t)-128)
+#define POP(x)                                                                                \
+  (((x)&1u) + (((x) >> 1) & 1u) + (((x) >> 2) & 1u) + (((x) >> 3) & 1u) + (((x) >> 4) & 1u) + \
+   (((x) >> 5) & 1u) + (((x) >> 6) & 1u) + (((x) >> 7) & 1u))
+#define E1(m) \
+  { RANK(m, 0), RANK(m, 1), RANK(m, 2), RANK(m, 3), RANK(m, 4), RANK(m, 5), RANK(m, 6), RANK(m, 7) }
+#define E4(m) E1(m), E1((m) + 1u), E1((m) + 2u), E1((m) + 3u)
+#define E16(m) E4(m), E4((m) + 4u), E4((m) + 8u), E4((m) + 12u)
+#define E64(m) E16(m), E16((m) + 16u), E16((m) + 32u), E16((m) + 48u)
+static const int8_t kExpand[256][8] = {E64(0u), E64(64u), E64(128u), E64(192u)};
+#undef E64
+#undef E16
+#undef E4
+#undef E1
+#undef POP
+#undef RANK
 
-/* The number of pairs the 8 lane counts at `count` add up to. */
-static inline uint32_t group_pairs(const uint8_t* count) {
-  const __m128i c = _mm_loadl_epi64((const __m128i*)(const void*)count);
-  return (uint32_t)_mm_cvtsi128_si32(_mm_sad_epu8(c, _mm_setzero_si128()));
-}
-
-/* Pair k of a lane's run is kept in the 128-bit half k of step (k / 2) when k < n. */
-static inline __m256 add_four_pairs(__m256 a, const float* group, const uint8_t* pair, __m256i n) {
-  const __m128i bytes = _mm_loadl_epi64((const __m128i*)(const void*)pair);
-  const __m128i q01 = _mm_shuffle_epi8(
-      bytes, _mm_setr_epi8(1, 1, 1, 1, 3, 3, 3, 3, -1, -1, -1, -1, -1, -1, -1, -1));
-  const __m128i q23 = _mm_shuffle_epi8(
-      bytes, _mm_setr_epi8(5, 5, 5, 5, 7, 7, 7, 7, -1, -1, -1, -1, -1, -1, -1, -1));
-  const __m256 keep01 =
-      _mm256_castsi256_ps(_mm256_cmpgt_epi32(n, _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1)));
-  const __m256 keep23 =
-      _mm256_castsi256_ps(_mm256_cmpgt_epi32(n, _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3)));
-  /* Indices past the run belong to the next run (or the padding): masked to the group, and
-   * their light masked to +0, so they add exactly 0 even where the light is not finite. */
-  const __m256 l01 = _mm256_and_ps(
-      keep01, _mm256_set_m128(pair_light(group, pair[2] & 63u), pair_light(group, pair[0] & 63u)));
-  const __m256 l23 = _mm256_and_ps(
-      keep23, _mm256_set_m128(pair_light(group, pair[6] & 63u), pair_light(group, pair[4] & 63u)));
-  a = _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(q01)), l01, a);
-  return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(q23)), l23, a);
-}
-
-/* Adds a lane's n pairs of one group into a, four pairs per step: a run of up to four pairs (the
- * common case) takes one step and no branch that depends on its length. */
-static inline __m256 add_lane_pairs(__m256 a, const float* group, const uint8_t* pair, uint32_t n) {
-  uint32_t p = 0;
-  do {
-    a = add_four_pairs(a, group, pair + 2u * p, _mm256_set1_epi32((int)(n - p)));
-    p += 4;
-  } while (p < n);
-  return a;
-}
-
-/* Lit groups a tile collects (and prefetches) before it shades them. */
-#define PRT_WAVELET_LIT_WINDOW 32u
-
-/* A lit group of one tile: its light, its 8 lane counts and its first pair. */
-typedef struct lit_group {
-  const float* light;
-  const uint8_t* count;
-  const uint8_t* pair;
-} lit_group;
-
-/* Adds the fine pairs of one tile's lit groups into sums[lane] (RGBA). A tile's lit groups lie
- * scattered through its pairs, so the loop first finds a window of them and prefetches their
- * pairs, then shades them: the cache misses overlap. */
+/* Adds, per lit unit, the coefficients some lane of the tile stores into rgb[3]: each one's
+ * values expanded into the 8 lanes (zero in the lanes that do not store it) times the broadcast
+ * light. The units come in index order and their coefficients too, so a vertex's sum has one
+ * order whatever the range. */
 static inline void shade_fine(const prt_wavelet_tiles* t, const prt_wavelet_tile_light* light,
-                              uint32_t tile, float sums[PRT_WAVELET_TILE][4]) {
-  const uint8_t* count = t->fine_count + (size_t)tile * t->groups * PRT_WAVELET_TILE;
-  const uint8_t* pair = t->fine_pairs + 2u * (size_t)t->fine_start[tile];
-  __m256 acc[PRT_WAVELET_TILE];
-  lit_group window[PRT_WAVELET_LIT_WINDOW];
-  uint32_t g = 0, lane, i;
-  for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) acc[lane] = _mm256_setzero_ps();
-  while (g < t->groups) {
-    uint32_t found = 0;
-    for (; g < t->groups && found < PRT_WAVELET_LIT_WINDOW; ++g, count += PRT_WAVELET_TILE) {
-      const uint32_t total = group_pairs(count);
-      if (light->group_lit[g] && total != 0) {
-        lit_group* w = &window[found++];
-        w->light = light->light + 4u * PRT_WAVELET_GROUP * (size_t)g;
-        w->count = count;
-        w->pair = pair;
-        _mm_prefetch((const char*)pair, _MM_HINT_T0);
-        if (total > 16u) _mm_prefetch((const char*)(pair + 2u * total - 1u), _MM_HINT_T0);
-      }
-      pair += 2u * total;
-    }
-    for (i = 0; i < found; ++i) {
-      const uint8_t* p = window[i].pair;
-      for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
-        const uint32_t n = window[i].count[lane];
-        acc[lane] = add_lane_pairs(acc[lane], window[i].light, p, n);
-        p += 2u * n;
-      }
+                              uint32_t tile, __m256 rgb[3]) {
+  const uint32_t* stored = t->unit_stored + (size_t)tile * t->units;
+  const uint16_t* first = t->unit_first + 2u * (size_t)tile * t->units;
+  const uint8_t* records = t->records + 2u * (size_t)t->tile_first[2u * tile];
+  const int8_t* values = t->values + t->tile_first[2u * tile + 1u];
+  __m256 r = rgb[0], g = rgb[1], b = rgb[2];
+  uint32_t i;
+  for (i = 0; i < light->lit_units; ++i) {
+    const uint32_t u = light->unit[i], have = stored[u];
+    uint32_t m = have & light->lit[i];
+    if (!m) continue;
+    {
+      const uint8_t* record = records + 2u * first[2u * u];
+      const int8_t* value = values + first[2u * u + 1u];
+      const float* l = light->light + 4u * PRT_WAVELET_UNIT * (size_t)u;
+      do {
+        const uint32_t j = (uint32_t)__builtin_ctz(m);
+        const uint8_t* rec = record + 2u * (uint32_t)__builtin_popcount(have & ((1u << j) - 1u));
+        const __m128i q =
+            _mm_shuffle_epi8(_mm_loadl_epi64((const __m128i*)(const void*)(value + rec[1])),
+                             _mm_loadl_epi64((const __m128i*)(const void*)kExpand[rec[0]]));
+        const __m256 qf = _mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(q));
+        r = _mm256_fmadd_ps(qf, _mm256_broadcast_ss(l + 4u * j), r);
+        g = _mm256_fmadd_ps(qf, _mm256_broadcast_ss(l + 4u * j + 1u), g);
+        b = _mm256_fmadd_ps(qf, _mm256_broadcast_ss(l + 4u * j + 2u), b);
+        m &= m - 1u;
+      } while (m);
     }
   }
-  for (lane = 0; lane < PRT_WAVELET_TILE; ++lane)
-    _mm_storeu_ps(sums[lane], _mm_add_ps(_mm256_castps256_ps128(acc[lane]),
-                                         _mm256_extractf128_ps(acc[lane], 1)));
+  rgb[0] = r;
+  rgb[1] = g;
+  rgb[2] = b;
 }
 
 void prt_wavelet_shade_tiles_avx2(const prt_wavelet_tiles* t, const prt_wavelet_tile_light* light,
@@ -145,18 +113,18 @@ void prt_wavelet_shade_tiles_avx2(const prt_wavelet_tiles* t, const prt_wavelet_
   uint32_t tile;
   for (tile = first / PRT_WAVELET_TILE; tile * PRT_WAVELET_TILE < end; ++tile) {
     const float* scale = t->scale + 3u * PRT_WAVELET_TILE * (size_t)tile;
-    float corner[3][PRT_WAVELET_TILE], fine[PRT_WAVELET_TILE][4];
+    float sum[3][PRT_WAVELET_TILE];
     __m256 rgb[3];
     uint32_t lane, c;
     shade_corners(t, light, tile, rgb);
-    for (c = 0; c < 3; ++c) _mm256_storeu_ps(corner[c], rgb[c]);
-    shade_fine(t, light, tile, fine);
+    shade_fine(t, light, tile, rgb);
+    for (c = 0; c < 3; ++c)
+      _mm256_storeu_ps(sum[c],
+                       _mm256_mul_ps(_mm256_loadu_ps(scale + c * PRT_WAVELET_TILE), rgb[c]));
     for (lane = 0; lane < PRT_WAVELET_TILE; ++lane) {
       const uint32_t v = tile * PRT_WAVELET_TILE + lane;
       if (v < first || v >= end) continue;
-      for (c = 0; c < 3; ++c)
-        out_rgb[3u * (size_t)(v - first) + c] =
-            scale[c * PRT_WAVELET_TILE + lane] * (corner[c][lane] + fine[lane][c]);
+      for (c = 0; c < 3; ++c) out_rgb[3u * (size_t)(v - first) + c] = sum[c][lane];
     }
   }
 }

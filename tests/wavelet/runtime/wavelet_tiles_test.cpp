@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `wavelet` tiled AVX2 shading (the rows repacked at load into 8-vertex tiles, dense coarse
-// corners and sparse fine pairs by 64-coefficient group) against the scalar reference that reads
+// corners and the fine pairs by coefficient within 32-coefficient units) against the scalar reference that reads
 // the blob rows. The tiled kernel is taken for lights whose non-zero fine light lies in at most a
 // third of the groups, so every light here keeps its fine light to a few groups (the corners may
 // be lit anywhere). Agreement is checked relative to sum |q P| vs, the size of the terms: the
@@ -241,6 +241,49 @@ TEST_F(WaveletTiles, RepeatedCornerAtQuickValidationShadesFromTheRows) {
   ASSERT_EQ(a.result, PRT_OK);
   const std::vector<float> light = sparse_light(t, 0x3f, 1, 0, 91);
   expect_matches(a, t, light, nullptr, 0, t.vertices);
+}
+
+TEST_F(WaveletTiles, RepeatedFineAtQuickValidationShadesFromTheRows) {
+  // The same for a fine coefficient: the repack holds one value per coefficient and lane.
+  WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, 3, 20, 92);
+  const uint32_t fine = 16 * 8 + 9;  // face 0, x = 9, y = 8: outside the corner
+  t.rows[1].clear();
+  t.rows[1].push_back({fine, int8_t(100)});
+  t.rows[1].push_back({fine, int8_t(-30)});
+  LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices), PRT_VALIDATE_QUICK);
+  ASSERT_EQ(a.result, PRT_OK);
+  std::vector<float> light = sparse_light(t, 0x3f, 0, 0, 93);
+  for (uint32_t c = 0; c < 3; ++c) light[4 * size_t(fine) + c] = 0.5f;
+  expect_matches(a, t, light, nullptr, 0, t.vertices);
+}
+
+TEST_F(WaveletTiles, NonFiniteFineLightReachesOnlyItsPairs) {
+  // A lane that does not store a lit fine coefficient multiplies its light by 0 in the tiles:
+  // a non-finite fine light must reach only the vertices that store the coefficient.
+  WvltTransfer t = wvlt_random(PRT_WAVELET_PARAM_CUBE, 16, 9, 60, 82);
+  const uint32_t fine = 16 * 8 + 9;
+  for (uint32_t v = 0; v < 2; ++v)
+    t.rows[v].erase(std::remove_if(t.rows[v].begin(), t.rows[v].end(),
+                                   [&](const WvltPair& p) { return p.j == fine; }),
+                    t.rows[v].end());
+  t.rows[0].push_back({fine, int8_t(5)});
+  std::sort(t.rows[0].begin(), t.rows[0].end(),
+            [](const WvltPair& x, const WvltPair& y) { return x.j < y.j; });
+  LoadedAsset a(ctx, wvlt_make_blob(wvlt_encode(t), t.vertices));
+  ASSERT_EQ(a.result, PRT_OK);
+  std::vector<float> light = sparse_light(t, 0x3f, 2, ~0u, 83);
+  light[4 * size_t(fine)] = INFINITY;
+  ASSERT_EQ(prt_wavelet_prepare_light(a.asset, light.data(), light.data(), nullptr), PRT_OK);
+  std::vector<float> simd(3 * size_t(t.vertices)), scalar(simd.size());
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_SIMD, light.data(), nullptr, 0, t.vertices,
+                              simd.data()),
+            PRT_OK);
+  ASSERT_EQ(prt_wavelet_shade(a.asset, PRT_BACKEND_CPU, light.data(), nullptr, 0, t.vertices,
+                              scalar.data()),
+            PRT_OK);
+  EXPECT_TRUE(std::isinf(simd[0]) || std::isnan(simd[0]));
+  EXPECT_TRUE(std::isfinite(simd[3]));
+  EXPECT_EQ(std::isfinite(simd[3]), std::isfinite(scalar[3]));
 }
 
 TEST(WaveletTilesReport, MaxRelativeDifference) {
