@@ -123,7 +123,11 @@ WaveletBlobCheck check_wavelet_blob(const std::vector<std::uint8_t>& blob,
                                     const QuantizedWavelet& quantized, std::uint32_t seed) {
   WaveletBlobCheck check;
   prt_context* raw_context = nullptr;
-  if (prt_context_create(nullptr, &raw_context) != PRT_OK) {
+  // The check shades on the scalar backend; a context without SIMD also skips the SIMD
+  // kernels' load-time repack of the rows, which it would not use.
+  prt_context_desc desc = prt::sized<prt_context_desc>();
+  desc.backend_limit = PRT_BACKEND_CPU;
+  if (prt_context_create(&desc, &raw_context) != PRT_OK) {
     check.message = "cannot create a runtime context";
     return check;
   }
