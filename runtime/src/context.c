@@ -115,7 +115,7 @@ static void apply_environment(prt_context* c, prt_simd_isa* isa_limit) {
   const char* isa = getenv("PRT_SIMD_ISA");
   int i, found;
   if (backend) {
-    for (i = 0, found = 0; i < 4; ++i)
+    for (i = 0, found = 0; i < (int)(sizeof kBackends / sizeof kBackends[0]); ++i)
       if (strcmp(backend, kBackends[i]) == 0) {
         c->backend_limit = (prt_backend)lower_limit(c->backend_limit, i);
         found = 1;
@@ -125,7 +125,7 @@ static void apply_environment(prt_context* c, prt_simd_isa* isa_limit) {
                         "PRT_BACKEND must be auto, cpu, simd or gl; ignoring its value");
   }
   if (isa) {
-    for (i = 0, found = 0; i < 5; ++i)
+    for (i = 0, found = 0; i < (int)(sizeof kIsas / sizeof kIsas[0]); ++i)
       if (strcmp(isa, kIsas[i]) == 0) {
         *isa_limit = (prt_simd_isa)lower_limit(*isa_limit, i);
         found = 1;

@@ -72,7 +72,7 @@ class WaveletTiles : public ::testing::Test {
     prt_backend_info info = prt::sized<prt_backend_info>();
     ASSERT_EQ(prt_backend_get_info(ctx, PRT_BACKEND_SIMD, &info), PRT_OK);
     if (!info.usable || info.isa != PRT_SIMD_ISA_AVX2)
-      GTEST_SKIP() << "the tiles are made for AVX2 contexts only";
+      GTEST_SKIP() << "these tests run the tiles on an AVX2-limited context";
   }
 
   // Shades [first, first + count) on SIMD and all vertices on the scalar path under the same
