@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+// Training data of technique `pose` (paper 002): a skinned character's SH transfer baked at
+// every sampled frame of its animation clips, in each frame's model frame, with the pose
+// features the runtime computes from the same joint rotations (formats/SPEC.md §7.3), and the
+// skeleton and skin the PSTR section stores.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "prt/baker/context.hpp"
+#include "prt/baker/scene.hpp"
+#include "prt/baker/sh/sh_transfer.hpp"
+
+namespace prt::bake {
+
+// The skeleton and skin as SPEC §7.3 stores them: joints in the skin's order.
+struct PoseSkeleton {
+  struct Joint {
+    int parent = -1;           // index into joints, -1: its parent node is not a joint
+    glm::quat bind_rotation;   // features are relative to it (bind_local_rotations)
+    glm::vec3 rest_translation{0.0f}, rest_scale{1.0f};
+    glm::mat4 pre{1.0f};           // non-joint nodes up to the parent joint, or world of parent
+    glm::mat4 inverse_bind{1.0f};  // affine
+  };
+  std::vector<Joint> joints;
+  std::vector<std::uint32_t> eval_order;  // parents first
+  std::uint32_t model_joint = 0;          // a joint with parent -1
+  // Per vertex, in Scene order: the mesh's own attributes and up to 4 influences.
+  std::vector<glm::vec3> local_positions, local_normals;
+  std::vector<glm::u8vec4> skin_joints;
+  std::vector<glm::u16vec4> skin_weights;  // w / 65535, summing to 65535 where any
+};
+
+struct PoseTrainingSettings {
+  std::vector<std::string> clips;  // names to sample; empty: every clip
+  double rate = 30.0;              // frames per second of clip time
+  ShTransferSettings transfer;     // order (default 6), kind, rays, bounces, seed, albedo
+};
+
+struct PoseFrame {
+  std::uint32_t clip = 0;  // index into PoseTrainingSet::clip_names
+  float time = 0.0f;       // seconds into the clip
+  std::vector<glm::quat> rotations;  // every joint's local rotation at this frame
+  std::vector<float> features;       // 3 J: SPEC §7.3's pose vector of `rotations`
+};
+
+struct PoseTrainingSet {
+  std::uint32_t order = 6;
+  float albedo = 1.0f;  // grey albedo the transfer was baked with
+  ShTransferKind kind = ShTransferKind::Shadowed;
+  int bounces = 0;
+  std::size_t vertex_count = 0;
+  PoseSkeleton skeleton;
+  std::vector<std::string> clip_names;  // the sampled clips, in file order
+  std::vector<PoseFrame> frames;        // clip by clip, time ascending
+  // frames x vertices x order^2 floats: frame f, vertex v, coefficient c at
+  // (f * vertex_count + v) * order^2 + c. Grey, model frame.
+  std::vector<float> transfer;
+  // frames x vertices x 3: the skinned normals in the model frame (the exact part's input).
+  std::vector<float> normals;
+  double seconds = 0.0;
+  std::uint64_t rays_traced = 0;
+
+  std::size_t coefficient_count() const { return static_cast<std::size_t>(order) * order; }
+  std::size_t joint_count() const { return skeleton.joints.size(); }
+  const float* frame_transfer(std::size_t frame) const {
+    return transfer.data() + frame * vertex_count * coefficient_count();
+  }
+};
+
+// The skeleton of `scene`'s one skin (Error naming the mesh when a mesh is not skinned by it,
+// or when the scene has no skin).
+PoseSkeleton pose_skeleton(const Scene& scene);
+
+// SPEC §7.3's features of local rotations (one per joint).
+std::vector<float> pose_features(const PoseSkeleton& skeleton,
+                                 const std::vector<glm::quat>& rotations);
+
+// Samples the clips and bakes every frame on ctx.thread_count() threads; progress through ctx
+// ("pose training"), Error("cancelled") when the callback returns false, Error for an unknown
+// clip name or a scene without animation. Bitwise deterministic for any thread count.
+PoseTrainingSet bake_pose_training(const Scene& scene, const PoseTrainingSettings& settings,
+                                   const Context& ctx);
+
+}  // namespace prt::bake

@@ -1,0 +1,128 @@
+/* SPDX-License-Identifier: MIT */
+/* prtkit runtime C API: the `pose` technique (section PSTR, formats/SPEC.md §7.3), the SH
+ * transfer of a skinned character learned as a function of its joint rotations, and its
+ * shading on the CPU and SIMD backends. C99 and C++.
+ *
+ * Each frame the game passes the character's joint rotations (the glTF nodes' local `rotation`
+ * quaternions, x y z w, in the skin's `joints` order, as its animation system computes them).
+ * The runtime turns them into pose features, then into the model's coefficients, then into
+ * per-vertex transfer (or, for colour, folds the light into the coefficients first). The PSTR
+ * header, the joint table and the evaluation order are checked when the asset is loaded, so
+ * these functions read what the load kept. They never allocate and keep no state; an asset is
+ * immutable after loading, so any of them may be called on one asset from several threads at
+ * once (e.g. disjoint vertex ranges of one frame). */
+#ifndef PRT_POSE_ASSET_H
+#define PRT_POSE_ASSET_H
+
+#include <prt/prt_asset.h>
+#include <prt/prt_types.h>
+#include <prt/prt_workers.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The `pose` section (technique PRT_TECHNIQUE_POSE, element = vertex). */
+#define PRT_SECTION_PSTR PRT_TAG('P', 'S', 'T', 'R')
+
+/* What the model learned (SPEC §7.3). */
+typedef enum prt_pose_model {
+  PRT_POSE_MODEL_DIRECT = 0,  /* the paper's: the whole transfer, linear in the pose */
+  PRT_POSE_MODEL_RESIDUAL = 1 /* exact unshadowed transfer of the skinned normal + a learned
+                                 occlusion residual */
+} prt_pose_model;
+
+/* The PSTR header fields. */
+typedef struct prt_pose_info {
+  size_t struct_size; /* set by the caller: sizeof(prt_pose_info) */
+  uint32_t order;     /* SH order n: n² coefficients per vertex */
+  uint32_t vertex_count;
+  uint32_t joint_count;   /* J: rotations per pose */
+  uint32_t feature_count; /* 3 J */
+  uint32_t pose_dims;     /* p */
+  uint32_t basis_dims;    /* q */
+  prt_pose_model model;
+  uint32_t bits;        /* 8 or 16 per basis value */
+  uint32_t model_joint; /* the joint whose frame is the model frame */
+  uint32_t kind;        /* informational: 1 shadowed, 2 interreflected */
+  uint32_t bounces;     /* informational */
+  float albedo;         /* grey albedo of the exact part of model 1 */
+  int clamps_pose;      /* 1: pose coordinates are clamped to the training range */
+  size_t model_bytes;   /* pose PCA + regression + vertex basis, as stored uncompressed */
+} prt_pose_info;
+
+/* PRT_ERROR_NOT_FOUND when the asset has no PSTR section; PRT_ERROR_INVALID_ARGUMENT for NULL
+ * pointers or a struct_size below 1.0's. */
+PRT_API prt_result prt_pose_get_info(const prt_asset* asset, prt_pose_info* out_info);
+
+/* One pose of the character. Pointers the caller owns; only joint_rotations is required. */
+typedef struct prt_pose_input {
+  size_t struct_size;           /* set by the caller: sizeof(prt_pose_input) */
+  const float* joint_rotations; /* J × 4: x y z w, any non-zero length (normalised) */
+  const float* joint_translations; /* J × 3 or NULL: the rest translations (skinning only) */
+  const float* joint_scales;       /* J × 3 or NULL: the rest scales (skinning only) */
+} prt_pose_input;
+
+/* The pose features a (3 J floats, radians: SPEC §7.3) of a pose. PRT_ERROR_INVALID_ARGUMENT
+ * for NULL pointers or a rotation that is zero or not finite. */
+PRT_API prt_result prt_pose_features(const prt_asset* asset, const prt_pose_input* pose,
+                                     float* out_features);
+
+/* The pose coordinates z (p floats, clamped when the asset says so) and the model coefficients
+ * y (q·n² floats, y[k][c] at k n² + c) of a pose; either output may be NULL. */
+PRT_API prt_result prt_pose_coefficients(const prt_asset* asset, const prt_pose_input* pose,
+                                         float* out_coordinates, float* out_coefficients);
+
+/* Skinned positions and normals of vertices [first, first+count) in the model frame (3 floats
+ * each; either output may be NULL), and the model frame's placement in the character's space
+ * (out_model_frame: 12 floats, the 3×4 [R_m | o_m] row-major; may be NULL). */
+PRT_API prt_result prt_pose_skin(const prt_asset* asset, const prt_pose_input* pose,
+                                 uint32_t first_vertex, uint32_t vertex_count,
+                                 float* out_positions, float* out_normals,
+                                 float* out_model_frame);
+
+/* What a shading call needs besides the pose. */
+typedef struct prt_pose_light {
+  size_t struct_size;     /* set by the caller: sizeof(prt_pose_light) */
+  const float* light_rgb; /* n² RGB coefficients, coefficient-major, in the world frame */
+  const float* world_from_character; /* row-major 3×3 rotation placing the character's space in
+                                        the world, or NULL for the identity */
+  const float* normals; /* model-frame skinned normals of the shaded range (count × 3, e.g. from
+                           prt_pose_skin or the game's own skinning) for model 1, or NULL: the
+                           runtime skins them */
+} prt_pose_light;
+
+/* Transfer of vertices [first, first+count) at a pose: count·n² floats, vertex-major, in the
+ * model frame (SPEC §7.3). `normals` as in prt_pose_light (model 1; NULL: skinned here).
+ *   PRT_BACKEND_AUTO : the context's best CPU-side backend;
+ *   PRT_BACKEND_CPU  : the scalar reference, summed in double;
+ *   PRT_BACKEND_SIMD : AVX2+FMA kernels, summed in float (within the conformance bound);
+ *   PRT_BACKEND_GL   : PRT_ERROR_UNSUPPORTED_BACKEND.
+ * PRT_ERROR_UNSUPPORTED_BACKEND when the backend is not usable in the asset's context,
+ * PRT_ERROR_NOT_FOUND without a PSTR section, PRT_ERROR_INVALID_ARGUMENT for bad pointers,
+ * ranges, rotations or backend values. */
+PRT_API prt_result prt_pose_transfer(const prt_asset* asset, prt_backend backend,
+                                     const prt_pose_input* pose, const float* normals,
+                                     uint32_t first_vertex, uint32_t vertex_count, float* out);
+
+/* Outgoing radiance (white albedo; multiply by the surface's own) of vertices [first,
+ * first+count) at a pose under a light: count × 3 floats. The light is rotated into the model
+ * frame and folded into the coefficients first (3 q weights), so a vertex costs q
+ * multiply-adds per channel plus, for model 1, its exact part. Backends and errors as
+ * prt_pose_transfer. */
+PRT_API prt_result prt_pose_shade(const prt_asset* asset, prt_backend backend,
+                                  const prt_pose_input* pose, const prt_pose_light* light,
+                                  uint32_t first_vertex, uint32_t vertex_count, float* out_rgb);
+
+/* prt_pose_shade of [first, first+count) split over the pool's threads in contiguous chunks:
+ * bitwise the one-range call's result. Errors as prt_sh_shade_workers. */
+PRT_API prt_result prt_pose_shade_workers(prt_workers* workers, const prt_asset* asset,
+                                          prt_backend backend, const prt_pose_input* pose,
+                                          const prt_pose_light* light, uint32_t first_vertex,
+                                          uint32_t vertex_count, float* out_rgb);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PRT_POSE_ASSET_H */
