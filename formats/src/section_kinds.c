@@ -7,10 +7,12 @@
 #include <inttypes.h>
 
 #include <prt/format/mesh_layout.h>
+#include <prt/format/pose_layout.h>
 #include <prt/format/sh_layout.h>
 #include <prt/format/wavelet_layout.h>
 
 #include "mesh/mesh_sections.h"
+#include "pose/pose_section.h"
 #include "reader_internal.h"
 #include "sh/sh_section.h"
 #include "wavelet/wavelet_section.h"
@@ -38,6 +40,9 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_WVLT, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_VERTEX, 0,
      0u, {0},
      "wavelet transfer (element = vertex)", "transfer rows", prt_blob_check_wvlt},
+    {PRT_BLOB_TAG_PSTR, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_VERTEX, 0,
+     0u, {0},
+     "pose transfer (element = vertex)", "skinned vertices", prt_blob_check_pstr},
 };
 /* clang-format on */
 

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <set>
 
+#include <prt/format/pose_layout.h>
 #include <prt/format/section_kinds.h>
 #include <prt/format/sh_layout.h>
 #include <prt/format/wavelet_layout.h>
@@ -183,6 +184,78 @@ TEST(WvltLayout, InvalidFieldsLeaveTheLayoutUntouched) {
   EXPECT_EQ(std::memcmp(&l, &before, sizeof l), 0);
 }
 
+TEST(PstrLayout, HeaderFieldOffsetsAreTheSpecs) {
+  // SPEC §7.3: n, V, J, p, q, model, bits, model joint, kind, bounces, albedo, flags, reserved.
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_ORDER, 0u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_VERTICES, 4u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_JOINTS, 8u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_POSE_DIMS, 12u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_BASIS_DIMS, 16u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_MODEL, 20u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_BITS, 24u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_MODEL_JOINT, 28u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_KIND, 32u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_BOUNCES, 36u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_ALBEDO, 40u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_FLAGS, 44u);
+  EXPECT_EQ(PRT_BLOB_PSTR_OFF_RESERVED, 48u);
+  EXPECT_EQ(PRT_BLOB_PSTR_HEADER_SIZE, 64u);
+  // A joint: parent, bind rotation (4), translation (3), scale (3), pre (12), inverse bind (12).
+  EXPECT_EQ(PRT_BLOB_PSTR_JOINT_OFF_BIND_ROTATION, 4u);
+  EXPECT_EQ(PRT_BLOB_PSTR_JOINT_OFF_TRANSLATION, 20u);
+  EXPECT_EQ(PRT_BLOB_PSTR_JOINT_OFF_SCALE, 32u);
+  EXPECT_EQ(PRT_BLOB_PSTR_JOINT_OFF_PRE, 44u);
+  EXPECT_EQ(PRT_BLOB_PSTR_JOINT_OFF_INVERSE_BIND, 92u);
+  EXPECT_EQ(PRT_BLOB_PSTR_JOINT_SIZE, 140u);
+  // A skin record: position (3), normal (3), 4 u8 joints, 4 u16 weights.
+  EXPECT_EQ(PRT_BLOB_PSTR_SKIN_OFF_JOINTS, 24u);
+  EXPECT_EQ(PRT_BLOB_PSTR_SKIN_OFF_WEIGHTS, 28u);
+  EXPECT_EQ(PRT_BLOB_PSTR_SKIN_SIZE, 36u);
+  EXPECT_EQ(PRT_BLOB_TAG_PSTR, 0x52545350u);  // "PSTR" little-endian
+}
+
+TEST(PstrLayout, SmallLayoutsByHand) {
+  prt_blob_pstr_layout l;
+  // n 2 (C 4), V 3, J 2 (F 6), p 1, q 2, 8 bits: 64 + 280 = 344, + 8 = 352, + 24 = 376,
+  // + 24 = 400, + 8 = 408, + 2 x 2 x 4 x 4 = 472, + 16 = 488, + 6 values -> 8 = 496, + 108 = 604.
+  ASSERT_EQ(prt_blob_pstr_layout_of(2, 3, 2, 1, 2, 8, &l), 1);
+  EXPECT_EQ(l.coefficients, 4u);
+  EXPECT_EQ(l.features, 6u);
+  EXPECT_EQ(l.value_size, 1u);
+  EXPECT_EQ(l.joints, 64u);
+  EXPECT_EQ(l.eval_order, 344u);
+  EXPECT_EQ(l.pose_mean, 352u);
+  EXPECT_EQ(l.pose_basis, 376u);
+  EXPECT_EQ(l.pose_range, 400u);
+  EXPECT_EQ(l.regression, 408u);
+  EXPECT_EQ(l.basis_params, 472u);
+  EXPECT_EQ(l.basis_values, 488u);
+  EXPECT_EQ(l.skin, 496u);
+  EXPECT_EQ(l.payload_end, 604u);
+  EXPECT_EQ(l.raw_size, 604u);
+  // n 1, V 1, J 1, p 0, q 1, 16 bits: 64 + 140 + 4 + 12 + 0 + 0 + 4 + 8 = 232, 2 bytes -> 4.
+  ASSERT_EQ(prt_blob_pstr_layout_of(1, 1, 1, 0, 1, 16, &l), 1);
+  EXPECT_EQ(l.basis_values, 232u);
+  EXPECT_EQ(l.skin, 236u);
+  EXPECT_EQ(l.raw_size, 272u);
+}
+
+TEST(PstrLayout, InvalidFieldsLeaveTheLayoutUntouched) {
+  prt_blob_pstr_layout l;
+  std::memset(&l, 0xAB, sizeof l);
+  const prt_blob_pstr_layout before = l;
+  EXPECT_EQ(prt_blob_pstr_layout_of(0, 1, 1, 0, 1, 8, &l), 0);    // order 0
+  EXPECT_EQ(prt_blob_pstr_layout_of(9, 1, 1, 0, 1, 8, &l), 0);    // order above 8
+  EXPECT_EQ(prt_blob_pstr_layout_of(2, 1, 0, 0, 1, 8, &l), 0);    // no joint
+  EXPECT_EQ(prt_blob_pstr_layout_of(2, 1, 257, 0, 1, 8, &l), 0);  // above 256 joints
+  EXPECT_EQ(prt_blob_pstr_layout_of(2, 1, 2, 7, 1, 8, &l), 0);    // p above 3 J
+  EXPECT_EQ(prt_blob_pstr_layout_of(2, 1, 2, 0, 0, 8, &l), 0);    // q 0
+  EXPECT_EQ(prt_blob_pstr_layout_of(2, 1, 2, 0, 257, 8, &l), 0);  // q above 256
+  EXPECT_EQ(prt_blob_pstr_layout_of(2, 1, 2, 0, 1, 12, &l), 0);   // 12 bits
+  EXPECT_EQ(std::memcmp(&l, &before, sizeof l), 0);
+  EXPECT_EQ(prt_blob_pstr_layout_of(8, 1, 256, 768, 256, 16, &l), 1);  // the limits are valid
+}
+
 // SPEC §7's table: tag, element size and domain of every 1.0 kind, and its relations.
 TEST(SectionKinds, TableIsTheSpecs) {
   struct Row {
@@ -197,6 +270,7 @@ TEST(SectionKinds, TableIsTheSpecs) {
       {PRT_BLOB_TAG('T', 'R', 'I', 'S'), 12, PRT_BLOB_DOMAIN_TRIANGLE},
       {PRT_BLOB_TAG('S', 'H', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('W', 'V', 'L', 'T'), 0, PRT_BLOB_DOMAIN_VERTEX},
+      {PRT_BLOB_TAG('P', 'S', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
   };
   EXPECT_EQ(prt_blob_kind_count(), sizeof spec / sizeof spec[0]);
   for (const Row& row : spec) {

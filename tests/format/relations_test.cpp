@@ -51,7 +51,7 @@ std::pair<prt_blob_status, std::string> check(const Bytes& blob) {
 
 const uint32_t kVpos = PRT_BLOB_TAG('V', 'P', 'O', 'S'), kVnrm = PRT_BLOB_TAG('V', 'N', 'R', 'M'),
                kTris = PRT_BLOB_TAG('T', 'R', 'I', 'S'), kShtr = PRT_BLOB_TAG('S', 'H', 'T', 'R'),
-               kWvlt = PRT_BLOB_TAG('W', 'V', 'L', 'T');
+               kWvlt = PRT_BLOB_TAG('W', 'V', 'L', 'T'), kPstr = PRT_BLOB_TAG('P', 'S', 'T', 'R');
 
 TEST(KindRelations, ConsistentBlobPasses) {
   const Bytes blob =
@@ -67,6 +67,7 @@ TEST(KindRelations, VertexDomainKindsHaveVposCount) {
       {{kVnrm, 24, 2}, "'VNRM' has 2 normals for 3 vertices"},
       {{kShtr, 64, 2}, "'SHTR' has 2 transfer vectors for 3 vertices"},
       {{kWvlt, 64, 4}, "'WVLT' has 4 transfer rows for 3 vertices"},
+      {{kPstr, 64, 2}, "'PSTR' has 2 skinned vertices for 3 vertices"},
   };
   for (const auto& c : cases) {
     const auto [st, msg] = check(make_blob({{kVpos, 36, 3}, c.section}));
@@ -84,6 +85,7 @@ TEST(KindRelations, DependentsNeedVpos) {
       {{kVnrm, 12, 1}, "section 'VNRM' needs a 'VPOS' section"},
       {{kShtr, 64, 1}, "section 'SHTR' needs a 'VPOS' section"},
       {{kWvlt, 64, 1}, "section 'WVLT' needs a 'VPOS' section"},
+      {{kPstr, 64, 1}, "section 'PSTR' needs a 'VPOS' section"},
   };
   for (const auto& c : cases) {
     const auto [st, msg] = check(make_blob({c.section}));
