@@ -29,6 +29,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
   const Expected expected[] = {
       {PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG('S', 'H', 'T', 'R')},
       {PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG('W', 'V', 'L', 'T')},
+      {PRT_TECHNIQUE_POSE, "pose", PRT_BLOB_TAG('P', 'S', 'T', 'R')},
   };
   for (const Expected& e : expected) {
     prt_technique_info info = prt::sized<prt_technique_info>();
@@ -40,6 +41,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
   }
   EXPECT_EQ(PRT_SECTION_SHTR, expected[0].tag);
   EXPECT_EQ(PRT_SECTION_WVLT, expected[1].tag);
+  EXPECT_EQ(PRT_SECTION_PSTR, expected[2].tag);
   // Every other value is not a technique of this runtime.
   int known = 0;
   for (uint32_t t = 0; t < 32; ++t) {
@@ -48,7 +50,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
     EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_NOT_FOUND) << t;
     known += r == PRT_OK;
   }
-  EXPECT_EQ(known, 2);
+  EXPECT_EQ(known, 3);
   prt_technique_info info = prt::sized<prt_technique_info>();
   EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_NONE, &info), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_SH, nullptr), PRT_ERROR_INVALID_ARGUMENT);

@@ -12,6 +12,7 @@
 #include <prt/prt_context.h>
 #include <prt/prt_env.h>
 #include <prt/prt_gl.h>
+#include <prt/prt_pose_asset.h>
 #include <prt/prt_sh.h>
 #include <prt/prt_sh_asset.h>
 #include <prt/prt_technique.h>
