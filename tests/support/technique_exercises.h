@@ -9,6 +9,7 @@
 
 #include <prt/prt.h>
 
+#include "../pose/pose_exercise.h"
 #include "../sh/sh_exercise.h"
 #include "../wavelet/wavelet_exercise.h"
 
@@ -24,6 +25,7 @@ typedef struct prt_test_technique_exercise {
 static const prt_test_technique_exercise prt_test_technique_exercises[] = {
     {PRT_TECHNIQUE_SH, prt_test_exercise_sh},
     {PRT_TECHNIQUE_WAVELET, prt_test_exercise_wavelet},
+    {PRT_TECHNIQUE_POSE, prt_test_exercise_pose},
 };
 
 #define PRT_TEST_TECHNIQUE_EXERCISE_COUNT \

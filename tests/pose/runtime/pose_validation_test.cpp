@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pose/pose_blob.hpp"
+#include "support/technique_exercises.h"
 
 namespace {
 
@@ -178,6 +179,25 @@ TEST(PoseValidation, FullValidationRejectsTheContents) {
     EXPECT_EQ(prt_pose_shade(quick.asset, PRT_BACKEND_AUTO, &pose, &l, 0, 3, out.data()), PRT_OK);
     EXPECT_EQ(prt_pose_skin(quick.asset, &pose, 0, 3, out.data(), out.data() + 9, nullptr), PRT_OK);
   }
+}
+
+// The fuzzer's exercise (support/technique_exercises.h) accepts a pose asset at both levels,
+// also one whose contents only quick validation lets through.
+TEST(PoseValidation, TheExerciseRunsEveryFunction) {
+  const PoseSection s = random_section(8, 20, 256, 12, 256, 16, 1, 3);
+  Context ctx;
+  for (prt_validation level : {PRT_VALIDATE_QUICK, PRT_VALIDATE_FULL}) {
+    const LoadedAsset a(ctx.ctx, pose_blob(s), level);
+    ASSERT_EQ(a.result, PRT_OK);
+    EXPECT_EQ(prt_test_exercise_techniques(a.asset, level), 1);
+  }
+  const Bytes bad = edited_blob(small_section(), [](Bytes& b, auto& l) {
+    put_f32(b, l.regression, std::nanf(""));
+    b[l.skin + PRT_BLOB_PSTR_SKIN_OFF_JOINTS] = 250;
+  });
+  const LoadedAsset quick(ctx.ctx, bad, PRT_VALIDATE_QUICK);
+  ASSERT_EQ(quick.result, PRT_OK);
+  EXPECT_EQ(prt_test_exercise_techniques(quick.asset, PRT_VALIDATE_QUICK), 1);
 }
 
 // A NaN albedo: NON_FINITE at full validation (the checker), CORRUPT at quick (the load).
