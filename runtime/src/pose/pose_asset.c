@@ -41,6 +41,30 @@ prt_result prt_pose_get_info(const prt_asset* asset, prt_pose_info* out) {
   return PRT_OK;
 }
 
+/* n floats of joint j's record at `offset` into out + n j (when out is given). */
+static void copy_joint_floats(const prt_pose_view* view, uint32_t j, uint32_t offset, uint32_t n,
+                              float* out) {
+  const uint64_t at = view->layout.joints + (uint64_t)PRT_BLOB_PSTR_JOINT_SIZE * j + offset;
+  uint32_t i;
+  if (!out) return;
+  for (i = 0; i < n; ++i) out[n * j + i] = prt_blob_pstr_load_f32(view->data + at + 4u * i);
+}
+
+prt_result prt_pose_bind_pose(const prt_asset* asset, float* out_rotations,
+                              float* out_translations, float* out_scales) {
+  const prt_pose_view* view;
+  uint32_t j;
+  if (!asset) return PRT_ERROR_INVALID_ARGUMENT;
+  view = pose_view(asset);
+  if (!view) return PRT_ERROR_NOT_FOUND;
+  for (j = 0; j < view->info.joint_count; ++j) {
+    copy_joint_floats(view, j, PRT_BLOB_PSTR_JOINT_OFF_BIND_ROTATION, 4, out_rotations);
+    copy_joint_floats(view, j, PRT_BLOB_PSTR_JOINT_OFF_TRANSLATION, 3, out_translations);
+    copy_joint_floats(view, j, PRT_BLOB_PSTR_JOINT_OFF_SCALE, 3, out_scales);
+  }
+  return PRT_OK;
+}
+
 prt_result prt_pose_features(const prt_asset* asset, const prt_pose_input* pose,
                              float* out_features) {
   double features[PRT_POSE_MAX_FEATURES];

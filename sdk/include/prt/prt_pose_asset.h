@@ -63,6 +63,13 @@ typedef struct prt_pose_input {
   const float* joint_scales;       /* J × 3 or NULL: the rest scales (skinning only) */
 } prt_pose_input;
 
+/* The pose the model is relative to: each joint's bind rotation (J × 4, x y z w; the pose whose
+ * features are all 0), rest translation (J × 3) and rest scale (J × 3), in the skin's joint
+ * order; any output may be NULL. A game's animation sliders start here. PRT_ERROR_NOT_FOUND
+ * without a PSTR section, PRT_ERROR_INVALID_ARGUMENT for a NULL asset. */
+PRT_API prt_result prt_pose_bind_pose(const prt_asset* asset, float* out_rotations,
+                                      float* out_translations, float* out_scales);
+
 /* The pose features a (3 J floats, radians: SPEC §7.3) of a pose. PRT_ERROR_INVALID_ARGUMENT
  * for NULL pointers or a rotation that is zero or not finite. */
 PRT_API prt_result prt_pose_features(const prt_asset* asset, const prt_pose_input* pose,

@@ -344,4 +344,27 @@ TEST(PoseModel, InfoIsTheHeader) {
   EXPECT_EQ(prt_pose_get_info(a.get(), nullptr), PRT_ERROR_INVALID_ARGUMENT);
 }
 
+// The bind pose is each joint record's bind rotation, rest translation and rest scale, as
+// stored; every output may be left out.
+TEST(PoseModel, BindPoseIsTheJointRecords) {
+  PoseSection s = two_joints();
+  s.joints[0].bind = {0.0f, 0.6f, 0.0f, 0.8f};
+  s.joints[1].bind = {0.28f, 0.0f, 0.0f, 0.96f};
+  s.joints[1].translation = {0.5f, 1.5f, -2.0f};
+  s.joints[1].scale = {1.0f, 2.0f, 0.25f};
+  const Loaded a(s);
+  std::vector<float> rotations(8, -1.0f), translations(6, -1.0f), scales(6, -1.0f);
+  ASSERT_EQ(prt_pose_bind_pose(a.get(), rotations.data(), translations.data(), scales.data()),
+            PRT_OK);
+  EXPECT_EQ(rotations, (std::vector<float>{0.0f, 0.6f, 0.0f, 0.8f, 0.28f, 0.0f, 0.0f, 0.96f}));
+  EXPECT_EQ(translations, (std::vector<float>{0, 0, 0, 0.5f, 1.5f, -2.0f}));
+  EXPECT_EQ(scales, (std::vector<float>{1, 1, 1, 1.0f, 2.0f, 0.25f}));
+  EXPECT_EQ(prt_pose_bind_pose(a.get(), nullptr, nullptr, nullptr), PRT_OK);
+  EXPECT_EQ(prt_pose_bind_pose(nullptr, rotations.data(), nullptr, nullptr),
+            PRT_ERROR_INVALID_ARGUMENT);
+  // At the bind pose every feature is zero (the model's own reference).
+  const std::vector<float> features = feature_of(a, rotations);
+  for (float f : features) EXPECT_NEAR(f, 0.0f, 1e-7f);
+}
+
 }  // namespace

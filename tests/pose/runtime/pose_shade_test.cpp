@@ -508,6 +508,7 @@ TEST(PoseShade, AssetWithoutPoseReportsNotFound) {
   prt_pose_info info = prt::sized<prt_pose_info>();
   EXPECT_EQ(prt_pose_get_info(a.asset, &info), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_pose_features(a.asset, &pose, out.data()), PRT_ERROR_NOT_FOUND);
+  EXPECT_EQ(prt_pose_bind_pose(a.asset, out.data(), nullptr, nullptr), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_pose_coefficients(a.asset, &pose, out.data(), out.data()), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_pose_skin(a.asset, &pose, 0, 1, out.data(), nullptr, nullptr), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_pose_transfer(a.asset, PRT_BACKEND_CPU, &pose, nullptr, 0, 1, out.data()),
