@@ -37,10 +37,21 @@ struct PoseSkeleton {
   std::vector<glm::u16vec4> skin_weights;  // w / 65535, summing to 65535 where any
 };
 
+// The transfer settings of a pose bake: ShTransferSettings' own with order 6 and albedo 1 (SPEC
+// §7.3's transfer is for albedo 1 unless the header says otherwise).
+inline ShTransferSettings pose_transfer_defaults() {
+  ShTransferSettings s;
+  s.order = 6;
+  s.albedo = glm::vec3(1.0f);
+  return s;
+}
+
 struct PoseTrainingSettings {
   std::vector<std::string> clips;  // names to sample; empty: every clip
   double rate = 30.0;              // frames per second of clip time
-  ShTransferSettings transfer;     // order (default 6), kind, rays, bounces, seed, albedo
+  // order, kind, rays, bounces, seed; the grey albedo is albedo.r (override_albedo is ignored:
+  // every vertex gets it)
+  ShTransferSettings transfer = pose_transfer_defaults();
 };
 
 struct PoseFrame {
