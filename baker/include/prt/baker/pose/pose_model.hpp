@@ -13,7 +13,7 @@
 
 namespace prt::bake {
 
-enum class PoseModelKind { Direct, Residual };  // SPEC §7.3 model 0 and 1
+enum class PoseModelKind { Direct, Residual };          // SPEC §7.3 model 0 and 1
 enum class PoseCrossValidation { Frame, Block, Clip };  // leave-one-frame/-block/-clip-out
 
 struct PoseModelSettings {
@@ -21,8 +21,10 @@ struct PoseModelSettings {
   std::uint32_t pose_dims = 0;   // p; 0: the fewest that keep `pose_variance`
   double pose_variance = 0.9;    // share of the pose variance p keeps when pose_dims = 0
   std::uint32_t basis_dims = 0;  // q; 0: the fewest that keep `basis_energy`
-  double basis_energy = 0.999;   // share of the learned part's energy q keeps
-  double alpha = -1.0;           // ridge alpha (X = (A^T A + alpha^2 I)^-1 A^T B); < 0: by CV
+  // Share of the training transfer's energy (squared norm) the basis keeps: its truncation
+  // leaves at most (1 - basis_energy) of it, whichever part is learned.
+  double basis_energy = 0.99;
+  double alpha = -1.0;  // ridge alpha (X = (A^T A + alpha^2 I)^-1 A^T B); < 0: by CV
   PoseCrossValidation cv = PoseCrossValidation::Clip;  // Clip falls back to Block for one clip
   std::uint32_t cv_blocks = 5;
   bool clamp = true;  // clamp pose coordinates to the training range
@@ -37,16 +39,16 @@ struct PoseModel {
   bool clamp = true;
   double alpha = 0.0;
   std::vector<double> alpha_curve_alpha, alpha_curve_error;  // the CV curve (for the trade)
-  std::vector<float> pose_mean;    // F
-  std::vector<float> pose_basis;   // F x p, [f * p + i]
-  std::vector<float> pose_min, pose_max;  // p
-  std::vector<float> regression;   // (p + 1) x q x C, [(i * q + k) * C + c]
-  std::vector<float> basis;        // V x q, [v * q + k], before quantisation
+  std::vector<float> pose_mean;                              // F
+  std::vector<float> pose_basis;                             // F x p, [f * p + i]
+  std::vector<float> pose_min, pose_max;                     // p
+  std::vector<float> regression;  // (p + 1) x q x C, [(i * q + k) * C + c]
+  std::vector<float> basis;       // V x q, [v * q + k], before quantisation
   // Quantised basis (bits per value), as stored: U = offset_k + scale_k * values[v * q + k].
   int bits = 16;
   std::vector<float> basis_offset, basis_scale;
   std::vector<std::uint16_t> basis_values;
-  std::size_t model_bytes = 0;     // pose PCA + regression + quantised basis, uncompressed
+  std::size_t model_bytes = 0;  // pose PCA + regression + quantised basis, uncompressed
 };
 
 // Fits the model to every frame of `training`; Error for settings that cannot be met.
