@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// Technique `pose`'s parts that prt-bake's steps call (private to baker/src/pose/).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "prt/baker/pose/pose_model.hpp"
+#include "prt/baker/pose/pose_training.hpp"
+#include "prt/baker/technique.hpp"
+
+namespace prt::bake {
+
+// The stored model measured on its own training frames: Σ|Δt|²/Σ|t|² over every frame, vertex
+// and coefficient, and the worst frame's.
+struct PoseFit {
+  double transfer_error = 0.0;
+  double worst_frame_error = 0.0;
+};
+PoseFit measure_pose_fit(const PoseTrainingSet& training, const PoseModel& model);
+
+// The baker's self-check: the blob loaded through the runtime at full validation, its header
+// against the model, and the runtime's transfer from each training frame's joint rotations
+// (features and skinned normals computed by the runtime) against predict_pose_transfer's.
+struct PoseBlobCheck {
+  bool passed = false;
+  std::string message;
+  std::size_t frames_checked = 0;
+  double max_abs_error = 0.0;     // max |runtime - baker| over the checked frames
+  double max_budget_ratio = 0.0;  // max_abs_error / allowed, <= 1 when passed
+};
+PoseBlobCheck check_pose_blob(const std::vector<std::uint8_t>& blob,
+                              const PoseTrainingSet& training, const PoseModel& model);
+
+void write_pose_bake_report(const std::string& path, const BakeInput& input, const BakeFacts& facts,
+                            const PoseTrainingSet& training, const PoseModel& model,
+                            const PoseFit& fit, const PoseBlobCheck& check);
+
+std::unique_ptr<TechniqueTrade> make_pose_trade();
+
+}  // namespace prt::bake
