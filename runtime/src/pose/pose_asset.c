@@ -50,8 +50,8 @@ static void copy_joint_floats(const prt_pose_view* view, uint32_t j, uint32_t of
   for (i = 0; i < n; ++i) out[n * j + i] = prt_blob_pstr_load_f32(view->data + at + 4u * i);
 }
 
-prt_result prt_pose_bind_pose(const prt_asset* asset, float* out_rotations,
-                              float* out_translations, float* out_scales) {
+prt_result prt_pose_bind_pose(const prt_asset* asset, float* out_rotations, float* out_translations,
+                              float* out_scales) {
   const prt_pose_view* view;
   uint32_t j;
   if (!asset) return PRT_ERROR_INVALID_ARGUMENT;

@@ -57,8 +57,8 @@ PRT_API prt_result prt_pose_get_info(const prt_asset* asset, prt_pose_info* out_
 
 /* One pose of the character. Pointers the caller owns; only joint_rotations is required. */
 typedef struct prt_pose_input {
-  size_t struct_size;           /* set by the caller: sizeof(prt_pose_input) */
-  const float* joint_rotations; /* J × 4: x y z w, any non-zero length (normalised) */
+  size_t struct_size;              /* set by the caller: sizeof(prt_pose_input) */
+  const float* joint_rotations;    /* J × 4: x y z w, any non-zero length (normalised) */
   const float* joint_translations; /* J × 3 or NULL: the rest translations (skinning only) */
   const float* joint_scales;       /* J × 3 or NULL: the rest scales (skinning only) */
 } prt_pose_input;
@@ -84,9 +84,8 @@ PRT_API prt_result prt_pose_coefficients(const prt_asset* asset, const prt_pose_
  * each; either output may be NULL), and the model frame's placement in the character's space
  * (out_model_frame: 12 floats, the 3×4 [R_m | o_m] row-major; may be NULL). */
 PRT_API prt_result prt_pose_skin(const prt_asset* asset, const prt_pose_input* pose,
-                                 uint32_t first_vertex, uint32_t vertex_count,
-                                 float* out_positions, float* out_normals,
-                                 float* out_model_frame);
+                                 uint32_t first_vertex, uint32_t vertex_count, float* out_positions,
+                                 float* out_normals, float* out_model_frame);
 
 /* What a shading call needs besides the pose. */
 typedef struct prt_pose_light {
