@@ -38,7 +38,7 @@ static int prt_test_exercise_pose(const prt_asset* asset, prt_validation level) 
   light.light_rgb = light_rgb;
   light.world_from_character = NULL;
   light.normals = NULL;
-  if (prt_pose_bind_pose(asset, features, features, features) != PRT_OK) return 0;
+  if (prt_pose_bind_pose(asset, coefficients, features, coordinates) != PRT_OK) return 0;
   if (prt_pose_features(asset, &pose, features) != PRT_OK) return 0;
   if (prt_pose_coefficients(asset, &pose, coordinates, coefficients) != PRT_OK) return 0;
   if (prt_pose_skin(asset, &pose, 0, count, positions, normals, frame) != PRT_OK) return 0;
