@@ -49,6 +49,25 @@ prt::format::BlobWriter start_technique_blob(const Scene& scene, const std::stri
   return writer;
 }
 
+SelfCheckAsset load_for_self_check(const std::vector<std::uint8_t>& blob) {
+  SelfCheckAsset loaded;
+  prt_context* context = nullptr;
+  if (prt_context_create(nullptr, &context) != PRT_OK) {
+    loaded.failure = "cannot create a runtime context";
+    return loaded;
+  }
+  loaded.context.reset(context);
+  prt_asset* asset = nullptr;
+  const prt_result result =
+      prt_asset_load_memory(context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &asset);
+  if (result != PRT_OK) {
+    loaded.failure = runtime_failure("prt_asset_load_memory (full validation)", result, context);
+    return loaded;
+  }
+  loaded.asset.reset(asset);
+  return loaded;
+}
+
 std::string runtime_failure(const char* what, prt_result result, const prt_context* context) {
   return std::string(what) + " failed (" + std::to_string(static_cast<int>(result)) +
          "): " + prt_context_last_message(context);

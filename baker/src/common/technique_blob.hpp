@@ -5,8 +5,10 @@
 
 #include <prt/prt.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "prt/baker/scene.hpp"
 #include "prt/format/blob_writer.hpp"
@@ -25,6 +27,15 @@ prt::format::SectionOptions required_section();
 
 using RuntimeContextPtr = prt::ContextPtr;
 using RuntimeAssetPtr = prt::AssetPtr;
+
+// A blob loaded through the runtime at full validation, in a context of its own, for a bake's
+// self-check: on failure `asset` is null and `failure` says what failed.
+struct SelfCheckAsset {
+  RuntimeContextPtr context;
+  RuntimeAssetPtr asset;
+  std::string failure;
+};
+SelfCheckAsset load_for_self_check(const std::vector<std::uint8_t>& blob);
 
 // "<what> failed (<result>): <the context's last message>", for self-check reports.
 std::string runtime_failure(const char* what, prt_result result, const prt_context* context);

@@ -111,22 +111,15 @@ PoseFit measure_pose_fit(const PoseTrainingSet& training, const PoseModel& model
 PoseBlobCheck check_pose_blob(const std::vector<std::uint8_t>& blob,
                               const PoseTrainingSet& training, const PoseModel& model) {
   PoseBlobCheck check;
-  prt_context* raw_context = nullptr;
-  if (prt_context_create(nullptr, &raw_context) != PRT_OK) {
-    check.message = "cannot create a runtime context";
+  const SelfCheckAsset loaded = load_for_self_check(blob);
+  if (!loaded.asset) {
+    check.message = loaded.failure;
     return check;
   }
-  const RuntimeContextPtr context(raw_context);
-  prt_asset* raw_asset = nullptr;
-  prt_result result =
-      prt_asset_load_memory(raw_context, blob.data(), blob.size(), PRT_VALIDATE_FULL, &raw_asset);
-  if (result != PRT_OK) {
-    check.message = runtime_failure("prt_asset_load_memory (full validation)", result, raw_context);
-    return check;
-  }
-  const RuntimeAssetPtr asset(raw_asset);
+  prt_context* raw_context = loaded.context.get();
+  prt_asset* raw_asset = loaded.asset.get();
   prt_pose_info info = prt::sized<prt_pose_info>();
-  result = prt_pose_get_info(raw_asset, &info);
+  const prt_result result = prt_pose_get_info(raw_asset, &info);
   if (result != PRT_OK) {
     check.message = runtime_failure("prt_pose_get_info", result, raw_context);
     return check;

@@ -122,22 +122,15 @@ void compare_decoded(const std::vector<float>& decoded, const ShTransfer& transf
 ShBlobCheck check_sh_blob(const std::vector<std::uint8_t>& blob, const ShTransfer& transfer,
                           const QuantizedShTransfer& quantized) {
   ShBlobCheck check;
-  prt_context* raw_context = nullptr;
-  if (prt_context_create(nullptr, &raw_context) != PRT_OK) {
-    check.message = "cannot create a runtime context";
+  const SelfCheckAsset loaded = load_for_self_check(blob);
+  if (!loaded.asset) {
+    check.message = loaded.failure;
     return check;
   }
-  const RuntimeContextPtr context(raw_context);
-  prt_asset* raw_asset = nullptr;
-  prt_result result =
-      prt_asset_load_memory(context.get(), blob.data(), blob.size(), PRT_VALIDATE_FULL, &raw_asset);
-  if (result != PRT_OK) {
-    check.message = runtime_failure("prt_asset_load_memory (full validation)", result, raw_context);
-    return check;
-  }
-  const RuntimeAssetPtr asset(raw_asset);
+  prt_context* raw_context = loaded.context.get();
+  const RuntimeAssetPtr& asset = loaded.asset;
   prt_sh_info info = prt::sized<prt_sh_info>();
-  result = prt_sh_get_info(asset.get(), &info);
+  prt_result result = prt_sh_get_info(asset.get(), &info);
   if (result != PRT_OK) {
     check.message = runtime_failure("prt_sh_get_info", result, raw_context);
     return check;
