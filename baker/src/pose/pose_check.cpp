@@ -31,10 +31,6 @@ std::vector<float> rotations_xyzw(const PoseFrame& frame) {
   return out;
 }
 
-const float* frame_normals(const PoseTrainingSet& training, std::size_t f) {
-  return training.normals.data() + f * training.vertex_count * 3;
-}
-
 std::vector<std::size_t> checked_frames(std::size_t count) {
   std::vector<std::size_t> frames;
   const std::size_t n = std::min(count, kCheckedFrames);
@@ -70,7 +66,7 @@ bool check_frame(const prt_asset* asset, const prt_context* context,
     return false;
   }
   const std::vector<float> baker =
-      predict_pose_transfer(model, frame.features, frame_normals(training, f));
+      predict_pose_transfer(model, frame.features, training.frame_normals(f));
   double largest = 0.0, worst = 0.0;
   for (std::size_t i = 0; i < baker.size(); ++i) {
     largest = std::max(largest, std::fabs(double(baker[i])));
@@ -90,7 +86,7 @@ PoseFit measure_pose_fit(const PoseTrainingSet& training, const PoseModel& model
   double error = 0.0, energy = 0.0;
   for (std::size_t f = 0; f < training.frames.size(); ++f) {
     const std::vector<float> predicted =
-        predict_pose_transfer(model, training.frames[f].features, frame_normals(training, f));
+        predict_pose_transfer(model, training.frames[f].features, training.frame_normals(f));
     const float* truth = training.frame_transfer(f);
     double frame_error = 0.0, frame_energy = 0.0;
     for (std::size_t i = 0; i < predicted.size(); ++i) {

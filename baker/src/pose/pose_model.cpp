@@ -21,16 +21,6 @@ namespace {
 using pose_detail::Matrix;
 using pose_detail::Vector;
 
-// Sign convention of a basis column: its largest entry in magnitude is positive, so that the
-// same data give the same basis.
-void fix_signs(Matrix& basis) {
-  for (Eigen::Index k = 0; k < basis.cols(); ++k) {
-    Eigen::Index at = 0;
-    basis.col(k).cwiseAbs().maxCoeff(&at);
-    if (basis(at, k) < 0.0) basis.col(k) *= -1.0;
-  }
-}
-
 // Pose PCA of the frames' features: mean, basis (F x p) and the coordinates (frames x p).
 struct PosePca {
   Vector mean;
@@ -57,7 +47,7 @@ PosePca fit_pose_pca(const Matrix& features, const PoseModelSettings& s) {
   }
   p = std::min<Eigen::Index>(p, features.cols());
   pca.basis = vectors.leftCols(p);
-  fix_signs(pca.basis);
+  pose_detail::fix_signs(pca.basis);
   return pca;
 }
 
@@ -69,7 +59,7 @@ Matrix learned_target(const PoseTrainingSet& t, const std::vector<std::size_t>& 
   std::vector<float> exact(C);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const float* transfer = t.frame_transfer(frames[i]);
-    const float* normals = t.normals.data() + frames[i] * V * 3;
+    const float* normals = t.frame_normals(frames[i]);
     for (std::size_t v = 0; v < V; ++v) {
       std::fill(exact.begin(), exact.end(), 0.0f);
       if (kind == PoseModelKind::Residual) {
@@ -200,8 +190,8 @@ void unshadowed_transfer(std::uint32_t order, float rho, const float n[3], float
   const std::uint32_t count = order * order;
   std::fill(out, out + count, 0.0f);
   if (!(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0f)) return;
-  std::vector<float> y(count);
-  if (prt_sh_eval(order, n, y.data()) != PRT_OK) throw Error("pose: SH order out of range");
+  float y[PRT_SH_MAX_ORDER * PRT_SH_MAX_ORDER];
+  if (prt_sh_eval(order, n, y) != PRT_OK) throw Error("pose: SH order out of range");
   const double pi = 3.14159265358979323846;
   for (std::uint32_t l = 0; l < order; ++l) {
     const double factor = double(rho) * double(prt_sh_cosine_band_factor(l)) / pi;

@@ -100,6 +100,14 @@ double frame_error(const Matrix& z, const Matrix& y, double alpha) {
 
 }  // namespace
 
+void fix_signs(Matrix& basis) {
+  for (Eigen::Index k = 0; k < basis.cols(); ++k) {
+    Eigen::Index at = 0;
+    basis.col(k).cwiseAbs().maxCoeff(&at);
+    if (basis(at, k) < 0.0) basis.col(k) *= -1.0;
+  }
+}
+
 void progress(const Context& ctx, double fraction, const std::string& stage) {
   if (ctx.progress && !ctx.progress(fraction, stage)) throw Error("cancelled");
 }
@@ -144,11 +152,7 @@ Matrix vertex_basis(const Matrix& target, double transfer_energy, const PoseMode
   }
   dims = std::max<Eigen::Index>(dims, 1);
   Matrix out = basis.leftCols(dims);
-  for (Eigen::Index c = 0; c < out.cols(); ++c) {
-    Eigen::Index at = 0;
-    out.col(c).cwiseAbs().maxCoeff(&at);
-    if (out(at, c) < 0.0) out.col(c) *= -1.0;
-  }
+  fix_signs(out);
   return out;
 }
 

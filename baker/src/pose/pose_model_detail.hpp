@@ -14,6 +14,10 @@ namespace prt::bake::pose_detail {
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
+// Sign convention of basis columns: each one's largest entry in magnitude is positive, so
+// that the same data give the same basis.
+void fix_signs(Matrix& basis);
+
 // Progress through ctx; Error("cancelled") when the callback says stop.
 void progress(const Context& ctx, double fraction, const std::string& stage);
 

@@ -98,10 +98,6 @@ void split_frames(const PoseTrainingSet& set, const PoseTradeSettings& o,
   }
 }
 
-const float* frame_normals(const PoseTrainingSet& set, std::size_t f) {
-  return set.normals.data() + f * set.vertex_count * 3;
-}
-
 // Accumulates one frame's errors into sums: transfer error and per-light shaded error.
 struct ErrorSums {
   double dt2 = 0.0, t2 = 0.0;
@@ -275,7 +271,7 @@ class PoseTrade final : public TechniqueTrade {
     measure(
         set, test, lights_,
         [&](std::size_t f) {
-          return predict_pose_transfer(model, set.frames[f].features, frame_normals(set, f));
+          return predict_pose_transfer(model, set.frames[f].features, set.frame_normals(f));
         },
         row);
     time_runtime(scene, set, model, test.front(), lights_.front(), input.frames, row);

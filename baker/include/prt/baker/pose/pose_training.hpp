@@ -22,8 +22,8 @@ namespace prt::bake {
 // The skeleton and skin as SPEC §7.3 stores them: joints in the skin's order.
 struct PoseSkeleton {
   struct Joint {
-    int parent = -1;           // index into joints, -1: its parent node is not a joint
-    glm::quat bind_rotation;   // features are relative to it (bind_local_rotations)
+    int parent = -1;          // index into joints, -1: its parent node is not a joint
+    glm::quat bind_rotation;  // features are relative to it (bind_local_rotations)
     glm::vec3 rest_translation{0.0f}, rest_scale{1.0f};
     glm::mat4 pre{1.0f};           // non-joint nodes up to the parent joint, or world of parent
     glm::mat4 inverse_bind{1.0f};  // affine
@@ -55,8 +55,8 @@ struct PoseTrainingSettings {
 };
 
 struct PoseFrame {
-  std::uint32_t clip = 0;  // index into PoseTrainingSet::clip_names
-  float time = 0.0f;       // seconds into the clip
+  std::uint32_t clip = 0;            // index into PoseTrainingSet::clip_names
+  float time = 0.0f;                 // seconds into the clip
   std::vector<glm::quat> rotations;  // every joint's local rotation at this frame
   std::vector<float> features;       // 3 J: SPEC §7.3's pose vector of `rotations`
 };
@@ -82,6 +82,9 @@ struct PoseTrainingSet {
   std::size_t joint_count() const { return skeleton.joints.size(); }
   const float* frame_transfer(std::size_t frame) const {
     return transfer.data() + frame * vertex_count * coefficient_count();
+  }
+  const float* frame_normals(std::size_t frame) const {
+    return normals.data() + frame * vertex_count * 3;
   }
 };
 
