@@ -118,6 +118,25 @@ TEST(GlPose, BothModelsShadeLikeTheScalarReference) {
       }
 }
 
+// A mirrored joint (negative scale: det K < 0 for the vertices it moves alone) keeps the skinned
+// normal's orientation through the cofactors' sign, as on the CPU.
+TEST(GlPose, MirroredJointsSkinNormalsLikeTheScalarReference) {
+  PRT_REQUIRE_GL(gl);
+  const uint32_t n = 97;
+  PoseSection s = prt_test::random_section(4, n, 4, 3, 6, 16, 1, 51);
+  s.joints[2].scale[0] = -s.joints[2].scale[0];
+  for (uint32_t v = 0; v < n; v += 2) s.skin[v].joints = {2, 2, 2, 2};  // det < 0 alone
+  const GlAsset a(s);
+  ShaderPtr shader = create_shader(a, gl.gl);
+  ASSERT_TRUE(shader);
+  const std::vector<float> r = prt_test::random_rotations(4, 52);
+  const prt_pose_input pose = prt_test::pose_of(r);
+  const std::vector<float> light = prt_test::realistic_light(4, 53);
+  const prt_pose_light l = light_of(light);
+  ASSERT_EQ(prt_gl_pose_shade(shader.get(), &pose, &l, 0, n), PRT_OK);
+  expect_matches_scalar(a, r, l, read_all(shader.get(), n).data(), 0, n);
+}
+
 // Model 1 with the caller's normals: those are what the exact part reads, on GL as on the CPU.
 TEST(GlPose, CallersNormalsReplaceTheSkinnedOnes) {
   PRT_REQUIRE_GL(gl);
