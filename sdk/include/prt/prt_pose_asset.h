@@ -140,8 +140,8 @@ PRT_API prt_result prt_pose_shade_workers(prt_workers* workers, const prt_asset*
  * skinning matrix, skins its normal (or reads the caller's) and adds the exact part's SH sum.
  * Results match the scalar reference up to float rounding (tests/pose/gl: the bound the
  * conformance test holds GL to). GL state touched: the current program, the generic
- * GL_SHADER_STORAGE_BUFFER binding, the indexed GL_SHADER_STORAGE_BUFFER bindings 0 to 4 and
- * the indexed GL_UNIFORM_BUFFER binding 0, all left 0 afterwards. */
+ * GL_SHADER_STORAGE_BUFFER binding, the indexed GL_SHADER_STORAGE_BUFFER bindings 0 and 2
+ * (model 1: 0 to 4) and the indexed GL_UNIFORM_BUFFER binding 0, all left 0 afterwards. */
 
 /* GPU-side `pose` shading of one asset: the static data uploaded once, shaded per frame. */
 typedef struct prt_gl_pose_shader prt_gl_pose_shader;
