@@ -44,9 +44,9 @@ prt_result prt_gl_pose_read(prt_gl_pose_shader* shader, uint32_t first_vertex,
 /* Vertices per work group, and per dispatch (GL guarantees 65535 groups in x). */
 #define LOCAL_SIZE 64u
 #define MAX_GROUPS_PER_DISPATCH 65535u
-/* The light block: vec4 bias, 3 weight rows of q rounded up to 4, then one vec4 per
+/* The light block: vec4 bias, one vec4 of RGB weights per basis column, then one vec4 per
  * coefficient of the exact part (model 1). */
-#define MAX_LIGHT_FLOATS (4u + 3u * PRT_POSE_MAX_BASIS_DIMS + 4u * PRT_POSE_MAX_COEFFICIENTS)
+#define MAX_LIGHT_FLOATS (4u + 4u * PRT_POSE_MAX_BASIS_DIMS + 4u * PRT_POSE_MAX_COEFFICIENTS)
 /* The skin record as uint words (PRT_BLOB_PSTR_SKIN_*): normal at 3..5, joints at 6,
  * weights at 7..8. */
 #define SKIN_WORDS (PRT_BLOB_PSTR_SKIN_SIZE / 4u)
@@ -73,7 +73,6 @@ struct prt_gl_pose_shader {
   prt_allocator allocator; /* the asset's */
   prt_gl_functions gl;
   const prt_pose_view* view;
-  uint32_t padded_q;     /* q rounded up to 4: the stride of the weight rows */
   uint32_t light_floats; /* floats uploaded to the light block per shade call */
   prt_GLuint program;
   prt_GLuint buffers[BUFFER_COUNT];
@@ -101,7 +100,7 @@ static const char kShaderDeclarations[] =
     "layout(std430, binding = 0) readonly restrict buffer Values { uint words[]; };\n"
     "layout(std140, binding = 0) uniform Light {\n"
     "  vec4 bias;\n"
-    "  vec4 weight[WEIGHT_VEC4S];\n"
+    "  vec4 weight[BASIS_DIMS];\n"
     "#if MODEL == 1\n"
     "  vec4 exact[ORDER * ORDER];\n"
     "#endif\n"
@@ -116,23 +115,23 @@ static const char kShaderDeclarations[] =
     "layout(location = 1) uniform uint vertex_count;\n"
     "layout(location = 2) uniform uint given_normals;\n"
     "const uint Q = uint(BASIS_DIMS);\n"
-    "const uint QPAD = uint(PADDED_Q);\n"
     "\n"
-    "float value_at(uint index) {\n"
     "#if BITS == 8\n"
-    "  return float(bitfieldExtract(words[index >> 2u], int((index & 3u) << 3u), 8));\n"
+    "const uint PER_WORD_LOG2 = 2u, PER_WORD_MASK = 3u;\n"
     "#else\n"
-    "  return float(bitfieldExtract(words[index >> 1u], int((index & 1u) << 4u), 16));\n"
+    "const uint PER_WORD_LOG2 = 1u, PER_WORD_MASK = 1u;\n"
     "#endif\n"
-    "}\n"
-    "float weight_at(uint i) { return weight[i >> 2u][i & 3u]; }\n"
     "\n"
+    "/* Each word of the row is loaded once (rows need not start on a word). */\n"
     "vec3 learned(uint v) {\n"
-    "  uint row = v * Q;\n"
+    "  uint index = v * Q;\n"
+    "  uint word = words[index >> PER_WORD_LOG2];\n"
     "  vec3 sum = bias.xyz;\n"
-    "  for (uint k = 0u; k < Q; ++k)\n"
-    "    sum += value_at(row + k) *\n"
-    "           vec3(weight_at(k), weight_at(QPAD + k), weight_at(2u * QPAD + k));\n"
+    "  for (uint k = 0u; k < Q; ++k, ++index) {\n"
+    "    uint slot = index & PER_WORD_MASK;\n"
+    "    if (k > 0u && slot == 0u) word = words[index >> PER_WORD_LOG2];\n"
+    "    sum += float(bitfieldExtract(word, int(slot * uint(BITS)), BITS)) * weight[k].xyz;\n"
+    "  }\n"
     "  return sum;\n"
     "}\n"
     "\n"
@@ -267,10 +266,10 @@ static prt_result compile_program(prt_context* context, prt_gl_pose_shader* s) {
   used = (size_t)snprintf(header, sizeof header,
                           "#version 430 core\n#define LOCAL_SIZE %u\n#define ORDER %u\n"
                           "#define MODEL %u\n#define BITS %u\n#define BASIS_DIMS %u\n"
-                          "#define PADDED_Q %u\n#define WEIGHT_VEC4S %u\n#define JOINTS %u\n"
+                          "#define JOINTS %u\n"
                           "#define SKIN_WORDS %u\n#define SQRT2 1.41421356\n",
                           LOCAL_SIZE, n, (unsigned)info->model, info->bits, info->basis_dims,
-                          s->padded_q, 3u * s->padded_q / 4u, info->joint_count, SKIN_WORDS);
+                          info->joint_count, SKIN_WORDS);
   used = append_table(header, used, sizeof header, "SH_DIAG", diag, n);
   used = append_table(header, used, sizeof header, "SH_SUB", sub, n);
   used = append_table(header, used, sizeof header, "SH_A", a, n * (n + 1u) / 2u);
@@ -392,8 +391,8 @@ prt_result prt_gl_pose_create(prt_context* context, const prt_asset* asset, prt_
   s->allocator = asset->allocator;
   s->gl = gl;
   s->view = view;
-  s->padded_q = (view->info.basis_dims + 3u) / 4u * 4u;
-  s->light_floats = 4u + 3u * s->padded_q + (residual(s) ? 4u * view->layout.coefficients : 0u);
+  s->light_floats =
+      4u + 4u * view->info.basis_dims + (residual(s) ? 4u * view->layout.coefficients : 0u);
   r = compile_program(context, s);
   if (r == PRT_OK) r = create_buffers(context, s, &sizes);
   if (r != PRT_OK) {
@@ -415,12 +414,12 @@ void prt_gl_pose_destroy(prt_gl_pose_shader* shader) {
 
 /* ---- per frame ------------------------------------------------------------------------- */
 
-/* The light block from the folded frame: vec4 (bias r, g, b, 0), weight[ch QPAD + k] =
- * scale_k w_k[ch] (zero past q), then exact[c] = (rgb, 0) for model 1; and the joints' K_j as
- * three rows of vec4 each (model 1). */
+/* The light block from the folded frame: vec4 (bias r, g, b, 0), weight[k] = (scale_k w_k[ch],
+ * 0), then exact[c] = (rgb, 0) for model 1; and the joints' K_j as three rows of vec4 each
+ * (model 1). */
 static void fill_uploads(prt_gl_pose_shader* s) {
   const prt_pose_view* view = s->view;
-  const uint32_t q = view->info.basis_dims, qp = s->padded_q;
+  const uint32_t q = view->info.basis_dims;
   const uint64_t params = view->layout.basis_params;
   const prt_pose_folded* f = &s->folded;
   float* light = s->light;
@@ -430,16 +429,16 @@ static void fill_uploads(prt_gl_pose_shader* s) {
     double bias = 0.0;
     for (k = 0; k < q; ++k) {
       bias += prt_pose_f32(view, params + 8u * k) * f->weight[k][ch];
-      light[4u + ch * qp + k] =
+      light[4u + 4u * k + ch] =
           prt_pose_to_float(prt_pose_f32(view, params + 8u * k + 4u) * f->weight[k][ch]);
     }
-    for (; k < qp; ++k) light[4u + ch * qp + k] = 0.0f;
     light[ch] = prt_pose_to_float(bias);
   }
   light[3] = 0.0f;
+  for (k = 0; k < q; ++k) light[4u + 4u * k + 3u] = 0.0f;
   if (!residual(s)) return;
   for (c = 0; c < view->layout.coefficients; ++c) {
-    float* e = light + 4u + 3u * qp + 4u * c;
+    float* e = light + 4u + 4u * q + 4u * c;
     for (ch = 0; ch < 3; ++ch) e[ch] = prt_pose_to_float(f->exact[c][ch]);
     e[3] = 0.0f;
   }
