@@ -237,6 +237,52 @@ TEST(GlPose, OutputBufferIsTightlyPackedRgbAndStateIsLeftUnbound) {
   }
 }
 
+// A joint index >= J (only loadable at quick validation) weighs 0 on GL as on the CPU: alone it
+// leaves the identity, beside a valid joint it gives that joint the whole weight.
+TEST(GlPose, JointIndicesPastJWeighNothingAtQuickValidation) {
+  PRT_REQUIRE_GL(gl);
+  const uint32_t n = 9;
+  PoseSection s = prt_test::random_section(3, n, 3, 2, 4, 8, 1, 61);
+  s.skin[0].joints = {200, 0, 0, 0};
+  s.skin[0].weights = {65535, 0, 0, 0};
+  s.skin[1].joints = {200, 1, 3, 2};
+  s.skin[1].weights = {30000, 20000, 15000, 0};
+  const prt::ContextPtr ctx = prt_test::limited_context();
+  LoadedAsset quick(ctx.get(), prt_test::pose_blob(s), PRT_VALIDATE_QUICK);
+  ASSERT_EQ(quick.result, PRT_OK) << prt_context_last_message(ctx.get());
+  prt_gl_pose_shader* raw = nullptr;
+  ASSERT_EQ(prt_gl_pose_create(ctx.get(), quick.asset, headless_gl_get_proc, gl.gl, &raw), PRT_OK)
+      << prt_context_last_message(ctx.get());
+  ShaderPtr shader(raw);
+  const std::vector<float> r = prt_test::random_rotations(3, 62);
+  const prt_pose_input pose = prt_test::pose_of(r);
+  const std::vector<float> light = prt_test::realistic_light(3, 63);
+  const prt_pose_light l = light_of(light);
+  ASSERT_EQ(prt_gl_pose_shade(raw, &pose, &l, 0, n), PRT_OK);
+  std::vector<float> got = read_all(raw, n), reference(3 * n);
+  ASSERT_EQ(prt_pose_shade(quick.asset, PRT_BACKEND_CPU, &pose, &l, 0, n, reference.data()),
+            PRT_OK);
+  const std::vector<double> ref(reference.begin(), reference.end());
+  const prt_test::PoseBound bound = prt_test::pose_bound(s, r, light, nullptr, ref);
+  prt_test::compare_to_reference("gl", ref, bound, got.data(), 0, n);
+}
+
+TEST(GlPose, ManyVerticesSpanSeveralDispatches) {
+  PRT_REQUIRE_GL(gl);
+  // More than 65535 work groups of 64 (the dispatch limit GL guarantees) needs two dispatches.
+  const uint32_t n = 65535u * 64u + 1000u;
+  const GlAsset a(prt_test::random_section(1, n, 1, 0, 1, 8, 0, 5));
+  ShaderPtr shader = create_shader(a, gl.gl);
+  ASSERT_TRUE(shader);
+  const std::vector<float> r = {0, 0, 0, 1};
+  const prt_pose_input pose = prt_test::pose_of(r);
+  const std::vector<float> light = {2.0f, 3.0f, 5.0f};
+  const prt_pose_light l = light_of(light);
+  ASSERT_EQ(prt_gl_pose_shade(shader.get(), &pose, &l, 0, n), PRT_OK);
+  const std::vector<float> rgb = read_all(shader.get(), n);
+  expect_matches_scalar(a, r, l, rgb.data(), 0, n);
+}
+
 TEST(GlPose, ErrorsTheApplicationLeftPendingDoNotFailCreation) {
   PRT_REQUIRE_GL(gl);
   prt_test::leave_gl_error_pending();

@@ -232,8 +232,12 @@ inline PoseBound pose_bound(const PoseSection& s, const std::vector<float>& r,
     double dn = gamma_n(10), dn_magnitude = 1.0;
     if (s.model == 1 && !given_normals) {
       const PoseSkin& skin = s.skin[v];
-      double total = 0, k3[9] = {}, kabs[9] = {};
-      for (uint16_t x : skin.weights) total += x;
+      // SPEC §7.3's blend: joints at or past J weigh 0, the identity when no weight is left.
+      double total = 0, k3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, kabs[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+      for (int i = 0; i < 4; ++i)
+        if (skin.joints[i] < s.joint_count()) total += skin.weights[i];
+      if (total > 0)
+        for (int e = 0; e < 9; ++e) k3[e] = kabs[e] = 0;
       for (int i = 0; i < 4; ++i) {
         if (skin.weights[i] == 0 || skin.joints[i] >= s.joint_count()) continue;
         const Affine& m = kj[skin.joints[i]];
