@@ -366,12 +366,20 @@ class PoseTrade final : public TechniqueTrade {
     for (const Light& light : lights_) columns.push_back({"shaded RMSE " + light.name});
     columns.push_back({"CPU ms"});
     columns.push_back({"SIMD ms"});
+    // trade.csv is long (one row per model and light, the map column naming the light) for
+    // scripts/trade.d/pose.py; trade.md is the wide table.
     const std::string csv_path = input.out_dir + "/trade.csv";
     std::ofstream csv(csv_path);
-    std::vector<std::string> titles;
-    for (const Column& c : columns) titles.push_back(c.title);
-    write_csv_row(csv, titles);
-    for (const Row& row : rows_) write_csv_row(csv, cells(row, frame_bytes, training_bytes));
+    write_csv_row(csv, {"model", "p", "q", "alpha", "model_bytes", "training_share", "frame_share",
+                        "transfer_error", "map", "shaded_rel_rmse", "shade_cpu_ms",
+                        "shade_simd_ms"});
+    for (const Row& row : rows_) {
+      const std::vector<std::string> c = cells(row, frame_bytes, training_bytes);
+      for (std::size_t l = 0; l < lights_.size(); ++l) {
+        write_csv_row(csv, {c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], lights_[l].name,
+                            c[8 + l], c[8 + lights_.size()], c[9 + lights_.size()]});
+      }
+    }
     check_written(csv, csv_path);
     const std::string md_path = input.out_dir + "/trade.md";
     std::ofstream md(md_path);
