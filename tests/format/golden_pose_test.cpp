@@ -17,6 +17,8 @@ namespace {
 
 using namespace prt_golden;
 
+const double kPi = 3.14159265358979323846;
+
 const File kZstd = {"pose_hinge.prtk",
                     912,
                     0xFCC64F9Eu,
@@ -252,14 +254,14 @@ TEST(GoldenPose, Features) {
     const prt_pose_input pose = pose_of(rotations);
     float features[6];
     ASSERT_EQ(prt_pose_features(a.get(), &pose, features), PRT_OK);
-    const double expected[6] = {0, 0, 0, 0, 0, M_PI / 3};
+    const double expected[6] = {0, 0, 0, 0, 0, kPi / 3};
     for (size_t k = 0; k < 6; ++k) EXPECT_NEAR(features[k], expected[k], 1e-6) << k;
     // 30 degrees about -z: (0, 0, -sin 15, cos 15) -> -pi/6 about z.
     const float back[8] = {0, 0, 0, 1, 0, 0, -0.25881905f, 0.96592583f};
     const prt_pose_input pose_back = pose_of(back);
     ASSERT_EQ(prt_pose_features(a.get(), &pose_back, features), PRT_OK);
     for (size_t k = 0; k < 5; ++k) EXPECT_EQ(features[k], 0.0f) << k;
-    EXPECT_NEAR(features[5], -M_PI / 6, 1e-6);
+    EXPECT_NEAR(features[5], -kPi / 6, 1e-6);
   }
 }
 
@@ -318,9 +320,9 @@ TEST(GoldenPose, Coefficients) {
     const float thirty[8] = {0, 0, 0, 1, 0, 0, 0.25881905f, 0.96592583f};
     const prt_pose_input pose_30 = pose_of(thirty);
     ASSERT_EQ(prt_pose_coefficients(a.get(), &pose_30, &z, y.data()), PRT_OK);
-    EXPECT_NEAR(z, M_PI / 6, 1e-6);
+    EXPECT_NEAR(z, kPi / 6, 1e-6);
     for (size_t c = 0; c < kC; ++c)
-      EXPECT_NEAR(y[c], double(bits(kBias[0][c])) + M_PI / 6 * double(bits(kWeights0[c])), 1e-7)
+      EXPECT_NEAR(y[c], double(bits(kBias[0][c])) + kPi / 6 * double(bits(kWeights0[c])), 1e-7)
           << c;
 
     // 90 degrees about z: z = pi/2 clamped to the stored max pi/4.
@@ -346,8 +348,8 @@ TEST(GoldenPose, Coefficients) {
 // y_c at those (c = l(l+1) + m): Y_00 = 1/(2 sqrt pi), Y_10 = sqrt(3/(4 pi)) z,
 // Y_11 = sqrt(3/(4 pi)) x, Y_20 = sqrt(5/(16 pi)) (3z^2 - 1), Y_22 = sqrt(15/(16 pi)) (x^2 - y^2).
 TEST(GoldenPose, TransferAtTheBindPose) {
-  const double y00 = 0.5 / std::sqrt(M_PI), y1 = std::sqrt(3 / (4 * M_PI)),
-               y20 = std::sqrt(5 / (16 * M_PI)), y22 = std::sqrt(15 / (16 * M_PI));
+  const double y00 = 0.5 / std::sqrt(kPi), y1 = std::sqrt(3 / (4 * kPi)),
+               y20 = std::sqrt(5 / (16 * kPi)), y22 = std::sqrt(15 / (16 * kPi));
   const double floor_sh[kC] = {y00, 0, y1, 0, 0, 0, 2 * y20, 0, 0};  // SH z = 1
   const double flap_sh[kC] = {y00, 0, 0, y1, 0, 0, -y20, 0, y22};    // SH x = 1
   const double band[kC] = {1, 2. / 3, 2. / 3, 2. / 3, .25, .25, .25, .25, .25};
