@@ -29,28 +29,34 @@ class PoseView : public ViewTechnique {
   }
 
   void describe(const BlobScene& scene) const override {
-    std::printf("%s: %u vertices, %u triangles, %u joints, pose order %u, %s model PCA(%u, %u), "
-                "%zu model bytes; shown at the bind pose\n",
-                scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
-                info_.joint_count, info_.order,
-                info_.model == PRT_POSE_MODEL_DIRECT ? "direct" : "residual", info_.pose_dims,
-                info_.basis_dims, info_.model_bytes);
+    std::printf(
+        "%s: %u vertices, %u triangles, %u joints, pose order %u, %s model PCA(%u, %u), "
+        "%zu model bytes; shown at the bind pose\n",
+        scene.path().c_str(), scene.mesh().vertex_count, scene.mesh().triangle_count,
+        info_.joint_count, info_.order,
+        info_.model == PRT_POSE_MODEL_DIRECT ? "direct" : "residual", info_.pose_dims,
+        info_.basis_dims, info_.model_bytes);
   }
 
+  // The light the API documents: the map projected to SH in the world frame and turned about
+  // +Y with prt_sh_rotate, as sh does; prt_pose_shade turns it into the model frame itself.
   void prepare_light(const BlobScene&, const LightRequest& request) override {
     const prt::io::EnvMap& map = *request.map;
     light_.assign(3u * info_.order * info_.order, 0.0f);
     std::vector<float> faces;
+    const prt_env_image env = environment_image(map, nullptr, &faces);
+    check_runtime(prt_sh_project(info_.order, &env, light_.data()), "prt_sh_project");
     float rotation[9];
     prt::io::rotation_about_y_row_major(request.rotate_degrees, rotation);
-    const prt_env_image env = environment_image(map, rotation, &faces);
-    check_runtime(prt_sh_project(info_.order, &env, light_.data()), "prt_sh_project");
+    check_runtime(prt_sh_rotate(info_.order, rotation, light_.data(), light_.data(), 3),
+                  "prt_sh_rotate");
     if (!request.describe) return;
-    std::printf("%s: %dx%d %s map, projected to order %u by the runtime (prt_sh_project, %s), "
-                "rotated %g deg about +Y\n",
-                request.map_path.c_str(), map.width(), map.height(),
-                prt::io::env_mapping_name(map.mapping()), info_.order,
-                environment_image_layout(map).c_str(), request.rotate_degrees);
+    std::printf(
+        "%s: %dx%d %s map, projected to order %u by the runtime (prt_sh_project, %s), "
+        "rotated %g deg about +Y (prt_sh_rotate)\n",
+        request.map_path.c_str(), map.width(), map.height(),
+        prt::io::env_mapping_name(map.mapping()), info_.order,
+        environment_image_layout(map).c_str(), request.rotate_degrees);
   }
 
   const char* shade_function() const override { return "prt_pose_shade"; }
