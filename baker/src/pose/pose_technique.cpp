@@ -14,6 +14,7 @@
 #include "prt/baker/text.hpp"
 
 #include "../common/technique_blob.hpp"
+#include "pose_ground_truth.hpp"
 #include "pose_technique.hpp"
 
 namespace prt::bake {
@@ -68,6 +69,9 @@ class PoseBake final : public TechniqueBake {
         .choices({"clip", "block", "frame"});
     list.add("--no-clamp", &no_clamp_, "Do not clamp pose coordinates to the training range");
     list.add("--bits", &m.bits, "Bits per basis value: 8 or 16").choices({8, 16});
+    list.add("--ground-truth", &ground_truth_,
+             "Also write the baked training frames: PREFIX.transfer.npy [frames][V][n*n], "
+             "PREFIX.rotations.npy [frames][J][4], PREFIX.times.npy [frames][2] (clip, s)");
     return list;
   }
 
@@ -82,6 +86,7 @@ class PoseBake final : public TechniqueBake {
     model_settings_.cv = parse_cv(cv_);
     model_settings_.clamp = !no_clamp_;
     training_ = bake_pose_training(scene, training_settings_, ctx);
+    if (!ground_truth_.empty()) write_pose_ground_truth(ground_truth_, training_);
     model_ = fit_pose_model(training_, model_settings_, ctx);
   }
 
@@ -129,7 +134,7 @@ class PoseBake final : public TechniqueBake {
 
   PoseTrainingSettings training_settings_;
   PoseModelSettings model_settings_;
-  std::string kind_ = "shadowed", model_kind_ = "residual", cv_ = "clip";
+  std::string kind_ = "shadowed", model_kind_ = "residual", cv_ = "clip", ground_truth_;
   bool no_clamp_ = false;
   PoseTrainingSet training_;
   PoseModel model_;
