@@ -185,9 +185,8 @@ class CharacterApp : public prt::sample::SampleApp {
     }
     rmse_ = prt::io::relative_rmse(x, ref);
     char line[256];
-    std::snprintf(line, sizeof line, "vs baked frame %u (clip %u, %.3f s)%s: relative RMSE %.2f %%",
-                  truth_frame_, baked_->clip[truth_frame_], baked_->time[truth_frame_],
-                  exact_ ? "" : ", another pose", 100.0 * rmse_);
+    std::snprintf(line, sizeof line, "vs baked frame %u%s: RMSE %.2f %%", truth_frame_,
+                  exact_ ? "" : " (another pose)", 100.0 * rmse_);
     sample.overlay_line(line);
     const FrameRect left{0.0f, 0.0f, 0.5f, 1.0f}, right{0.5f, 0.0f, 1.0f, 1.0f};
     if (mode_ == Compare::Split) {

@@ -184,6 +184,22 @@ TEST(Character, MissingGroundTruthAndGlFailNamingWhy) {
   EXPECT_NE(gl.output.find("pose has no GL backend yet"), std::string::npos) << gl.output;
 }
 
+// Another blob's ground truth: the shapes say so, naming the file.
+TEST(Character, GroundTruthOfAnotherBlobFailsNamingTheShapes) {
+  BAKE_OR_SKIP();
+  const std::string hinge = std::string(PRT_GOLDEN_DIR) + "/1.0/pose_hinge.prtk";
+  const prt_test::CommandResult run = prt_test::run_command(
+      PRT_CHARACTER_EXE,
+      prt_test::shell_quote(hinge) + " --ground-truth " + prt_test::shell_quote(prefix) +
+          " --env " + prt_test::shell_quote(constant_sky()) + " --headless",
+      scratch().file("other_blob.log"));
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(
+      run.output.find("cesium.transfer.npy: is [21 x 3273 x 36], the blob needs [frames x 8 x"),
+      std::string::npos)
+      << run.output;
+}
+
 TEST(Character, BadOptionsExitTwo) {
   BAKE_OR_SKIP();
   const prt_test::CommandResult run = character(prefix, "--pose 3:1,2", "bad_pose");
