@@ -129,12 +129,13 @@ int main(int argc, char** argv) {
                      shaded + 3 * (size_t)half) != PRT_OK) {
     goto done;
   }
-  printf("%s: %u vertices, %u joints, %s model PCA(%u, %u), %u bytes; joint %ld bent %g "
-         "degrees; backend %s\n",
-         argv[1], (unsigned)info.vertex_count, (unsigned)info.joint_count,
-         info.model == PRT_POSE_MODEL_DIRECT ? "direct" : "residual", (unsigned)info.pose_dims,
-         (unsigned)info.basis_dims, (unsigned)info.model_bytes, joint, degrees,
-         prt_backend_name(prt_context_backend(context)));
+  printf(
+      "%s: %u vertices, %u joints, %s model PCA(%u, %u), %u bytes; joint %ld bent %g "
+      "degrees; backend %s\n",
+      argv[1], (unsigned)info.vertex_count, (unsigned)info.joint_count,
+      info.model == PRT_POSE_MODEL_DIRECT ? "direct" : "residual", (unsigned)info.pose_dims,
+      (unsigned)info.basis_dims, (unsigned)info.model_bytes, joint, degrees,
+      prt_backend_name(prt_context_backend(context)));
   for (v = 0; v < info.vertex_count && v < 4; ++v) {
     printf("vertex %u: rgb %.6f %.6f %.6f\n", (unsigned)v, shaded[3 * v], shaded[3 * v + 1],
            shaded[3 * v + 2]);
