@@ -184,6 +184,7 @@ class CharacterApp : public prt::sample::SampleApp {
           glm::vec3(truth_.radiance[3 * v], truth_.radiance[3 * v + 1], truth_.radiance[3 * v + 2]);
     }
     rmse_ = prt::io::relative_rmse(x, ref);
+    compared_ = true;
     char line[256];
     std::snprintf(line, sizeof line, "vs baked frame %u%s: RMSE %.2f %%", truth_frame_,
                   exact_ ? "" : " (another pose)", 100.0 * rmse_);
@@ -282,7 +283,7 @@ class CharacterApp : public prt::sample::SampleApp {
   }
 
   void stop(prt::sample::Sample&) override {
-    if (baked_ && mode_ != Compare::Single && scene_)
+    if (compared_)
       std::printf(
           "prt-character: vs baked frame %u (clip %u, %.3f s)%s: relative RMSE %.5f "
           "(%.2f %%)\n",
@@ -321,6 +322,7 @@ class CharacterApp : public prt::sample::SampleApp {
   std::uint32_t truth_frame_ = 0;
   bool exact_ = false;  // the runtime's pose is the baked frame's
   double rmse_ = 0.0;
+  bool compared_ = false;  // a frame compared the halves: stop() prints the last figure
 
   std::uint64_t light_version_ = ~0ull;
   std::size_t light_map_ = ~std::size_t(0);
