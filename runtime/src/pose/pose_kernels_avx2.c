@@ -3,8 +3,11 @@
  * pose_simd.h). Shading: per vertex three dot products of its q values with the folded light
  * weights, eight at a time, the last partial block from a zero-padded copy so that nothing past
  * the vertex's row is read. Transfer: per vertex one FMA chain over k of its value broadcast
- * against a block of eight coefficients, four vertices interleaved to hide the FMA latency. */
+ * against a block of eight coefficients, four vertices interleaved to hide the FMA latency.
+ * Model 1's exact part: eight vertices per register, from the gathered skin to the folded SH sum
+ * (pose_simd.h). */
 #include <immintrin.h>
+#include <math.h>
 #include <string.h>
 
 #include "pose_simd.h"
@@ -96,4 +99,190 @@ void prt_pose_transfer_avx2(const prt_pose_transfer_job* job, uint32_t count, fl
     transfer_group(job, job->values + job->stride * v, TRANSFER_GROUP, out + job->out_stride * v);
   for (; v < count; ++v)
     transfer_group(job, job->values + job->stride * v, 1, out + job->out_stride * v);
+}
+
+/* ---- model 1's exact part ---- */
+
+/* clang-format off */
+/* sh_eval.c's recurrence constants (its tables, formulas there) for l, m < 8, as floats: the
+ * three-term step's a_lm and b_lm at l (l + 1) / 2 + m, Q_m^m and sqrt(2 m + 3). */
+static const float kExactA[36] = {
+    0.0f, 0.0f, 0.0f, 1.93649167f, 0.0f, 0.0f, 1.97202659f, 2.09165007f, 0.0f, 0.0f, 1.98431348f,
+    2.04939015f, 2.29128785f, 0.0f, 0.0f, 1.98997487f, 2.0310096f, 2.17124059f, 2.48746859f, 0.0f,
+    0.0f, 1.99304346f, 2.02131499f, 2.11394182f, 2.30136835f, 2.67394839f, 0.0f, 0.0f, 1.99489143f,
+    2.01556444f, 2.081666f, 2.20794022f, 2.43086217f, 2.85043856f, 0.0f, 0.0f};
+static const float kExactB[36] = {
+    0.0f, 0.0f, 0.0f, 0.577350269f, 0.0f, 0.0f, 0.516397779f, 0.447213595f, 0.0f, 0.0f,
+    0.507092553f, 0.478091444f, 0.377964473f, 0.0f, 0.0f, 0.503952631f, 0.487950036f, 0.43643578f,
+    0.333333333f, 0.0f, 0.0f, 0.502518908f, 0.492365964f, 0.460566186f, 0.402015126f, 0.301511345f,
+    0.0f, 0.0f, 0.501745206f, 0.494727445f, 0.473049917f, 0.434524095f, 0.373978796f, 0.277350098f,
+    0.0f, 0.0f};
+static const float kExactDiag[8] = {0.282094792f, 0.345494149f, 0.386274202f, 0.417223824f,
+                                    0.442532692f, 0.464132203f, 0.483084114f, 0.500039564f};
+static const float kExactSub[8] = {1.73205081f, 2.23606798f, 2.64575131f, 3.0f,
+                                   3.31662479f, 3.60555128f, 3.87298335f, 4.12310563f};
+/* clang-format on */
+
+#define EXACT_MAX_C 64 /* order 8 */
+
+/* m / |m| where |m| is > 0 and finite (and `ok` where given), else 0. */
+PRT_KERNEL_INLINE void normalize_or_zero(__m256 m[3], __m256 ok) {
+  const __m256 len = _mm256_sqrt_ps(
+      _mm256_fmadd_ps(m[0], m[0], _mm256_fmadd_ps(m[1], m[1], _mm256_mul_ps(m[2], m[2]))));
+  int a;
+  ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_cmp_ps(len, _mm256_setzero_ps(), _CMP_GT_OQ),
+                                       _mm256_cmp_ps(len, _mm256_set1_ps(INFINITY), _CMP_LT_OQ)));
+  for (a = 0; a < 3; ++a) m[a] = _mm256_and_ps(ok, _mm256_div_ps(m[a], len));
+}
+
+/* The model-frame normals of the range's vertices lane[i] (i < 8). */
+PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, __m256i lane, __m256 n[3]) {
+  const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+  __m256 k[9], nl[3], det, m[3], cof[9];
+  __m256i jw, w01, w23, joint[4], weight[4], total;
+  int i, e;
+  if (job->normals) {
+    const __m256i at = _mm256_mullo_epi32(lane, _mm256_set1_epi32(3));
+    for (i = 0; i < 3; ++i) n[i] = _mm256_i32gather_ps(job->normals + i, at, 4);
+    normalize_or_zero(n, all);
+    return;
+  }
+  {
+    const __m256i at = _mm256_mullo_epi32(lane, _mm256_set1_epi32(36));
+    for (i = 0; i < 3; ++i)
+      nl[i] = _mm256_i32gather_ps((const float*)(const void*)(job->skin + 12 + 4 * i), at, 1);
+    jw = _mm256_i32gather_epi32((const int*)(const void*)(job->skin + 24), at, 1);
+    w01 = _mm256_i32gather_epi32((const int*)(const void*)(job->skin + 28), at, 1);
+    w23 = _mm256_i32gather_epi32((const int*)(const void*)(job->skin + 32), at, 1);
+  }
+  total = _mm256_setzero_si256();
+  for (i = 0; i < 4; ++i) {
+    const __m256i word = i < 2 ? w01 : w23;
+    __m256i valid;
+    joint[i] = _mm256_and_si256(_mm256_srli_epi32(jw, 8 * i), _mm256_set1_epi32(0xff));
+    weight[i] =
+        (i & 1) ? _mm256_srli_epi32(word, 16) : _mm256_and_si256(word, _mm256_set1_epi32(0xffff));
+    valid = _mm256_cmpgt_epi32(_mm256_set1_epi32((int)job->joint_count), joint[i]);
+    joint[i] = _mm256_and_si256(valid, joint[i]); /* an ignored joint reads joint 0, weight 0 */
+    weight[i] = _mm256_and_si256(valid, weight[i]);
+    total = _mm256_add_epi32(total, weight[i]);
+  }
+  {
+    /* Integer weights and their sum are exact in float: one rounding per normalised weight. */
+    const __m256 totalf = _mm256_cvtepi32_ps(total);
+    const __m256 none = _mm256_cmp_ps(totalf, _mm256_setzero_ps(), _CMP_EQ_OQ);
+    const __m256 divisor = _mm256_blendv_ps(totalf, _mm256_set1_ps(1.0f), none);
+    for (e = 0; e < 9; ++e) k[e] = _mm256_setzero_ps();
+    for (i = 0; i < 4; ++i) {
+      const __m256 w = _mm256_div_ps(_mm256_cvtepi32_ps(weight[i]), divisor);
+      const __m256i base = _mm256_mullo_epi32(joint[i], _mm256_set1_epi32(9));
+      for (e = 0; e < 9; ++e)
+        k[e] = _mm256_fmadd_ps(w, _mm256_i32gather_ps(job->joint + e, base, 4), k[e]);
+    }
+    for (e = 0; e < 9; e += 4) /* the identity where no weight is left: entries 0, 4, 8 */
+      k[e] = _mm256_blendv_ps(k[e], _mm256_set1_ps(1.0f), none);
+  }
+  /* cof[r][c] = K[r1][c1] K[r2][c2] - K[r1][c2] K[r2][c1] (r1 = r + 1, r2 = r + 2 mod 3). */
+  for (i = 0; i < 3; ++i)
+    for (e = 0; e < 3; ++e) {
+      const int r1 = (i + 1) % 3, r2 = (i + 2) % 3, c1 = (e + 1) % 3, c2 = (e + 2) % 3;
+      cof[3 * i + e] = _mm256_fmsub_ps(k[3 * r1 + c1], k[3 * r2 + c2],
+                                       _mm256_mul_ps(k[3 * r1 + c2], k[3 * r2 + c1]));
+    }
+  det = _mm256_fmadd_ps(k[0], cof[0], _mm256_fmadd_ps(k[1], cof[1], _mm256_mul_ps(k[2], cof[2])));
+  {
+    const __m256 sign = _mm256_and_ps(det, _mm256_set1_ps(-0.0f));
+    for (i = 0; i < 3; ++i)
+      m[i] = _mm256_xor_ps(
+          sign, _mm256_fmadd_ps(
+                    cof[3 * i], nl[0],
+                    _mm256_fmadd_ps(cof[3 * i + 1], nl[1], _mm256_mul_ps(cof[3 * i + 2], nl[2]))));
+  }
+  normalize_or_zero(m, _mm256_cmp_ps(det, _mm256_setzero_ps(), _CMP_NEQ_OQ));
+  for (i = 0; i < 3; ++i) n[i] = m[i];
+}
+
+/* y[c] for c < order^2 at the unit normals n (model frame; SH frame x = X, y = -Z, z = Y). */
+PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], __m256* y) {
+  const __m256 x = n[0], yy = _mm256_xor_ps(n[2], _mm256_set1_ps(-0.0f)), z = n[1];
+  const __m256 sqrt2 = _mm256_set1_ps(1.41421356f);
+  __m256 cos_m = _mm256_set1_ps(1.0f), sin_m = _mm256_setzero_ps();
+  uint32_t m, l;
+  for (m = 0; m < order; ++m) {
+    __m256 q_prev2 = _mm256_set1_ps(kExactDiag[m]);
+    __m256 q_prev = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(kExactSub[m]), z), q_prev2);
+    __m256 scale_cos, scale_sin;
+    if (m > 0) {
+      const __m256 c = _mm256_fmsub_ps(cos_m, x, _mm256_mul_ps(sin_m, yy));
+      sin_m = _mm256_fmadd_ps(sin_m, x, _mm256_mul_ps(cos_m, yy));
+      cos_m = c;
+    }
+    scale_cos = m == 0 ? _mm256_set1_ps(1.0f) : _mm256_mul_ps(sqrt2, cos_m);
+    scale_sin = _mm256_mul_ps(sqrt2, sin_m);
+    for (l = m; l < order; ++l) {
+      __m256 q;
+      if (l == m) {
+        q = q_prev2;
+      } else if (l == m + 1) {
+        q = q_prev;
+      } else {
+        const uint32_t i = l * (l + 1) / 2 + m;
+        q = _mm256_mul_ps(
+            _mm256_set1_ps(kExactA[i]),
+            _mm256_fnmadd_ps(_mm256_set1_ps(kExactB[i]), q_prev2, _mm256_mul_ps(z, q_prev)));
+        q_prev2 = q_prev;
+        q_prev = q;
+      }
+      y[l * (l + 1) + m] = _mm256_mul_ps(q, scale_cos);
+      if (m > 0) y[l * (l + 1) - m] = _mm256_mul_ps(q, scale_sin);
+    }
+  }
+}
+
+/* Lane i of the batch at v: vertex v + i, or the batch's last vertex past the range (computed,
+ * never written). */
+PRT_KERNEL_INLINE __m256i batch_lanes(uint32_t v, uint32_t count) {
+  const uint32_t last = count - v - 1u;
+  return _mm256_add_epi32(_mm256_set1_epi32((int)v),
+                          _mm256_min_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                                           _mm256_set1_epi32((int)(last < 7u ? last : 7u))));
+}
+
+void prt_pose_exact_shade_avx2(const prt_pose_exact_job* job, uint32_t count, float* out_rgb) {
+  const uint32_t n2 = job->order * job->order;
+  __m256 y[EXACT_MAX_C], n[3];
+  uint32_t v, c, i;
+  for (v = 0; v < count; v += 8) {
+    const uint32_t lanes = count - v < 8u ? count - v : 8u;
+    __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
+    float rgb[3][8];
+    int ch;
+    exact_normals(job, batch_lanes(v, count), n);
+    exact_basis(job->order, n, y);
+    for (c = 0; c < n2; ++c) {
+      if (job->factor[c] == 0.0f) continue;
+      for (ch = 0; ch < 3; ++ch)
+        acc[ch] = _mm256_fmadd_ps(y[c], _mm256_set1_ps(job->light[3u * c + ch]), acc[ch]);
+    }
+    for (ch = 0; ch < 3; ++ch) _mm256_storeu_ps(rgb[ch], acc[ch]);
+    for (i = 0; i < lanes; ++i)
+      for (ch = 0; ch < 3; ++ch) out_rgb[3u * (v + i) + ch] += rgb[ch][i];
+  }
+}
+
+void prt_pose_exact_transfer_avx2(const prt_pose_exact_job* job, uint32_t count, float* out,
+                                  size_t out_stride) {
+  const uint32_t n2 = job->order * job->order;
+  __m256 y[EXACT_MAX_C], n[3];
+  float terms[EXACT_MAX_C][8];
+  uint32_t v, c, i;
+  for (v = 0; v < count; v += 8) {
+    const uint32_t lanes = count - v < 8u ? count - v : 8u;
+    exact_normals(job, batch_lanes(v, count), n);
+    exact_basis(job->order, n, y);
+    for (c = 0; c < n2; ++c)
+      _mm256_storeu_ps(terms[c], _mm256_mul_ps(y[c], _mm256_set1_ps(job->factor[c])));
+    for (i = 0; i < lanes; ++i)
+      for (c = 0; c < n2; ++c) out[(v + i) * out_stride + c] += terms[c][i];
+  }
 }
