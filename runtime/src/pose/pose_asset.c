@@ -297,7 +297,7 @@ static const uint8_t* values_of(const prt_pose_view* view, uint32_t first) {
 /* The exact part's float inputs (model 1): the joints' 3x3 skinning parts when the normals are
  * skinned, the factors, and the light folded with them when `exact` is given (shading). */
 typedef struct pose_exact_inputs {
-  float joint[PRT_POSE_MAX_JOINTS * 9];
+  float joint[(PRT_POSE_MAX_JOINTS + 1u) * 12u];
   float factor[PRT_POSE_MAX_COEFFICIENTS];
   float light[PRT_POSE_MAX_COEFFICIENTS * 3];
 } pose_exact_inputs;
@@ -314,10 +314,13 @@ static void exact_job_of(const pose_frame* frame, const double (*exact)[3], uint
   job->factor = in->factor;
   job->light = in->light;
   if (!frame->normals)
-    for (j = 0; j < view->info.joint_count; ++j)
+    for (j = 0; j <= view->info.joint_count; ++j)
       for (r = 0; r < 3; ++r)
-        for (c = 0; c < 3; ++c)
-          in->joint[9u * j + 3u * r + c] = prt_pose_to_float(frame->skeleton.skin[j].m[r][c]);
+        for (c = 0; c < 4; ++c)
+          in->joint[12u * j + 4u * r + c] = c == 3 ? 0.0f
+                                            : j < view->info.joint_count
+                                                ? prt_pose_to_float(frame->skeleton.skin[j].m[r][c])
+                                                : (r == c ? 1.0f : 0.0f);
   for (c = 0; c < view->layout.coefficients; ++c) {
     in->factor[c] = (float)frame->factor[c];
     for (ch = 0; ch < 3; ++ch)

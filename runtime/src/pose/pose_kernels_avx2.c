@@ -135,52 +135,91 @@ PRT_KERNEL_INLINE void normalize_or_zero(__m256 m[3], __m256 ok) {
   for (a = 0; a < 3; ++a) m[a] = _mm256_and_ps(ok, _mm256_div_ps(m[a], len));
 }
 
-/* The model-frame normals of the range's vertices lane[i] (i < 8). */
+/* c[e] lane i = element e of a[i], for 8 rows of 4: a 4x4 transpose in each 128-bit half. */
+PRT_KERNEL_INLINE void transpose8x4(const __m128 a[8], __m256 c[4]) {
+  __m256 x[4], t[4];
+  int i;
+  for (i = 0; i < 4; ++i) x[i] = _mm256_insertf128_ps(_mm256_castps128_ps256(a[i]), a[i + 4], 1);
+  t[0] = _mm256_unpacklo_ps(x[0], x[1]);
+  t[1] = _mm256_unpackhi_ps(x[0], x[1]);
+  t[2] = _mm256_unpacklo_ps(x[2], x[3]);
+  t[3] = _mm256_unpackhi_ps(x[2], x[3]);
+  c[0] = _mm256_shuffle_ps(t[0], t[2], _MM_SHUFFLE(1, 0, 1, 0));
+  c[1] = _mm256_shuffle_ps(t[0], t[2], _MM_SHUFFLE(3, 2, 3, 2));
+  c[2] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(1, 0, 1, 0));
+  c[3] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+/* The model-frame normals of the range's vertices lane[i] (i < 8). Gathers are slow on some
+ * CPUs, so the skinned path loads each vertex's record and joint rows whole and transposes. */
 PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, __m256i lane, __m256 n[3]) {
   const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-  __m256 k[9], nl[3], det, m[3], cof[9];
+  const __m256i identity = _mm256_set1_epi32((int)job->joint_count);
+  __m256 k[9], nl[3], det, m[3], cof[9], c[4];
+  __m128 rows[3][8], a[8];
   __m256i jw, w01, w23, joint[4], weight[4], total;
-  int i, e;
+  int32_t index[8], joint_of[4][8];
+  float weight_of[4][8];
+  int i, e, r;
   if (job->normals) {
     const __m256i at = _mm256_mullo_epi32(lane, _mm256_set1_epi32(3));
     for (i = 0; i < 3; ++i) n[i] = _mm256_i32gather_ps(job->normals + i, at, 4);
     normalize_or_zero(n, all);
     return;
   }
-  {
-    const __m256i at = _mm256_mullo_epi32(lane, _mm256_set1_epi32(36));
-    for (i = 0; i < 3; ++i)
-      nl[i] = _mm256_i32gather_ps((const float*)(const void*)(job->skin + 12 + 4 * i), at, 1);
-    jw = _mm256_i32gather_epi32((const int*)(const void*)(job->skin + 24), at, 1);
-    w01 = _mm256_i32gather_epi32((const int*)(const void*)(job->skin + 28), at, 1);
-    w23 = _mm256_i32gather_epi32((const int*)(const void*)(job->skin + 32), at, 1);
-  }
+  _mm256_storeu_si256((__m256i*)(void*)index, lane);
+  /* Bytes 12..27 (normal, joints) and 20..35 (normal z, joints, weights) of each record. */
+  for (i = 0; i < 8; ++i)
+    a[i] = _mm_loadu_ps((const float*)(const void*)(job->skin + 36u * (uint32_t)index[i] + 12u));
+  transpose8x4(a, c);
+  nl[0] = c[0], nl[1] = c[1], nl[2] = c[2];
+  jw = _mm256_castps_si256(c[3]);
+  for (i = 0; i < 8; ++i)
+    a[i] = _mm_loadu_ps((const float*)(const void*)(job->skin + 36u * (uint32_t)index[i] + 20u));
+  transpose8x4(a, c);
+  w01 = _mm256_castps_si256(c[2]);
+  w23 = _mm256_castps_si256(c[3]);
   total = _mm256_setzero_si256();
   for (i = 0; i < 4; ++i) {
     const __m256i word = i < 2 ? w01 : w23;
-    __m256i valid;
+    __m256i used;
     joint[i] = _mm256_and_si256(_mm256_srli_epi32(jw, 8 * i), _mm256_set1_epi32(0xff));
     weight[i] =
         (i & 1) ? _mm256_srli_epi32(word, 16) : _mm256_and_si256(word, _mm256_set1_epi32(0xffff));
-    valid = _mm256_cmpgt_epi32(_mm256_set1_epi32((int)job->joint_count), joint[i]);
-    joint[i] = _mm256_and_si256(valid, joint[i]); /* an ignored joint reads joint 0, weight 0 */
-    weight[i] = _mm256_and_si256(valid, weight[i]);
+    used = _mm256_cmpgt_epi32(identity, joint[i]);
+    weight[i] = _mm256_and_si256(used, weight[i]); /* an index >= J counts as weight 0 */
     total = _mm256_add_epi32(total, weight[i]);
+    /* A weight of 0 reads the identity (finite) rather than its joint, which may not be. */
+    used = _mm256_andnot_si256(_mm256_cmpeq_epi32(weight[i], _mm256_setzero_si256()),
+                               _mm256_set1_epi32(-1));
+    joint[i] = _mm256_blendv_epi8(identity, joint[i], used);
   }
   {
     /* Integer weights and their sum are exact in float: one rounding per normalised weight. */
     const __m256 totalf = _mm256_cvtepi32_ps(total);
     const __m256 none = _mm256_cmp_ps(totalf, _mm256_setzero_ps(), _CMP_EQ_OQ);
     const __m256 divisor = _mm256_blendv_ps(totalf, _mm256_set1_ps(1.0f), none);
-    for (e = 0; e < 9; ++e) k[e] = _mm256_setzero_ps();
     for (i = 0; i < 4; ++i) {
-      const __m256 w = _mm256_div_ps(_mm256_cvtepi32_ps(weight[i]), divisor);
-      const __m256i base = _mm256_mullo_epi32(joint[i], _mm256_set1_epi32(9));
-      for (e = 0; e < 9; ++e)
-        k[e] = _mm256_fmadd_ps(w, _mm256_i32gather_ps(job->joint + e, base, 4), k[e]);
+      __m256 w = _mm256_div_ps(_mm256_cvtepi32_ps(weight[i]), divisor);
+      if (i == 0) w = _mm256_blendv_ps(w, _mm256_set1_ps(1.0f), none); /* K = the identity */
+      _mm256_storeu_ps(weight_of[i], w);
+      _mm256_storeu_si256((__m256i*)(void*)joint_of[i], joint[i]);
     }
-    for (e = 0; e < 9; e += 4) /* the identity where no weight is left: entries 0, 4, 8 */
-      k[e] = _mm256_blendv_ps(k[e], _mm256_set1_ps(1.0f), none);
+  }
+  /* Per vertex, K's rows as sum_k w_k rows of K_joint_k ([J + 1][12], rows padded to 4). */
+  for (i = 0; i < 8; ++i) {
+    __m128 row[3] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()};
+    int j;
+    for (j = 0; j < 4; ++j) {
+      const float* matrix = job->joint + 12u * (uint32_t)joint_of[j][i];
+      const __m128 w = _mm_set1_ps(weight_of[j][i]);
+      for (r = 0; r < 3; ++r) row[r] = _mm_fmadd_ps(w, _mm_loadu_ps(matrix + 4 * r), row[r]);
+    }
+    for (r = 0; r < 3; ++r) rows[r][i] = row[r];
+  }
+  for (r = 0; r < 3; ++r) {
+    transpose8x4(rows[r], c);
+    for (e = 0; e < 3; ++e) k[3 * r + e] = c[e];
   }
   /* cof[r][c] = K[r1][c1] K[r2][c2] - K[r1][c2] K[r2][c1] (r1 = r + 1, r2 = r + 2 mod 3). */
   for (i = 0; i < 3; ++i)

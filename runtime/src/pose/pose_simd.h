@@ -51,7 +51,8 @@ typedef struct prt_pose_exact_job {
   uint32_t order;
   const uint8_t* skin;  /* the range's first skin record (36 bytes each); read without normals */
   const float* normals; /* the caller's normals of the range (3 floats per vertex), or NULL */
-  const float* joint;   /* [J][9]: K_j's 3x3 part, row-major; read without normals */
+  const float* joint;   /* [J + 1][12]: K_j's 3x3 part, rows padded to 4 floats, then the
+                         * identity; read without normals */
   uint32_t joint_count; /* J: a stored joint index >= J counts as weight 0 */
   const float* factor;  /* [C] factor_c */
   const float* light;   /* [C][3] factor_c L'[c][ch]: shading only */
