@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* `pose` kernels for AVX2 + FMA (compiled with -mavx2 -mfma, called only when the CPU has both;
  * pose_simd.h). Shading: per vertex three dot products of its q values with the folded light
- * weights, eight at a time, the last partial block from a zero-padded copy so that nothing past
- * the vertex's row is read. Transfer: per vertex one FMA chain over k of its value broadcast
- * against a block of eight coefficients, four vertices interleaved to hide the FMA latency.
- * Model 1's exact part: eight vertices per register, from the gathered skin to the folded SH sum
- * (pose_simd.h). */
+ * weights, eight at a time, the last partial block read so that nothing past the vertex's row
+ * is read, the three sums reduced together. Transfer: per vertex one FMA chain over k of its
+ * value broadcast against a block of eight coefficients, four vertices interleaved to hide the
+ * FMA latency. Model 1's exact part: eight vertices per register, from the skin records to the
+ * folded SH sum (pose_simd.h). */
 #include <immintrin.h>
 #include <math.h>
 #include <string.h>
@@ -28,36 +28,55 @@ PRT_KERNEL_INLINE __m256 load8(const uint8_t* p, uint32_t bits) {
   return _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(_mm_loadu_si128((const __m128i*)(const void*)p)));
 }
 
-/* The eight lanes summed by a fixed tree. */
-PRT_KERNEL_INLINE float sum8(__m256 v) {
-  __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-  s = _mm_add_ps(s, _mm_movehl_ps(s, s));
-  s = _mm_add_ss(s, _mm_shuffle_ps(s, s, 1));
-  return _mm_cvtss_f32(s);
+/* (r, g, b, b) of three accumulators' lanes, each summed by a tree of three additions. */
+PRT_KERNEL_INLINE __m128 sum8x3(__m256 r, __m256 g, __m256 b) {
+  const __m256 s = _mm256_hadd_ps(_mm256_hadd_ps(r, g), _mm256_hadd_ps(b, b));
+  return _mm_add_ps(_mm256_castps256_ps128(s), _mm256_extractf128_ps(s, 1));
 }
 
 void prt_pose_shade_avx2(const prt_pose_shade_job* job, uint32_t count, float* out_rgb) {
   const size_t size = job->bits / 8u;
-  const uint32_t full = job->basis_dims / 8u * 8u;
+  const uint32_t q = job->basis_dims, full = q / 8u * 8u;
+  /* With q >= 8 the partial last block is read as the row's last eight values, whose first
+   * ones (already summed) get weight 0: no copy, and nothing past the row is read. */
+  const int overlap = full < q && q >= 8u;
+  const __m128 bias = _mm_setr_ps(job->bias[0], job->bias[1], job->bias[2], 0.0f);
   const uint8_t* row = job->values;
+  float tail[3][8];
   uint32_t v, k;
+  int ch;
+  if (overlap)
+    for (ch = 0; ch < 3; ++ch)
+      for (k = 0; k < 8u; ++k)
+        tail[ch][k] = q - 8u + k >= full ? job->weight[ch][q - 8u + k] : 0.0f;
   for (v = 0; v < count; ++v, row += job->stride) {
     __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
-    int ch;
+    __m128 rgb;
     for (k = 0; k < full; k += 8) {
       const __m256 values = load8(row + size * k, job->bits);
       for (ch = 0; ch < 3; ++ch)
         acc[ch] = _mm256_fmadd_ps(values, _mm256_loadu_ps(job->weight[ch] + k), acc[ch]);
     }
-    if (full < job->basis_dims) {
-      uint8_t tail[16] = {0};
+    if (overlap) {
+      const __m256 values = load8(row + size * (q - 8u), job->bits);
+      for (ch = 0; ch < 3; ++ch)
+        acc[ch] = _mm256_fmadd_ps(values, _mm256_loadu_ps(tail[ch]), acc[ch]);
+    } else if (full < q) {
+      uint8_t copy[16] = {0};
       __m256 values;
-      memcpy(tail, row + size * full, size * (job->basis_dims - full));
-      values = load8(tail, job->bits);
+      memcpy(copy, row + size * full, size * (q - full));
+      values = load8(copy, job->bits);
       for (ch = 0; ch < 3; ++ch)
         acc[ch] = _mm256_fmadd_ps(values, _mm256_loadu_ps(job->weight[ch] + full), acc[ch]);
     }
-    for (ch = 0; ch < 3; ++ch) out_rgb[3u * v + ch] = job->bias[ch] + sum8(acc[ch]);
+    rgb = _mm_add_ps(bias, sum8x3(acc[0], acc[1], acc[2]));
+    if (v + 1u < count) { /* the fourth float is the next vertex's, written next */
+      _mm_storeu_ps(out_rgb + 3u * v, rgb);
+    } else {
+      float last[4];
+      _mm_storeu_ps(last, rgb);
+      memcpy(out_rgb + 3u * v, last, 3 * sizeof(float));
+    }
   }
 }
 
