@@ -260,12 +260,27 @@ PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, __m256i lane
   for (i = 0; i < 3; ++i) n[i] = m[i];
 }
 
-/* y[c] for c < order^2 at the unit normals n (model frame; SH frame x = X, y = -Z, z = Y). */
-PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], __m256* y) {
+/* y[c] for c < order^2 at the unit normals n (model frame; SH frame x = X, y = -Z, z = Y) into
+ * y, or, with `light`, each y[c] whose factor is not 0 times light[c][ch] added to acc[ch]
+ * (the basis is then never stored). Inlined with a constant order, the loops unroll. */
+PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], const float* factor,
+                                   const float* light, __m256* y, __m256 acc[3]) {
   const __m256 x = n[0], yy = _mm256_xor_ps(n[2], _mm256_set1_ps(-0.0f)), z = n[1];
   const __m256 sqrt2 = _mm256_set1_ps(1.41421356f);
   __m256 cos_m = _mm256_set1_ps(1.0f), sin_m = _mm256_setzero_ps();
   uint32_t m, l;
+#define EXACT_EMIT(c, value)                                                            \
+  do {                                                                                  \
+    const uint32_t c_ = (c);                                                            \
+    int ch_;                                                                            \
+    if (!light) {                                                                       \
+      y[c_] = (value);                                                                  \
+    } else if (factor[c_] != 0.0f) {                                                    \
+      const __m256 v_ = (value);                                                        \
+      for (ch_ = 0; ch_ < 3; ++ch_)                                                     \
+        acc[ch_] = _mm256_fmadd_ps(v_, _mm256_set1_ps(light[3u * c_ + ch_]), acc[ch_]); \
+    }                                                                                   \
+  } while (0)
   for (m = 0; m < order; ++m) {
     __m256 q_prev2 = _mm256_set1_ps(kExactDiag[m]);
     __m256 q_prev = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(kExactSub[m]), z), q_prev2);
@@ -291,10 +306,11 @@ PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], __m256* y)
         q_prev2 = q_prev;
         q_prev = q;
       }
-      y[l * (l + 1) + m] = _mm256_mul_ps(q, scale_cos);
-      if (m > 0) y[l * (l + 1) - m] = _mm256_mul_ps(q, scale_sin);
+      EXACT_EMIT(l * (l + 1) + m, _mm256_mul_ps(q, scale_cos));
+      if (m > 0) EXACT_EMIT(l * (l + 1) - m, _mm256_mul_ps(q, scale_sin));
     }
   }
+#undef EXACT_EMIT
 }
 
 /* Lane i of the batch at v: vertex v + i, or the batch's last vertex past the range (computed,
@@ -306,26 +322,29 @@ PRT_KERNEL_INLINE __m256i batch_lanes(uint32_t v, uint32_t count) {
                                            _mm256_set1_epi32((int)(last < 7u ? last : 7u))));
 }
 
-void prt_pose_exact_shade_avx2(const prt_pose_exact_job* job, uint32_t count, float* out_rgb) {
-  const uint32_t n2 = job->order * job->order;
-  __m256 y[EXACT_MAX_C], n[3];
-  uint32_t v, c, i;
+/* The shading loop for one order; a constant `order` unrolls the basis. */
+PRT_KERNEL_INLINE void exact_shade(const prt_pose_exact_job* job, uint32_t order, uint32_t count,
+                                   float* out_rgb) {
+  __m256 n[3];
+  uint32_t v, i;
   for (v = 0; v < count; v += 8) {
     const uint32_t lanes = count - v < 8u ? count - v : 8u;
     __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
     float rgb[3][8];
     int ch;
     exact_normals(job, batch_lanes(v, count), n);
-    exact_basis(job->order, n, y);
-    for (c = 0; c < n2; ++c) {
-      if (job->factor[c] == 0.0f) continue;
-      for (ch = 0; ch < 3; ++ch)
-        acc[ch] = _mm256_fmadd_ps(y[c], _mm256_set1_ps(job->light[3u * c + ch]), acc[ch]);
-    }
+    exact_basis(order, n, job->factor, job->light, NULL, acc);
     for (ch = 0; ch < 3; ++ch) _mm256_storeu_ps(rgb[ch], acc[ch]);
     for (i = 0; i < lanes; ++i)
       for (ch = 0; ch < 3; ++ch) out_rgb[3u * (v + i) + ch] += rgb[ch][i];
   }
+}
+
+void prt_pose_exact_shade_avx2(const prt_pose_exact_job* job, uint32_t count, float* out_rgb) {
+  if (job->order == 6) /* the baker's default, unrolled; the other orders share one loop */
+    exact_shade(job, 6, count, out_rgb);
+  else
+    exact_shade(job, job->order, count, out_rgb);
 }
 
 void prt_pose_exact_transfer_avx2(const prt_pose_exact_job* job, uint32_t count, float* out,
@@ -337,7 +356,7 @@ void prt_pose_exact_transfer_avx2(const prt_pose_exact_job* job, uint32_t count,
   for (v = 0; v < count; v += 8) {
     const uint32_t lanes = count - v < 8u ? count - v : 8u;
     exact_normals(job, batch_lanes(v, count), n);
-    exact_basis(job->order, n, y);
+    exact_basis(job->order, n, job->factor, NULL, y, NULL);
     for (c = 0; c < n2; ++c)
       _mm256_storeu_ps(terms[c], _mm256_mul_ps(y[c], _mm256_set1_ps(job->factor[c])));
     for (i = 0; i < lanes; ++i)
