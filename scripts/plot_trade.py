@@ -79,6 +79,7 @@ def main():
     if len(sys.argv) != 4:
         sys.exit(__doc__)
     technique = load_technique(sys.argv[1])
+    technique.TRADE_CSV = sys.argv[2]  # for figures that read other tables written beside it
     rows = read_rows(sys.argv[2], technique)
     maps = maps_of(rows)
     fig, axes = plt.subplots(2, 2, figsize=(13, 10))

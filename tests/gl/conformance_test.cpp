@@ -9,6 +9,7 @@
 namespace prt_conformance {
 std::vector<Case> sh_cases();
 std::vector<Case> wavelet_cases();
+std::vector<Case> pose_cases();
 }  // namespace prt_conformance
 
 namespace {
@@ -21,6 +22,7 @@ struct TechniqueCases {
 const TechniqueCases kTechniques[] = {
     {"Sh", prt_conformance::sh_cases},
     {"Wavelet", prt_conformance::wavelet_cases},
+    {"Pose", prt_conformance::pose_cases},
 };
 
 class ConformanceCase : public ::testing::Test {

@@ -205,4 +205,67 @@ std::vector<float> pose_features(const PoseSkeleton& skeleton,
   return out;
 }
 
+namespace {
+
+// T(t) R(q) S(s) in double.
+glm::dmat4 joint_local(const PoseSkeleton::Joint& joint, const glm::quat& q0) {
+  const glm::dquat q = glm::normalize(glm::dquat(q0.w, q0.x, q0.y, q0.z));
+  glm::dmat4 m(glm::mat3_cast(q));
+  for (int c = 0; c < 3; ++c) m[c] *= double(joint.rest_scale[c]);
+  m[3] = glm::dvec4(glm::dvec3(joint.rest_translation), 1.0);
+  return m;
+}
+
+// K_j = M^-1 G_j IBM_j of every joint (SPEC §7.3).
+std::vector<glm::dmat4> skinning_matrices(const PoseSkeleton& s,
+                                          const std::vector<glm::quat>& rotations) {
+  if (rotations.size() != s.joints.size()) throw Error("pose: one rotation per joint needed");
+  std::vector<glm::dmat4> g(s.joints.size(), glm::dmat4(1.0));
+  for (std::uint32_t j : s.eval_order) {
+    const PoseSkeleton::Joint& joint = s.joints[j];
+    const glm::dmat4 local = glm::dmat4(joint.pre) * joint_local(joint, rotations[j]);
+    g[j] = joint.parent >= 0 ? g[static_cast<std::size_t>(joint.parent)] * local : local;
+  }
+  const glm::dmat4& gm = g[s.model_joint];
+  const glm::dvec3 x = glm::normalize(glm::dvec3(gm[0]));
+  const glm::dvec3 y = glm::normalize(glm::dvec3(gm[1]) - glm::dot(glm::dvec3(gm[1]), x) * x);
+  glm::dmat4 m(1.0);
+  m[0] = glm::dvec4(x, 0.0);
+  m[1] = glm::dvec4(y, 0.0);
+  m[2] = glm::dvec4(glm::cross(x, y), 0.0);
+  m[3] = gm[3];
+  const glm::dmat4 model_inverse = glm::inverse(m);
+  std::vector<glm::dmat4> k(s.joints.size());
+  for (std::size_t j = 0; j < k.size(); ++j)
+    k[j] = model_inverse * g[j] * glm::dmat4(s.joints[j].inverse_bind);
+  return k;
+}
+
+}  // namespace
+
+std::vector<float> skinned_model_normals(const PoseSkeleton& s,
+                                         const std::vector<glm::quat>& rotations) {
+  const std::vector<glm::dmat4> k = skinning_matrices(s, rotations);
+  std::vector<float> out(3 * s.local_normals.size(), 0.0f);
+  for (std::size_t v = 0; v < s.local_normals.size(); ++v) {
+    double total = 0.0;
+    for (int i = 0; i < 4; ++i) total += s.skin_weights[v][i] / 65535.0;
+    glm::dmat3 blend(1.0);
+    if (total > 0.0) {
+      blend = glm::dmat3(0.0);
+      for (int i = 0; i < 4; ++i) {
+        const double w = s.skin_weights[v][i] / 65535.0;
+        if (w > 0.0) blend += (w / total) * glm::dmat3(k[s.skin_joints[v][i]]);
+      }
+    }
+    const double det = glm::determinant(blend);
+    if (det == 0.0 || !std::isfinite(det)) continue;
+    const glm::dvec3 n = glm::transpose(glm::inverse(blend)) * glm::dvec3(s.local_normals[v]);
+    const double len = glm::length(n);
+    if (!(len > 0.0) || !std::isfinite(len)) continue;
+    for (int c = 0; c < 3; ++c) out[3 * v + std::size_t(c)] = float(n[c] / len);
+  }
+  return out;
+}
+
 }  // namespace prt::bake

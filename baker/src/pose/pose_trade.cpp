@@ -12,6 +12,7 @@
 #include <prt/prt.h>
 #include <prt/prt_sh.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -164,6 +165,24 @@ Row baseline_row(const PoseTrainingSet& set, const std::vector<std::size_t>& tra
   return row;
 }
 
+// The residual model's run-time part alone: the exact unshadowed transfer of each skinned normal.
+std::vector<float> unshadowed_frame(const PoseTrainingSet& set, std::size_t f) {
+  const std::size_t C = set.coefficient_count();
+  std::vector<float> out(set.vertex_count * C);
+  for (std::size_t v = 0; v < set.vertex_count; ++v)
+    unshadowed_transfer(set.order, set.albedo, set.frame_normals(f) + 3 * v, out.data() + v * C);
+  return out;
+}
+
+Row unshadowed_row(const PoseTrainingSet& set, const std::vector<std::size_t>& test,
+                   const std::vector<Light>& lights) {
+  Row row;
+  row.model = "unshadowed only";
+  measure(
+      set, test, lights, [&](std::size_t f) { return unshadowed_frame(set, f); }, row);
+  return row;
+}
+
 void time_runtime(const Scene& scene, const PoseTrainingSet& set, const PoseModel& model,
                   std::size_t frame, const Light& light, int frames, Row& row) {
   prt::format::BlobWriter writer = start_technique_blob(scene, "");
@@ -248,6 +267,7 @@ class PoseTrade final : public TechniqueTrade {
     std::vector<std::size_t> train, test;
     split_frames(set, o_, train, test);
     rows_.push_back(baseline_row(set, train, test, lights_));
+    rows_.push_back(unshadowed_row(set, test, lights_));
     for (std::uint32_t p : o_.pose_dims) {
       for (std::uint32_t q : o_.basis_dims) {
         fit_and_measure(scene, set, train, test, p, q, input, ctx, PoseModelKind::Direct);
@@ -284,6 +304,7 @@ class PoseTrade final : public TechniqueTrade {
         row);
     time_runtime(scene, set, model, test.front(), lights_.front(), input.frames, row);
     rows_.push_back(row);
+    if (kind == PoseModelKind::Residual) basis_projection_row(set, test, model);
     for (std::size_t i = 0; i < model.alpha_curve_alpha.size(); ++i) {
       alpha_rows_.push_back({row.model, std::to_string(row.p), std::to_string(row.q),
                              format("%.6g", model.alpha_curve_alpha[i]),
@@ -291,15 +312,46 @@ class PoseTrade final : public TechniqueTrade {
     }
   }
 
+  // What bounds the residual model: each test frame's residual projected on the model's own
+  // basis by least squares, the best any regression from the pose onto that basis could do.
+  void basis_projection_row(const PoseTrainingSet& set, const std::vector<std::size_t>& test,
+                            const PoseModel& model) {
+    const std::size_t V = set.vertex_count, C = set.coefficient_count(), q = model.basis_dims;
+    Eigen::MatrixXd u(static_cast<Eigen::Index>(V), static_cast<Eigen::Index>(q));
+    for (std::size_t v = 0; v < V; ++v)
+      for (std::size_t k = 0; k < q; ++k)
+        u(Eigen::Index(v), Eigen::Index(k)) = model.basis[v * q + k];
+    const Eigen::LDLT<Eigen::MatrixXd> gram(u.transpose() * u);
+    Row row;
+    row.model = "basis projection";
+    row.q = std::uint32_t(q);
+    measure(
+        set, test, lights_,
+        [&](std::size_t f) {
+          std::vector<float> out = unshadowed_frame(set, f);
+          Eigen::MatrixXd r(static_cast<Eigen::Index>(V), static_cast<Eigen::Index>(C));
+          for (std::size_t i = 0; i < V * C; ++i)
+            r(Eigen::Index(i / C), Eigen::Index(i % C)) = set.frame_transfer(f)[i] - out[i];
+          const Eigen::MatrixXd fit = u * gram.solve(u.transpose() * r);
+          for (std::size_t i = 0; i < V * C; ++i)
+            out[i] += float(fit(Eigen::Index(i / C), Eigen::Index(i % C)));
+          return out;
+        },
+        row);
+    rows_.push_back(row);
+  }
+
   std::vector<std::string> cells(const Row& row, double frame_bytes, double training_bytes) const {
-    std::vector<std::string> c = {row.model,
-                                  row.model == "mean pose" ? "" : std::to_string(row.p),
-                                  row.model == "mean pose" ? "" : std::to_string(row.q),
-                                  row.model == "mean pose" ? "" : format("%.3g", row.alpha),
-                                  std::to_string(row.model_bytes),
-                                  format("%.2f", 100.0 * row.model_bytes / training_bytes),
-                                  format("%.1f", 100.0 * row.model_bytes / frame_bytes),
-                                  format("%.4f", row.transfer_error)};
+    const bool fitted = row.model == "paper (direct)" || row.model == "residual";
+    std::vector<std::string> c = {
+        row.model,
+        fitted ? std::to_string(row.p) : "",
+        fitted || row.model == "basis projection" ? std::to_string(row.q) : "",
+        fitted ? format("%.3g", row.alpha) : "",
+        std::to_string(row.model_bytes),
+        format("%.2f", 100.0 * row.model_bytes / training_bytes),
+        format("%.1f", 100.0 * row.model_bytes / frame_bytes),
+        format("%.4f", row.transfer_error)};
     for (double e : row.shaded_error) c.push_back(format("%.4f", e));
     c.push_back(ms_text(row.cpu_ms));
     c.push_back(ms_text(row.simd_ms));
@@ -322,12 +374,20 @@ class PoseTrade final : public TechniqueTrade {
     for (const Light& light : lights_) columns.push_back({"shaded RMSE " + light.name});
     columns.push_back({"CPU ms"});
     columns.push_back({"SIMD ms"});
+    // trade.csv is long (one row per model and light, the map column naming the light) for
+    // scripts/trade.d/pose.py; trade.md is the wide table.
     const std::string csv_path = input.out_dir + "/trade.csv";
     std::ofstream csv(csv_path);
-    std::vector<std::string> titles;
-    for (const Column& c : columns) titles.push_back(c.title);
-    write_csv_row(csv, titles);
-    for (const Row& row : rows_) write_csv_row(csv, cells(row, frame_bytes, training_bytes));
+    write_csv_row(csv, {"model", "p", "q", "alpha", "model_bytes", "training_share", "frame_share",
+                        "transfer_error", "map", "shaded_rel_rmse", "shade_cpu_ms",
+                        "shade_simd_ms"});
+    for (const Row& row : rows_) {
+      const std::vector<std::string> c = cells(row, frame_bytes, training_bytes);
+      for (std::size_t l = 0; l < lights_.size(); ++l) {
+        write_csv_row(csv, {c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], lights_[l].name,
+                            c[8 + l], c[8 + lights_.size()], c[9 + lights_.size()]});
+      }
+    }
     check_written(csv, csv_path);
     const std::string md_path = input.out_dir + "/trade.md";
     std::ofstream md(md_path);

@@ -164,10 +164,8 @@ PoseTrainingSet bake_pose_training(const Scene& scene, const PoseTrainingSetting
       const float* grey = t.vertex_channel(v, 0);
       out.transfer.insert(out.transfer.end(), grey, grey + coefficients);
     }
-    for (const Mesh& mesh : posed.meshes) {
-      for (const glm::vec3& n : mesh.normals)
-        out.normals.insert(out.normals.end(), {n.x, n.y, n.z});
-    }
+    const std::vector<float> normals = skinned_model_normals(out.skeleton, frame.rotations);
+    out.normals.insert(out.normals.end(), normals.begin(), normals.end());
     out.frames.push_back(std::move(frame));
   }
   if (ctx.progress && !ctx.progress(1.0, "pose training")) throw Error("cancelled");

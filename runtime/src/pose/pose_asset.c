@@ -489,3 +489,11 @@ prt_result prt_pose_shade(const prt_asset* asset, prt_backend backend, const prt
                  vertex_count, out_rgb);
   return PRT_OK;
 }
+
+prt_result prt_pose_fold_shading(const prt_pose_view* view, const prt_pose_input* pose,
+                                 const prt_pose_light* light, prt_pose_folded* out) {
+  pose_frame frame;
+  open_frame(view, pose, NULL, 1, &frame);
+  out->skeleton = frame.skeleton;
+  return fold_light(&frame, light, out->weight, out->exact);
+}

@@ -83,4 +83,20 @@ void prt_pose_exact_factors(const prt_pose_view* view, double* factor);
 /* The SH basis (C values) at a model-frame normal, or 0 when it is zero or not finite. */
 void prt_pose_basis_at_normal(uint32_t order, const double normal[3], double* out);
 
+/* The per-frame part of a shading call, for a backend that runs the vertex loop elsewhere
+ * (pose_gl.c): the skeleton (K_j, model frame), the folded weights w_k[ch] = sum_c y[k][c]
+ * L'[c][ch] and, for model 1, exact[c][ch] = factor_c L'[c][ch], with L' the light rotated into
+ * the model frame. */
+typedef struct prt_pose_folded {
+  prt_pose_skeleton skeleton;
+  double weight[PRT_POSE_MAX_BASIS_DIMS][3];
+  double exact[PRT_POSE_MAX_COEFFICIENTS][3];
+} prt_pose_folded;
+
+/* Fills `out` for a checked pose and a light with light_rgb given (pose_asset.c, the scalar
+ * backend's own code): PRT_OK, or PRT_ERROR_INVALID_ARGUMENT when the world placement is not a
+ * rotation. */
+prt_result prt_pose_fold_shading(const prt_pose_view* view, const prt_pose_input* pose,
+                                 const prt_pose_light* light, prt_pose_folded* out);
+
 #endif /* PRT_RUNTIME_POSE_INTERNAL_H */

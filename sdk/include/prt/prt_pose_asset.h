@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* prtkit runtime C API: the `pose` technique (section PSTR, formats/SPEC.md §7.3), the SH
  * transfer of a skinned character learned as a function of its joint rotations, and its
- * shading on the CPU and SIMD backends. C99 and C++.
+ * shading on the CPU, SIMD and GL backends. C99 and C++.
  *
  * Each frame the game passes the character's joint rotations (the glTF nodes' local `rotation`
  * quaternions, x y z w, in the skin's `joints` order, as its animation system computes them).
@@ -15,6 +15,7 @@
 #define PRT_POSE_ASSET_H
 
 #include <prt/prt_asset.h>
+#include <prt/prt_gl.h>
 #include <prt/prt_types.h>
 #include <prt/prt_workers.h>
 
@@ -103,7 +104,8 @@ typedef struct prt_pose_light {
  *   PRT_BACKEND_AUTO : the context's best CPU-side backend;
  *   PRT_BACKEND_CPU  : the scalar reference, summed in double;
  *   PRT_BACKEND_SIMD : AVX2+FMA kernels, summed in float (within the conformance bound);
- *   PRT_BACKEND_GL   : PRT_ERROR_UNSUPPORTED_BACKEND.
+ *   PRT_BACKEND_GL   : PRT_ERROR_UNSUPPORTED_BACKEND (GL shading runs through a
+ *                      prt_gl_pose_shader, below).
  * PRT_ERROR_UNSUPPORTED_BACKEND when the backend is not usable in the asset's context,
  * PRT_ERROR_NOT_FOUND without a PSTR section, PRT_ERROR_INVALID_ARGUMENT for bad pointers,
  * ranges, rotations or backend values. */
@@ -126,6 +128,63 @@ PRT_API prt_result prt_pose_shade_workers(prt_workers* workers, const prt_asset*
                                           prt_backend backend, const prt_pose_input* pose,
                                           const prt_pose_light* light, uint32_t first_vertex,
                                           uint32_t vertex_count, float* out_rgb);
+
+/* ---- GL (prt_gl.h: loader, thread and GL state contract) --------------------------------------
+ *
+ * The quantised vertex basis (and, for model 1, the skin records: bind normal, joints, weights)
+ * is uploaded once, as stored. Each shade call does the per-frame work on the CPU with the
+ * scalar code (features, coordinates, coefficients, the light rotated into the model frame and
+ * folded into 3 q weights, and for model 1 the joints' skinning matrices K_j and the exact
+ * part's weights factor_c L'[c]) and uploads those few floats; one compute invocation per
+ * vertex then sums the basis values against the weights in float and, for model 1, blends its
+ * skinning matrix, skins its normal (or reads the caller's) and adds the exact part's SH sum.
+ * Results match the scalar reference up to float rounding (tests/pose/gl: the bound the
+ * conformance test holds GL to). GL state touched: the current program, the generic
+ * GL_SHADER_STORAGE_BUFFER binding, the indexed GL_SHADER_STORAGE_BUFFER bindings 0 and 2
+ * (model 1: 0 to 4) and the indexed GL_UNIFORM_BUFFER binding 0, all left 0 afterwards. */
+
+/* GPU-side `pose` shading of one asset: the static data uploaded once, shaded per frame. */
+typedef struct prt_gl_pose_shader prt_gl_pose_shader;
+
+/* Uploads the asset's PSTR basis values (and skin records for model 1) to GL buffers and
+ * compiles the compute shader. `context` is the calling thread's context: failures are recorded
+ * there (the asset may belong to another context) and its backend limit decides whether GL may
+ * be used. The asset must outlive the shader; the shader is allocated with the asset's
+ * allocator. GL errors the application left pending are cleared before the upload is checked.
+ * PRT_ERROR_INVALID_ARGUMENT for NULL pointers; PRT_ERROR_NOT_FOUND without a PSTR section;
+ * PRT_ERROR_UNSUPPORTED_BACKEND when GL is compiled out, limited away by the context, an entry
+ * point is missing (the message names it), the GL context is older than 4.3, the shader does
+ * not compile (the message quotes the log), or the asset's buffers exceed
+ * GL_MAX_SHADER_STORAGE_BLOCK_SIZE; PRT_ERROR_OUT_OF_MEMORY when the allocator or GL runs out. */
+PRT_API prt_result prt_gl_pose_create(prt_context* context, const prt_asset* asset,
+                                      prt_gl_loader_fn loader, void* loader_user,
+                                      prt_gl_pose_shader** out_shader);
+
+/* Deletes the GL objects and frees the shader; NULL is ignored. Needs the GL context current. */
+PRT_API void prt_gl_pose_destroy(prt_gl_pose_shader* shader);
+
+/* Shades vertices [first, first+count) at a pose under a light (both as prt_pose_shade; for
+ * model 1, light->normals, when given, are the count normals of the range and are uploaded)
+ * into the same vertices of the output buffer (other vertices keep their values). Returns once
+ * the work is queued (no CPU wait); a memory barrier is issued so that vertex fetch, shaders and
+ * buffer reads see the result. Writes no context: PRT_OK, or PRT_ERROR_INVALID_ARGUMENT for a
+ * NULL shader, pose or light, a bad struct_size, rotation or world rotation, or a range outside
+ * the asset (nothing is issued to GL then). */
+PRT_API prt_result prt_gl_pose_shade(prt_gl_pose_shader* shader, const prt_pose_input* pose,
+                                     const prt_pose_light* light, uint32_t first_vertex,
+                                     uint32_t vertex_count);
+
+/* The GL name of the output buffer: one tightly packed RGB float triple per vertex of the asset
+ * (12-byte stride, vertex v at byte 12 v), usable directly as a vertex attribute buffer. Owned
+ * by the shader; 0 for NULL. */
+PRT_API uint32_t prt_gl_pose_output_buffer(const prt_gl_pose_shader* shader);
+
+/* Reads shaded RGB of vertices [first, first+count) back to the CPU (waits for the GPU):
+ * count*3 floats. For tools and tests. Writes no context: PRT_OK, or
+ * PRT_ERROR_INVALID_ARGUMENT for a NULL shader, a NULL out_rgb with count > 0 or a range
+ * outside the asset. */
+PRT_API prt_result prt_gl_pose_read(prt_gl_pose_shader* shader, uint32_t first_vertex,
+                                    uint32_t vertex_count, float* out_rgb);
 
 #ifdef __cplusplus
 }

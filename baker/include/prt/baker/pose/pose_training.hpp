@@ -96,6 +96,14 @@ PoseSkeleton pose_skeleton(const Scene& scene);
 std::vector<float> pose_features(const PoseSkeleton& skeleton,
                                  const std::vector<glm::quat>& rotations);
 
+// SPEC §7.3's skinned normals in the model frame at local rotations `rotations` (joint
+// translations and scales at rest): normalize(K3^-T n_local) of each vertex's blended skinning
+// matrix, 0 where K3 is singular. What the runtime computes, so that the residual model learns
+// against the normals it will be evaluated with (the posed mesh's own normals differ where the
+// file has none and they are regenerated from the deformed surface). vertex_count x 3.
+std::vector<float> skinned_model_normals(const PoseSkeleton& skeleton,
+                                         const std::vector<glm::quat>& rotations);
+
 // Samples the clips and bakes every frame on ctx.thread_count() threads; progress through ctx
 // ("pose training"), Error("cancelled") when the callback returns false, Error for an unknown
 // clip name or a scene without animation. Bitwise deterministic for any thread count.
