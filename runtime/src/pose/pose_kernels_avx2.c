@@ -261,21 +261,23 @@ PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, __m256i lane
 }
 
 /* y[c] for c < order^2 at the unit normals n (model frame; SH frame x = X, y = -Z, z = Y) into
- * y, or, with `light`, each y[c] whose factor is not 0 times light[c][ch] added to acc[ch]
- * (the basis is then never stored). Inlined with a constant order, the loops unroll. */
-PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], const float* factor,
-                                   const float* light, __m256* y, __m256 acc[3]) {
+ * y, or, with `fold`, each y[c] of a band whose factor is not 0 times light[c][ch] added to
+ * acc[ch] (the basis is then never stored). Inlined with constants, the loops unroll and the
+ * branches go. */
+PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], int fold, const float* light,
+                                   __m256* y, __m256 acc[3]) {
   const __m256 x = n[0], yy = _mm256_xor_ps(n[2], _mm256_set1_ps(-0.0f)), z = n[1];
   const __m256 sqrt2 = _mm256_set1_ps(1.41421356f);
   __m256 cos_m = _mm256_set1_ps(1.0f), sin_m = _mm256_setzero_ps();
   uint32_t m, l;
+/* Bands l >= 3 of odd l have A_l = 0 (prt_sh_cosine_band_factor): folded, they are skipped. */
 #define EXACT_EMIT(c, value)                                                            \
   do {                                                                                  \
     const uint32_t c_ = (c);                                                            \
     int ch_;                                                                            \
-    if (!light) {                                                                       \
+    if (!fold) {                                                                        \
       y[c_] = (value);                                                                  \
-    } else if (factor[c_] != 0.0f) {                                                    \
+    } else if (l < 3u || l % 2u == 0u) {                                                \
       const __m256 v_ = (value);                                                        \
       for (ch_ = 0; ch_ < 3; ++ch_)                                                     \
         acc[ch_] = _mm256_fmadd_ps(v_, _mm256_set1_ps(light[3u * c_ + ch_]), acc[ch_]); \
@@ -333,7 +335,7 @@ PRT_KERNEL_INLINE void exact_shade(const prt_pose_exact_job* job, uint32_t order
     float rgb[3][8];
     int ch;
     exact_normals(job, batch_lanes(v, count), n);
-    exact_basis(order, n, job->factor, job->light, NULL, acc);
+    exact_basis(order, n, 1, job->light, NULL, acc);
     for (ch = 0; ch < 3; ++ch) _mm256_storeu_ps(rgb[ch], acc[ch]);
     for (i = 0; i < lanes; ++i)
       for (ch = 0; ch < 3; ++ch) out_rgb[3u * (v + i) + ch] += rgb[ch][i];
@@ -356,7 +358,7 @@ void prt_pose_exact_transfer_avx2(const prt_pose_exact_job* job, uint32_t count,
   for (v = 0; v < count; v += 8) {
     const uint32_t lanes = count - v < 8u ? count - v : 8u;
     exact_normals(job, batch_lanes(v, count), n);
-    exact_basis(job->order, n, job->factor, NULL, y, NULL);
+    exact_basis(job->order, n, 0, NULL, y, NULL);
     for (c = 0; c < n2; ++c)
       _mm256_storeu_ps(terms[c], _mm256_mul_ps(y[c], _mm256_set1_ps(job->factor[c])));
     for (i = 0; i < lanes; ++i)

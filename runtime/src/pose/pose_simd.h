@@ -43,9 +43,9 @@ typedef struct prt_pose_transfer_job {
 /* Model 1's exact part (SPEC §7.3) eight vertices at a time, in float: each vertex's model-frame
  * normal, skinned as normalize(sign(det K3) cof(K3) n_local) with K3 the weight blend of the
  * joints' 3x3 parts (or the caller's normal normalised), 0 where the scalar path gives 0; the SH
- * basis at it by sh_eval.c's recurrence; then per coefficient c with factor_c != 0 (rho A_l / pi,
- * zero for the odd bands above 1) either factor_c y_c(n) added to the transfer or y_c(n) times
- * the light folded with the factors added to the radiance, so that shading keeps no C-vector per
+ * basis at it by sh_eval.c's recurrence; then either factor_c y_c(n) (factor_c = rho A_l / pi)
+ * added to the transfer, or y_c(n) times the light folded with the factors added to the
+ * radiance, skipping the odd bands above 1 (A_l = 0), so that shading keeps no C-vector per
  * vertex. Lanes do not mix: a vertex gets the same bits wherever its range starts. */
 typedef struct prt_pose_exact_job {
   uint32_t order;
