@@ -71,11 +71,11 @@ void prt_pose_shade_avx2(const prt_pose_shade_job* job, uint32_t count, float* o
     }
     rgb = _mm_add_ps(bias, sum8x3(acc[0], acc[1], acc[2]));
     if (v + 1u < count) { /* the fourth float is the next vertex's, written next */
-      _mm_storeu_ps(out_rgb + 3u * v, rgb);
+      _mm_storeu_ps(out_rgb + 3u * (size_t)v, rgb);
     } else {
       float last[4];
       _mm_storeu_ps(last, rgb);
-      memcpy(out_rgb + 3u * v, last, 3 * sizeof(float));
+      memcpy(out_rgb + 3u * (size_t)v, last, 3 * sizeof(float));
     }
   }
 }
@@ -169,9 +169,11 @@ PRT_KERNEL_INLINE void transpose8x4(const __m128 a[8], __m256 c[4]) {
   c[3] = _mm256_shuffle_ps(t[1], t[3], _MM_SHUFFLE(3, 2, 3, 2));
 }
 
-/* The model-frame normals of the range's vertices lane[i] (i < 8). Gathers are slow on some
- * CPUs, so the skinned path loads each vertex's record and joint rows whole and transposes. */
-PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, __m256i lane, __m256 n[3]) {
+/* The model-frame normals of the batch of vertices first + lane[i] (lane[i] < 8) of the range.
+ * Gathers are slow on some CPUs, so the skinned path loads each vertex's record and joint rows
+ * whole and transposes. */
+PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, size_t first, __m256i lane,
+                                     __m256 n[3]) {
   const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
   const __m256i identity = _mm256_set1_epi32((int)job->joint_count);
   __m256 k[9], nl[3], det, m[3], cof[9], c[4];
@@ -182,19 +184,19 @@ PRT_KERNEL_INLINE void exact_normals(const prt_pose_exact_job* job, __m256i lane
   int i, e, r;
   if (job->normals) {
     const __m256i at = _mm256_mullo_epi32(lane, _mm256_set1_epi32(3));
-    for (i = 0; i < 3; ++i) n[i] = _mm256_i32gather_ps(job->normals + i, at, 4);
+    for (i = 0; i < 3; ++i) n[i] = _mm256_i32gather_ps(job->normals + 3u * first + i, at, 4);
     normalize_or_zero(n, all);
     return;
   }
   _mm256_storeu_si256((__m256i*)(void*)index, lane);
   /* Bytes 12..27 (normal, joints) and 20..35 (normal z, joints, weights) of each record. */
   for (i = 0; i < 8; ++i)
-    a[i] = _mm_loadu_ps((const float*)(const void*)(job->skin + 36u * (uint32_t)index[i] + 12u));
+    a[i] = _mm_loadu_ps((const float*)(const void*)(job->skin + 36u * (first + index[i]) + 12u));
   transpose8x4(a, c);
   nl[0] = c[0], nl[1] = c[1], nl[2] = c[2];
   jw = _mm256_castps_si256(c[3]);
   for (i = 0; i < 8; ++i)
-    a[i] = _mm_loadu_ps((const float*)(const void*)(job->skin + 36u * (uint32_t)index[i] + 20u));
+    a[i] = _mm_loadu_ps((const float*)(const void*)(job->skin + 36u * (first + index[i]) + 20u));
   transpose8x4(a, c);
   w01 = _mm256_castps_si256(c[2]);
   w23 = _mm256_castps_si256(c[3]);
@@ -315,13 +317,12 @@ PRT_KERNEL_INLINE void exact_basis(uint32_t order, const __m256 n[3], int fold, 
 #undef EXACT_EMIT
 }
 
-/* Lane i of the batch at v: vertex v + i, or the batch's last vertex past the range (computed,
- * never written). */
+/* Lane i of the batch at v: i, or the range's last vertex past its end (computed, never
+ * written). Small offsets from the batch, so that no index overflows whatever the range. */
 PRT_KERNEL_INLINE __m256i batch_lanes(uint32_t v, uint32_t count) {
   const uint32_t last = count - v - 1u;
-  return _mm256_add_epi32(_mm256_set1_epi32((int)v),
-                          _mm256_min_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
-                                           _mm256_set1_epi32((int)(last < 7u ? last : 7u))));
+  return _mm256_min_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                          _mm256_set1_epi32((int)(last < 7u ? last : 7u)));
 }
 
 /* The shading loop for one order; a constant `order` unrolls the basis. */
@@ -334,11 +335,11 @@ PRT_KERNEL_INLINE void exact_shade(const prt_pose_exact_job* job, uint32_t order
     __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
     float rgb[3][8];
     int ch;
-    exact_normals(job, batch_lanes(v, count), n);
+    exact_normals(job, v, batch_lanes(v, count), n);
     exact_basis(order, n, 1, job->light, NULL, acc);
     for (ch = 0; ch < 3; ++ch) _mm256_storeu_ps(rgb[ch], acc[ch]);
     for (i = 0; i < lanes; ++i)
-      for (ch = 0; ch < 3; ++ch) out_rgb[3u * (v + i) + ch] += rgb[ch][i];
+      for (ch = 0; ch < 3; ++ch) out_rgb[3u * ((size_t)v + i) + ch] += rgb[ch][i];
   }
 }
 
@@ -357,11 +358,11 @@ void prt_pose_exact_transfer_avx2(const prt_pose_exact_job* job, uint32_t count,
   uint32_t v, c, i;
   for (v = 0; v < count; v += 8) {
     const uint32_t lanes = count - v < 8u ? count - v : 8u;
-    exact_normals(job, batch_lanes(v, count), n);
+    exact_normals(job, v, batch_lanes(v, count), n);
     exact_basis(job->order, n, 0, NULL, y, NULL);
     for (c = 0; c < n2; ++c)
       _mm256_storeu_ps(terms[c], _mm256_mul_ps(y[c], _mm256_set1_ps(job->factor[c])));
     for (i = 0; i < lanes; ++i)
-      for (c = 0; c < n2; ++c) out[(v + i) * out_stride + c] += terms[c][i];
+      for (c = 0; c < n2; ++c) out[((size_t)v + i) * out_stride + c] += terms[c][i];
   }
 }
