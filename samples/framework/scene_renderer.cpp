@@ -162,6 +162,12 @@ void GpuMesh::upload_colours(const float* rgb) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
+void GpuMesh::upload_positions(const float* positions) {
+  glBindBuffer(GL_ARRAY_BUFFER, positions_.get());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(vertex_count_) * 12, positions);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 void GpuMesh::draw(GLuint colour_buffer) const {
   glBindVertexArray(array_.get());
   glBindVertexBuffer(1, colour_buffer, 0, 12);

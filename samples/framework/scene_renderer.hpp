@@ -26,6 +26,9 @@ class GpuMesh {
 
   // Uploads vertex_count RGB float triples into the mesh's own colour buffer.
   void upload_colours(const float* rgb);
+  // Replaces the positions (vertex_count triples: a skinned mesh's new pose); the bounds stay
+  // those the mesh was made with, so framing does not follow the animation.
+  void upload_positions(const float* positions);
   GLuint own_colours() const { return colours_.get(); }
 
   std::uint32_t vertex_count() const { return vertex_count_; }

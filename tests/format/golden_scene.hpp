@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // What every golden technique blob of formats/golden/1.0 holds besides its technique section,
 // restated by hand: the container facts read from a hex dump of each file, and the mesh sections
-// from the scene they were baked from (formats/golden/scenes/quad_over_ground.obj).
+// from the scene they were baked from (formats/golden/scenes/quad_over_ground.obj unless a test
+// passes another scene's Mesh, as golden_pose_test.cpp does for hinge.gltf).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -129,32 +130,50 @@ inline void expect_container(const File& f) {
   }
 }
 
-// INFO, VPOS, VNRM and TRIS: the scene file's eight vertices in file order, its one normal, its
-// two quads as triangle fans, and the text the bake wrote.
-inline void expect_mesh(const Asset& a, const std::string& info) {
+// A scene's mesh as the bake stores it: positions and normals per vertex, three indices per
+// triangle, in the scene's order.
+struct Mesh {
+  size_t vertex_count;
+  const float (*positions)[3];
+  const float (*normals)[3];
+  size_t triangle_count;
+  const uint32_t* indices;
+};
+
+// INFO, VPOS, VNRM and TRIS hold exactly `mesh` and the text the bake wrote.
+inline void expect_mesh(const Asset& a, const std::string& info, const Mesh& mesh) {
   const Bytes text = a.section(PRT_SECTION_INFO);
   EXPECT_EQ(std::string(text.begin(), text.end()), info);
-  const float positions[8][3] = {{-1, 0, 1},
-                                 {1, 0, 1},
-                                 {1, 0, -1},
-                                 {-1, 0, -1},
-                                 {-1.25f, 0.4f, 1.25f},
-                                 {0.25f, 0.4f, 1.25f},
-                                 {0.25f, 0.4f, -0.25f},
-                                 {-1.25f, 0.4f, -0.25f}};
   const Bytes vpos = a.section(PRT_SECTION_VPOS);
-  ASSERT_EQ(vpos.size(), 96u);
+  ASSERT_EQ(vpos.size(), 12 * mesh.vertex_count);
   const Bytes vnrm = a.section(PRT_SECTION_VNRM);
-  ASSERT_EQ(vnrm.size(), 96u);
-  for (size_t v = 0; v < 8; ++v)
+  ASSERT_EQ(vnrm.size(), 12 * mesh.vertex_count);
+  for (size_t v = 0; v < mesh.vertex_count; ++v)
     for (size_t c = 0; c < 3; ++c) {
-      EXPECT_EQ(f32_at(vpos, 12 * v + 4 * c), positions[v][c]) << v << "," << c;
-      EXPECT_EQ(f32_at(vnrm, 12 * v + 4 * c), c == 1 ? 1.0f : 0.0f) << v << "," << c;
+      EXPECT_EQ(f32_at(vpos, 12 * v + 4 * c), mesh.positions[v][c]) << v << "," << c;
+      EXPECT_EQ(f32_at(vnrm, 12 * v + 4 * c), mesh.normals[v][c]) << v << "," << c;
     }
-  const uint32_t triangles[12] = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
   const Bytes tris = a.section(PRT_SECTION_TRIS);
-  ASSERT_EQ(tris.size(), sizeof triangles);
-  for (size_t k = 0; k < 12; ++k) EXPECT_EQ(prt_test::get_u32(tris, 4 * k), triangles[k]) << k;
+  ASSERT_EQ(tris.size(), 12 * mesh.triangle_count);
+  for (size_t k = 0; k < 3 * mesh.triangle_count; ++k)
+    EXPECT_EQ(prt_test::get_u32(tris, 4 * k), mesh.indices[k]) << k;
+}
+
+// The quad scene: the scene file's eight vertices in file order, its one normal, its two quads
+// as triangle fans.
+inline void expect_mesh(const Asset& a, const std::string& info) {
+  static const float positions[8][3] = {{-1, 0, 1},
+                                        {1, 0, 1},
+                                        {1, 0, -1},
+                                        {-1, 0, -1},
+                                        {-1.25f, 0.4f, 1.25f},
+                                        {0.25f, 0.4f, 1.25f},
+                                        {0.25f, 0.4f, -0.25f},
+                                        {-1.25f, 0.4f, -0.25f}};
+  static const float normals[8][3] = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0},
+                                      {0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
+  static const uint32_t triangles[12] = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
+  expect_mesh(a, info, Mesh{8, positions, normals, 4, triangles});
 }
 
 // The zstd file and its uncompressed twin decode to the same bytes, section by section, and the

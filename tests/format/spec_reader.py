@@ -2,9 +2,11 @@
 # SPDX-License-Identifier: MIT
 """A second, independent reader of prtkit blobs written from formats/SPEC.md alone (no code shared
 with the C reader), used as a cross-check: it validates a blob by the rules of SPEC.md §8 (quick
-checks, checksums, padding, contents of uncompressed known kinds including the SHTR (§7.1) and
-WVLT (§7.2) layouts; zstd frames are not decoded, the standard library has no zstd) and prints the
-section table and the technique headers.
+checks, checksums, padding, contents of uncompressed known kinds including the SHTR (§7.1), WVLT
+(§7.2) and PSTR (§7.3) layouts; zstd frames are not decoded, the standard library has no zstd) and
+prints the section table and the technique headers. It also holds a blob to the rules SPEC.md
+states for writers where a reader need not check them (PSTR: every vertex's weights sum to 65535,
+or are all 0), since what it reads are the writer's golden blobs; such failures say "WRITER".
 
 usage: spec_reader.py FILE.prtk   -> exit 0 if valid, 1 with the failed rule otherwise
 """
@@ -13,8 +15,8 @@ import sys
 
 # (tag, layout version) -> element size; None = variable, the exact size is in the layout (§7).
 KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"TRIS", 1): 12,
-         (b"SHTR", 1): None, (b"WVLT", 1): None}
-PER_VERTEX = (b"VNRM", b"SHTR", b"WVLT")  # one element per VPOS vertex (§7 relations)
+         (b"SHTR", 1): None, (b"WVLT", 1): None, (b"PSTR", 1): None}
+PER_VERTEX = (b"VNRM", b"SHTR", b"WVLT", b"PSTR")  # one element per VPOS vertex (§7 relations)
 
 
 def crc32c(data, crc=0):
@@ -110,6 +112,100 @@ def read_wvlt(data, vertex_count):
                 bounces=bounces, pairs=pairs)
 
 
+def read_pstr(data, vertex_count):
+    """PSTR, SPEC.md §7.3: header fields, exact size, padding, parents, evaluation order, finite
+    floats, basis scales >= 0, range min <= max, skin joint indices < J; and the writers' rule that
+    each vertex's weights sum to 65535 (or are all 0)."""
+    require(len(data) >= 64, "CORRUPT: PSTR header")
+    (order, vertices, joints, pose_dims, basis_dims, model, bits, model_joint, kind,
+     bounces) = struct.unpack_from("<10I", data)
+    (albedo,) = struct.unpack_from("<f", data, 40)
+    (flags,) = struct.unpack_from("<I", data, 44)
+    # In the order of the §7.3 table, the vertex count last.
+    require(1 <= order <= 8, "CORRUPT: PSTR order")
+    require(1 <= joints <= 256, "CORRUPT: PSTR joint count")
+    features = 3 * joints
+    require(pose_dims <= features, "CORRUPT: PSTR pose_dims")
+    require(1 <= basis_dims <= 256, "CORRUPT: PSTR basis_dims")
+    require(model in (0, 1), "CORRUPT: PSTR model")
+    require(bits in (8, 16), "CORRUPT: PSTR bits")
+    require(model_joint < joints, "CORRUPT: PSTR model_joint")
+    require(finite(albedo), "NON_FINITE: PSTR albedo")
+    require(albedo >= 0, "CORRUPT: PSTR albedo < 0")
+    require(flags & ~1 == 0, "CORRUPT: PSTR flags")
+    require(data[48:64] == bytes(16), "CORRUPT: PSTR reserved")
+    require(vertices == vertex_count, "CORRUPT: PSTR vertex count")
+
+    # The parts in the order of the §7.3 table, each size from the header.
+    coefficients, value_size = order * order, bits // 8
+    values_bytes = vertices * basis_dims * value_size
+    at, parts = 64, {}
+    for name, part_size in (("joints", 140 * joints), ("eval_order", 4 * joints),
+                            ("pose_mean", 4 * features), ("pose_basis", 4 * features * pose_dims),
+                            ("pose_range", 8 * pose_dims),
+                            ("regression", 4 * (pose_dims + 1) * basis_dims * coefficients),
+                            ("basis_params", 8 * basis_dims),
+                            ("basis_values", padded4(values_bytes)),
+                            ("skin", 36 * vertices)):
+        parts[name] = at
+        at += part_size
+    # The sum of the parts is the raw_size formula of §7.3.
+    require(at == 64 + 144 * joints + 4 * features + 4 * features * pose_dims + 8 * pose_dims
+            + 4 * (pose_dims + 1) * basis_dims * coefficients + 8 * basis_dims
+            + padded4(values_bytes) + 36 * vertices, "CORRUPT: PSTR parts do not add up")
+    require(len(data) == at, "CORRUPT: PSTR size")
+    values_end = parts["basis_values"] + values_bytes
+    require(data[values_end:parts["skin"]] == bytes(parts["skin"] - values_end),
+            "CORRUPT: PSTR padding")
+
+    # Parents: -1, or a joint < J other than itself (not necessarily a lower index); the model
+    # joint's parent is -1.
+    parents = []
+    for j in range(joints):
+        (parent,) = struct.unpack_from("<i", data, parts["joints"] + 140 * j)
+        require(parent == -1 or 0 <= parent < joints and parent != j,
+                f"CORRUPT: PSTR joint {j} parent {parent}")
+        require(j != model_joint or parent == -1, "CORRUPT: PSTR model joint has a parent")
+        parents.append(parent)
+    # Evaluation order: every joint once, each after its parent (this also rules out cycles).
+    placed = set()
+    for joint in struct.unpack_from(f"<{joints}I", data, parts["eval_order"]):
+        require(joint < joints and joint not in placed,
+                "CORRUPT: PSTR eval_order is not a permutation")
+        require(parents[joint] == -1 or parents[joint] in placed,
+                f"CORRUPT: PSTR joint {joint} is evaluated before its parent")
+        placed.add(joint)
+    # The joint records' floats (after the parent) are finite.
+    for j in range(joints):
+        require(all(finite(x) for x in struct.unpack_from("<34f", data,
+                                                          parts["joints"] + 140 * j + 4)),
+                f"NON_FINITE: PSTR joint {j}")
+
+    # Pose mean, basis, range, regression and basis offset/scale: finite; min <= max; scale >= 0.
+    model_floats = (parts["basis_values"] - parts["pose_mean"]) // 4
+    require(all(finite(x) for x in struct.unpack_from(f"<{model_floats}f", data,
+                                                      parts["pose_mean"])),
+            "NON_FINITE: PSTR model float")
+    for i in range(pose_dims):
+        low, high = struct.unpack_from("<2f", data, parts["pose_range"] + 8 * i)
+        require(low <= high, f"CORRUPT: PSTR pose coordinate {i} range min > max")
+    for k in range(basis_dims):
+        (scale,) = struct.unpack_from("<f", data, parts["basis_params"] + 8 * k + 4)
+        require(scale >= 0, f"CORRUPT: PSTR basis column {k} scale < 0")
+    # Basis values: u8 or u16, so every one is below 2^bits by its width; nothing more to check.
+
+    # Skin: finite position and normal, every joint index < J (whatever its weight); the writers'
+    # weights sum to 65535 or are all 0.
+    for v in range(vertices):
+        fields = struct.unpack_from("<6f4B4H", data, parts["skin"] + 36 * v)
+        require(all(finite(x) for x in fields[:6]), f"NON_FINITE: PSTR vertex {v} skin")
+        require(all(j < joints for j in fields[6:10]), f"CORRUPT: PSTR vertex {v} joint index")
+        require(sum(fields[10:14]) in (0, 65535), f"WRITER: PSTR vertex {v} weights sum")
+    return dict(order=order, vertices=vertices, joints=joints, pose_dims=pose_dims,
+                basis_dims=basis_dims, model=model, bits=bits, model_joint=model_joint, kind=kind,
+                bounces=bounces, albedo=albedo, flags=flags)
+
+
 def read(blob):
     size = len(blob)
     require(size >= 4, "TRUNCATED: fewer than 4 bytes")
@@ -189,6 +285,8 @@ def read(blob):
             s["header"] = read_shtr(data, s["elements"])
         elif s["tag"] == b"WVLT":
             s["header"] = read_wvlt(data, s["elements"])
+        elif s["tag"] == b"PSTR":
+            s["header"] = read_pstr(data, s["elements"])
     require(blob[end:total] == bytes(total - end), "CORRUPT: final padding")
     return (major, minor), sections
 

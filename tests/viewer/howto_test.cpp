@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The C how-tos shade_sh and shade_wavelet on the golden blobs: how they fail (exit status and
-// message, both checked) and properties of what they print (a full turn of the light is no turn,
-// a quarter turn changes the shading, fewer light coefficients change it). The shape of their
+// The C how-tos shade_sh, shade_wavelet and shade_pose on the golden blobs: how they fail (exit
+// status and message, both checked) and properties of what they print (a full turn of the light is
+// no turn, a quarter turn changes the shading, fewer light coefficients change it, a full turn of a
+// joint is no turn). The shape of their
 // output on the golden blobs is checked beside validate_blob's (tests/runtime).
 #include <gtest/gtest.h>
 
@@ -100,6 +101,48 @@ TEST(Howto, ShadeWaveletFewerLightCoefficientsChangeTheShading) {
   EXPECT_NE(few.output.find("6 + 0 light coefficients kept"), std::string::npos) << few.output;
   ASSERT_FALSE(vertex_lines(all).empty()) << all.output;
   EXPECT_NE(vertex_lines(few), vertex_lines(all));
+}
+
+TEST(Howto, ShadePoseRunsOnThePoseHinge) {
+  const prt_test::CommandResult result =
+      run(PRT_HOWTO_SHADE_POSE, prt_test::shell_quote(golden("pose_hinge.prtk")), "pose_default");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("pose_hinge.prtk: 8 vertices, 2 joints, residual model PCA(1, 3), "
+                               "320 bytes; joint 1 bent 40 degrees; backend "),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("vertex 3: rgb "), std::string::npos) << result.output;
+}
+
+TEST(Howto, ShadePoseNeedsAPoseBlobAndAJointItHas) {
+  const prt_test::CommandResult sh =
+      run(PRT_HOWTO_SHADE_POSE, prt_test::shell_quote(golden("sh_quad.prtk")), "pose_on_sh");
+  EXPECT_EQ(sh.exit_code, 1) << sh.output;
+  EXPECT_NE(sh.output.find("sh_quad.prtk: no `pose` model: PRT_ERROR_NOT_FOUND"), std::string::npos)
+      << sh.output;
+  const std::string blob = prt_test::shell_quote(golden("pose_hinge.prtk"));
+  const prt_test::CommandResult joint = run(PRT_HOWTO_SHADE_POSE, blob + " 2", "pose_joint");
+  EXPECT_EQ(joint.exit_code, 1) << joint.output;
+  EXPECT_NE(joint.output.find("JOINT must be below 2"), std::string::npos) << joint.output;
+  const prt_test::CommandResult word = run(PRT_HOWTO_SHADE_POSE, blob + " 0 far", "pose_word");
+  EXPECT_EQ(word.exit_code, 2) << word.output;
+  EXPECT_NE(word.output.find("DEGREES must be a number, got 'far'"), std::string::npos)
+      << word.output;
+}
+
+// Joint 0 is the hinge's model joint: turning it turns the model frame, so the light the runtime
+// turns into that frame changes, unless the turn is a full one (the quaternion only negated).
+TEST(Howto, ShadePoseFullTurnOfAJointIsNoTurnAndAQuarterTurnIsNot) {
+  const std::string blob = prt_test::shell_quote(golden("pose_hinge.prtk"));
+  const prt_test::CommandResult none = run(PRT_HOWTO_SHADE_POSE, blob + " 0 0", "pose_0");
+  const prt_test::CommandResult full = run(PRT_HOWTO_SHADE_POSE, blob + " 0 360", "pose_360");
+  const prt_test::CommandResult quarter = run(PRT_HOWTO_SHADE_POSE, blob + " 0 90", "pose_90");
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  ASSERT_EQ(full.exit_code, 0) << full.output;
+  ASSERT_EQ(quarter.exit_code, 0) << quarter.output;
+  ASSERT_FALSE(vertex_lines(none).empty()) << none.output;
+  EXPECT_EQ(vertex_lines(full), vertex_lines(none));  // printed to 6 digits: equal after rounding
+  EXPECT_NE(vertex_lines(quarter), vertex_lines(none));
 }
 
 }  // namespace

@@ -64,7 +64,7 @@ TEST(PrtViewTechnique, MeshOnlyBlobFailsSayingItHoldsNoTechnique) {
   const prt_test::CommandResult run = view_frames(golden("tiny.prtk"), "", "mesh_only");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_NE(run.output.find("tiny.prtk: nothing prt-view can draw: the blob holds only a mesh, no "
-                            "technique section (prt-view draws sh, wavelet)"),
+                            "technique section (prt-view draws sh, wavelet, pose)"),
             std::string::npos)
       << run.output;
 }
@@ -94,9 +94,10 @@ TEST(PrtViewTechnique, UnknownTechniqueNameIsABadArgument) {
 TEST(PrtViewTechnique, HelpListsTheTechniquesAndTheirOptions) {
   const prt_test::CommandResult run = run_view("--help", "help");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  for (const char* text : {"--technique", "wavelet options:", "--light-coefficients",
-                           "Techniques: sh, wavelet. A blob holding several is drawn with the "
-                           "first of them unless --technique picks another"})
+  for (const char* text :
+       {"--technique", "wavelet options:", "--light-coefficients",
+        "Techniques: sh, wavelet, pose. A blob holding several is drawn with the "
+        "first of them unless --technique picks another"})
     EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
 }
 

@@ -15,6 +15,7 @@
 #include "prt/baker/text.hpp"
 
 #include "../common/technique_blob.hpp"
+#include "pose_ground_truth.hpp"
 #include "pose_technique.hpp"
 
 namespace prt::bake {
@@ -72,6 +73,9 @@ class PoseBake final : public TechniqueBake {
     list.add("--subdivide-to", &subdivide_to_,
              "Midpoint-subdivide the character until it has at least N vertices; 0: as imported")
         .range(0, 1u << 24);
+    list.add("--ground-truth", &ground_truth_,
+             "Also write the baked training frames: PREFIX.transfer.npy [frames][V][n*n], "
+             "PREFIX.rotations.npy [frames][J][4], PREFIX.times.npy [frames][2] (clip, s)");
     return list;
   }
 
@@ -88,6 +92,7 @@ class PoseBake final : public TechniqueBake {
     model_settings_.cv = parse_cv(cv_);
     model_settings_.clamp = !no_clamp_;
     training_ = bake_pose_training(scene, training_settings_, ctx);
+    if (!ground_truth_.empty()) write_pose_ground_truth(ground_truth_, training_);
     model_ = fit_pose_model(training_, model_settings_, ctx);
   }
 
@@ -141,7 +146,7 @@ class PoseBake final : public TechniqueBake {
 
   PoseTrainingSettings training_settings_;
   PoseModelSettings model_settings_;
-  std::string kind_ = "shadowed", model_kind_ = "residual", cv_ = "clip";
+  std::string kind_ = "shadowed", model_kind_ = "residual", cv_ = "clip", ground_truth_;
   bool no_clamp_ = false;
   std::uint32_t subdivide_to_ = 0;
   Scene subdivided_;

@@ -304,7 +304,9 @@ class PoseTrade final : public TechniqueTrade {
         row);
     time_runtime(scene, set, model, test.front(), lights_.front(), input.frames, row);
     rows_.push_back(row);
-    if (kind == PoseModelKind::Residual) basis_projection_row(set, test, model);
+    // The basis does not depend on p: one bound per q.
+    if (kind == PoseModelKind::Residual && p == o_.pose_dims.front())
+      basis_projection_row(set, test, model);
     for (std::size_t i = 0; i < model.alpha_curve_alpha.size(); ++i) {
       alpha_rows_.push_back({row.model, std::to_string(row.p), std::to_string(row.q),
                              format("%.6g", model.alpha_curve_alpha[i]),
