@@ -10,6 +10,7 @@
 
 #include "prt/baker/pose/pose_blob.hpp"
 #include "prt/baker/pose/pose_model.hpp"
+#include "prt/baker/pose/pose_subdivide.hpp"
 #include "prt/baker/pose/pose_training.hpp"
 #include "prt/baker/text.hpp"
 
@@ -69,13 +70,18 @@ class PoseBake final : public TechniqueBake {
         .choices({"clip", "block", "frame"});
     list.add("--no-clamp", &no_clamp_, "Do not clamp pose coordinates to the training range");
     list.add("--bits", &m.bits, "Bits per basis value: 8 or 16").choices({8, 16});
+    list.add("--subdivide-to", &subdivide_to_,
+             "Midpoint-subdivide the character until it has at least N vertices; 0: as imported")
+        .range(0, 1u << 24);
     list.add("--ground-truth", &ground_truth_,
              "Also write the baked training frames: PREFIX.transfer.npy [frames][V][n*n], "
              "PREFIX.rotations.npy [frames][J][4], PREFIX.times.npy [frames][2] (clip, s)");
     return list;
   }
 
-  void bake(const Scene& scene, const BakeInput& input, const Context& ctx) override {
+  void bake(const Scene& imported, const BakeInput& input, const Context& ctx) override {
+    if (subdivide_to_ > 0) subdivided_ = subdivide_scene(imported, subdivide_to_);
+    const Scene& scene = scene_of(imported);
     ShTransferSettings& s = training_settings_.transfer;
     s.seed = input.seed;
     s.kind = parse_sh_transfer_kind(kind_.c_str());
@@ -94,7 +100,8 @@ class PoseBake final : public TechniqueBake {
   // stored model on its own training frames.
   void quantize() override { fit_ = measure_pose_fit(training_, model_); }
 
-  std::vector<std::uint8_t> write(const Scene& scene, const BakeInput& input) const override {
+  std::vector<std::uint8_t> write(const Scene& imported, const BakeInput& input) const override {
+    const Scene& scene = scene_of(imported);
     const std::string info = "prtkit pose bake: " + input.scene + ", order " +
                              std::to_string(training_.order) + ", " + model_name() + " model";
     prt::format::BlobWriter writer = start_technique_blob(scene, info);
@@ -105,8 +112,9 @@ class PoseBake final : public TechniqueBake {
     return writer.finish();
   }
 
-  std::string summary(const Scene& scene, const BakeInput& input,
+  std::string summary(const Scene& imported, const BakeInput& input,
                       std::size_t blob_bytes) const override {
+    const Scene& scene = scene_of(imported);
     return std::to_string(scene.vertex_count()) + " vertices, " +
            std::to_string(training_.frames.size()) + " frames of " +
            std::to_string(training_.clip_names.size()) + " clips, order " +
@@ -128,6 +136,10 @@ class PoseBake final : public TechniqueBake {
   }
 
  private:
+  // The scene every step bakes and writes: the subdivided one when --subdivide-to asks for it.
+  const Scene& scene_of(const Scene& imported) const {
+    return subdivide_to_ > 0 ? subdivided_ : imported;
+  }
   const char* model_name() const {
     return model_.kind == PoseModelKind::Direct ? "direct" : "residual";
   }
@@ -136,6 +148,8 @@ class PoseBake final : public TechniqueBake {
   PoseModelSettings model_settings_;
   std::string kind_ = "shadowed", model_kind_ = "residual", cv_ = "clip", ground_truth_;
   bool no_clamp_ = false;
+  std::uint32_t subdivide_to_ = 0;
+  Scene subdivided_;
   PoseTrainingSet training_;
   PoseModel model_;
   PoseFit fit_;

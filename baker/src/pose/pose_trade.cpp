@@ -22,6 +22,7 @@
 
 #include "prt/baker/pose/pose_blob.hpp"
 #include "prt/baker/pose/pose_model.hpp"
+#include "prt/baker/pose/pose_subdivide.hpp"
 #include "prt/baker/pose/pose_training.hpp"
 
 #include "../common/technique_blob.hpp"
@@ -40,6 +41,7 @@ struct PoseTradeSettings {
   std::uint32_t rays = 256, order = 6;
   std::vector<std::uint32_t> pose_dims{0}, basis_dims{0, 8, 16, 32};
   int bits = 16;
+  std::uint32_t subdivide_to = 0;
 };
 
 struct Light {
@@ -229,6 +231,9 @@ class PoseTrade final : public TechniqueTrade {
     list.add("--pose-dims", &o_.pose_dims, "Pose PCA dimensions swept (0: 90 % of the variance)");
     list.add("--basis-dims", &o_.basis_dims, "Vertex basis dimensions swept (0: by energy)");
     list.add("--bits", &o_.bits, "Bits per basis value").choices({8, 16});
+    list.add("--subdivide-to", &o_.subdivide_to,
+             "Midpoint-subdivide the character until it has at least N vertices; 0: as imported")
+        .range(0, 1u << 24);
     return list;
   }
 
@@ -246,8 +251,11 @@ class PoseTrade final : public TechniqueTrade {
     lights_.push_back(directional_light(o_.order));
   }
 
-  void sweep(const Scene& scene, const EmbreeScene&, const TradeInput& input,
+  void sweep(const Scene& imported, const EmbreeScene&, const TradeInput& input,
              const Context& ctx) override {
+    const Scene subdivided =
+        o_.subdivide_to > 0 ? subdivide_scene(imported, o_.subdivide_to) : Scene{};
+    const Scene& scene = o_.subdivide_to > 0 ? subdivided : imported;
     PoseTrainingSettings training;
     training.rate = o_.rate;
     training.transfer.order = o_.order;

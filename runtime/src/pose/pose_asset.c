@@ -294,15 +294,50 @@ static const uint8_t* values_of(const prt_pose_view* view, uint32_t first) {
          (size_t)first * view->info.basis_dims * (view->info.bits / 8u);
 }
 
+/* The exact part's float inputs (model 1): the joints' 3x3 skinning parts when the normals are
+ * skinned, the factors, and the light folded with them when `exact` is given (shading). */
+typedef struct pose_exact_inputs {
+  float joint[(PRT_POSE_MAX_JOINTS + 1u) * 12u];
+  float factor[PRT_POSE_MAX_COEFFICIENTS];
+  float light[PRT_POSE_MAX_COEFFICIENTS * 3];
+} pose_exact_inputs;
+
+static void exact_job_of(const pose_frame* frame, const double (*exact)[3], uint32_t first,
+                         pose_exact_inputs* in, prt_pose_exact_job* job) {
+  const prt_pose_view* view = frame->view;
+  uint32_t j, r, c, ch;
+  job->order = view->info.order;
+  job->skin = view->data + view->layout.skin + (uint64_t)PRT_BLOB_PSTR_SKIN_SIZE * first;
+  job->normals = frame->normals;
+  job->joint = in->joint;
+  job->joint_count = view->info.joint_count;
+  job->factor = in->factor;
+  job->light = in->light;
+  if (!frame->normals)
+    for (j = 0; j <= view->info.joint_count; ++j)
+      for (r = 0; r < 3; ++r)
+        for (c = 0; c < 4; ++c)
+          in->joint[12u * j + 4u * r + c] = c == 3 ? 0.0f
+                                            : j < view->info.joint_count
+                                                ? prt_pose_to_float(frame->skeleton.skin[j].m[r][c])
+                                                : (r == c ? 1.0f : 0.0f);
+  for (c = 0; c < view->layout.coefficients; ++c) {
+    in->factor[c] = (float)frame->factor[c];
+    for (ch = 0; ch < 3; ++ch)
+      in->light[3u * c + ch] = exact ? prt_pose_to_float(exact[c][ch]) : 0.0f;
+  }
+}
+
 static void transfer_simd(const pose_frame* frame, uint32_t first, uint32_t count, float* out) {
   double block[PRT_POSE_MAX_BASIS_DIMS][PRT_POSE_SIMD_BLOCK];
   float column[PRT_POSE_MAX_BASIS_DIMS * PRT_POSE_SIMD_BLOCK];
-  double basis[PRT_POSE_MAX_COEFFICIENTS];
+  pose_exact_inputs exact_in;
+  prt_pose_exact_job exact_job;
   const prt_pose_view* view = frame->view;
   const uint32_t n2 = view->layout.coefficients, q = view->info.basis_dims;
   const uint64_t params = view->layout.basis_params;
   prt_pose_transfer_job job;
-  uint32_t c0, v, k, c;
+  uint32_t c0, k, c;
   job.values = values_of(view, first);
   job.bits = view->info.bits;
   job.stride = (size_t)q * (view->info.bits / 8u);
@@ -325,20 +360,20 @@ static void transfer_simd(const pose_frame* frame, uint32_t first, uint32_t coun
     prt_pose_transfer_avx2(&job, count, out + c0);
   }
   if (!residual(view)) return;
-  for (v = 0; v < count; ++v) {
-    exact_terms(frame, first, v, basis);
-    for (c = 0; c < n2; ++c) out[(size_t)v * n2 + c] += prt_pose_to_float(basis[c]);
-  }
+  exact_job_of(frame, NULL, first, &exact_in, &exact_job);
+  prt_pose_exact_transfer_avx2(&exact_job, count, out, n2);
 }
 
 static void shade_simd(const pose_frame* frame, const double (*w)[3], const double (*exact)[3],
                        uint32_t first, uint32_t count, float* out_rgb) {
   float weight[3][PRT_POSE_MAX_BASIS_DIMS];
+  pose_exact_inputs exact_in;
+  prt_pose_exact_job exact_job;
   const prt_pose_view* view = frame->view;
   const uint32_t q = view->info.basis_dims, padded = (q + 7u) / 8u * 8u;
   const uint64_t params = view->layout.basis_params;
   prt_pose_shade_job job;
-  uint32_t v, k, ch;
+  uint32_t k, ch;
   for (ch = 0; ch < 3; ++ch) {
     double bias = 0.0;
     for (k = 0; k < q; ++k) {
@@ -355,11 +390,8 @@ static void shade_simd(const pose_frame* frame, const double (*w)[3], const doub
   job.basis_dims = q;
   prt_pose_shade_avx2(&job, count, out_rgb);
   if (!residual(view)) return;
-  for (v = 0; v < count; ++v) {
-    double rgb[3];
-    exact_radiance(frame, exact, first, v, rgb);
-    for (ch = 0; ch < 3; ++ch) out_rgb[3u * (size_t)v + ch] += prt_pose_to_float(rgb[ch]);
-  }
+  exact_job_of(frame, exact, first, &exact_in, &exact_job);
+  prt_pose_exact_shade_avx2(&exact_job, count, out_rgb);
 }
 
 #else

@@ -40,7 +40,30 @@ typedef struct prt_pose_transfer_job {
   uint32_t width;    /* coefficients of the block written, 1..8 */
 } prt_pose_transfer_job;
 
+/* Model 1's exact part (SPEC §7.3) eight vertices at a time, in float: each vertex's model-frame
+ * normal, skinned as normalize(sign(det K3) cof(K3) n_local) with K3 the weight blend of the
+ * joints' 3x3 parts (or the caller's normal normalised), 0 where the scalar path gives 0; the SH
+ * basis at it by sh_eval.c's recurrence; then either factor_c y_c(n) (factor_c = rho A_l / pi)
+ * added to the transfer, or y_c(n) times the light folded with the factors added to the
+ * radiance, skipping the odd bands above 1 (A_l = 0), so that shading keeps no C-vector per
+ * vertex. Lanes do not mix: a vertex gets the same bits wherever its range starts. */
+typedef struct prt_pose_exact_job {
+  uint32_t order;
+  const uint8_t* skin;  /* the range's first skin record (36 bytes each); read without normals */
+  const float* normals; /* the caller's normals of the range (3 floats per vertex), or NULL */
+  const float* joint;   /* [J + 1][12]: K_j's 3x3 part, rows padded to 4 floats, then the
+                         * identity; read without normals */
+  uint32_t joint_count; /* J: a stored joint index >= J counts as weight 0 */
+  const float* factor;  /* [C] factor_c */
+  const float* light;   /* [C][3] factor_c L'[c][ch]: shading only */
+} prt_pose_exact_job;
+
 #if defined(PRT_HAS_X86_SIMD)
+/* Adds the exact radiance to the 3 * count floats of out_rgb. */
+void prt_pose_exact_shade_avx2(const prt_pose_exact_job* job, uint32_t count, float* out_rgb);
+/* Adds factor_c y_c(n) to out[v * out_stride + c] for each of the count vertices and every c. */
+void prt_pose_exact_transfer_avx2(const prt_pose_exact_job* job, uint32_t count, float* out,
+                                  size_t out_stride);
 /* Writes 3 * count floats; reads exactly the count rows of values. */
 void prt_pose_shade_avx2(const prt_pose_shade_job* job, uint32_t count, float* out_rgb);
 /* Writes job->width floats at out + v * out_stride for each of the count vertices. */
