@@ -50,7 +50,9 @@ void mid_weights(const glm::u16vec4& ja, const glm::vec4& wa, const glm::u16vec4
   };
   add(ja, wa);
   add(jb, wb);
-  std::sort(merged.begin(), merged.begin() + n, [](const auto& x, const auto& y) {
+  // The whole array: unused entries weigh 0 and sort last (a sort of the first n trips GCC's
+  // -Warray-bounds on std::sort's small-range path).
+  std::sort(merged.begin(), merged.end(), [](const auto& x, const auto& y) {
     return x.second != y.second ? x.second > y.second : x.first < y.first;
   });
   n = std::min(n, 4);
