@@ -18,6 +18,9 @@
 namespace prt::bake {
 namespace {
 
+// t_00 of an unoccluded surface of albedo 1: (A_0 / pi) y_00 = 1 / (2 sqrt(pi)).
+constexpr double kUnoccludedT00 = 0.28209479177387814;
+
 using pose_detail::Matrix;
 using pose_detail::Vector;
 
@@ -221,13 +224,21 @@ std::vector<float> predict_pose_transfer(const PoseModel& m, const std::vector<f
       unshadowed_transfer(m.order, m.albedo, normals + 3 * v, exact.data());
     }
     for (std::size_t c = 0; c < C; ++c) {
-      double sum = m.kind == PoseModelKind::Residual ? double(exact[c]) : 0.0;
+      double learned = 0.0;
       for (std::size_t k = 0; k < q; ++k) {
         const double u = double(m.basis_offset[k]) +
                          double(m.basis_scale[k]) * double(m.basis_values[v * q + k]);
-        sum += u * y[k * C + c];
+        learned += u * y[k * C + c];
       }
-      out[v * C + c] = float(sum);
+      // SPEC §7.3: the learned t_00 within [0, u] (direct) or [-u, 0] (residual), u the
+      // unoccluded t_00, so that t_00 stays in the uniform sky's bounds.
+      if (c == 0) {
+        const double u = double(m.albedo) * kUnoccludedT00;
+        learned = m.kind == PoseModelKind::Residual ? std::clamp(learned, -u, 0.0)
+                                                    : std::clamp(learned, 0.0, u);
+      }
+      const double base = m.kind == PoseModelKind::Residual ? double(exact[c]) : 0.0;
+      out[v * C + c] = float(base + learned);
     }
   }
   return out;

@@ -138,6 +138,7 @@ typedef struct pose_frame {
   double z[PRT_POSE_MAX_FEATURES];
   prt_pose_skeleton skeleton; /* skinned only where a normal or the model frame is needed */
   const float* normals;       /* the caller's normals of the range, or NULL: skinned here */
+  prt_pose_dc dc;             /* the learned t_00's clamp (SPEC §7.3) */
   double factor[PRT_POSE_MAX_COEFFICIENTS]; /* rho A_l / pi (model 1) */
 } pose_frame;
 
@@ -180,6 +181,46 @@ static void open_frame(const prt_pose_view* view, const prt_pose_input* pose, co
   if (needs_model_frame || (residual(view) && !normals))
     prt_pose_skeleton_of(view, pose, &frame->skeleton);
   if (residual(view)) prt_pose_exact_factors(view, frame->factor);
+  prt_pose_dc_of(view, frame->z, &frame->dc);
+}
+
+void prt_pose_dc_of(const prt_pose_view* view, const double* z, prt_pose_dc* out) {
+  const double unoccluded = (double)view->info.albedo * 0.28209479177387814; /* 1/(2 sqrt(pi)) */
+  const uint64_t params = view->layout.basis_params;
+  uint32_t k;
+  out->base = 0.0;
+  for (k = 0; k < view->info.basis_dims; ++k) {
+    double y;
+    prt_pose_coefficients_d(view, z, k, 0, 1, &y);
+    out->base += prt_pose_f32(view, params + 8u * k) * y;
+    out->weight[k] = prt_pose_f32(view, params + 8u * k + 4u) * y;
+  }
+  out->lo = view->info.model == PRT_POSE_MODEL_RESIDUAL ? -unoccluded : 0.0;
+  out->hi = view->info.model == PRT_POSE_MODEL_RESIDUAL ? 0.0 : unoccluded;
+}
+
+double prt_pose_dc_correction(const prt_pose_view* view, const prt_pose_dc* dc, uint32_t v) {
+  double t = dc->base;
+  uint32_t k;
+  for (k = 0; k < view->info.basis_dims; ++k) t += dc->weight[k] * value_at(view, v, k);
+  return t < dc->lo ? dc->lo - t : t > dc->hi ? dc->hi - t : 0.0;
+}
+
+/* SPEC §7.3's clamp of t_00 after any backend's sums: transfer (rgb NULL) or radiance. */
+static void clamp_dc(const pose_frame* frame, const float* light_rgb, uint32_t first,
+                     uint32_t count, float* out) {
+  const uint32_t n2 = frame->view->layout.coefficients;
+  uint32_t v, ch;
+  for (v = 0; v < count; ++v) {
+    const double d = prt_pose_dc_correction(frame->view, &frame->dc, first + v);
+    if (d == 0.0) continue;
+    if (!light_rgb) {
+      out[(size_t)v * n2] = prt_pose_to_float(out[(size_t)v * n2] + d);
+    } else {
+      for (ch = 0; ch < 3; ++ch)
+        out[3u * (size_t)v + ch] = prt_pose_to_float(out[3u * (size_t)v + ch] + d * light_rgb[ch]);
+    }
+  }
 }
 
 /* y[k][c0 .. c0 + width) for every k, in double, PRT_POSE_SIMD_BLOCK per row. */
@@ -457,6 +498,7 @@ prt_result prt_pose_transfer(const prt_asset* asset, prt_backend backend,
     transfer_simd(&frame, first_vertex, vertex_count, out);
   else
     transfer_scalar(&frame, first_vertex, vertex_count, out);
+  clamp_dc(&frame, NULL, first_vertex, vertex_count, out);
   return PRT_OK;
 }
 
@@ -487,6 +529,8 @@ prt_result prt_pose_shade(const prt_asset* asset, prt_backend backend, const prt
   else
     shade_scalar(&frame, (const double(*)[3])w, (const double(*)[3])exact, first_vertex,
                  vertex_count, out_rgb);
+  /* L_00 is the same in every frame: the clamp needs no rotated light. */
+  clamp_dc(&frame, light->light_rgb, first_vertex, vertex_count, out_rgb);
   return PRT_OK;
 }
 
@@ -495,5 +539,9 @@ prt_result prt_pose_fold_shading(const prt_pose_view* view, const prt_pose_input
   pose_frame frame;
   open_frame(view, pose, NULL, 1, &frame);
   out->skeleton = frame.skeleton;
+  out->dc = frame.dc;
+  out->light_dc[0] = light->light_rgb[0];
+  out->light_dc[1] = light->light_rgb[1];
+  out->light_dc[2] = light->light_rgb[2];
   return fold_light(&frame, light, out->weight, out->exact);
 }

@@ -44,9 +44,10 @@ prt_result prt_gl_pose_read(prt_gl_pose_shader* shader, uint32_t first_vertex,
 /* Vertices per work group, and per dispatch (GL guarantees 65535 groups in x). */
 #define LOCAL_SIZE 64u
 #define MAX_GROUPS_PER_DISPATCH 65535u
-/* The light block: vec4 bias, one vec4 of RGB weights per basis column, then one vec4 per
- * coefficient of the exact part (model 1). */
-#define MAX_LIGHT_FLOATS (4u + 4u * PRT_POSE_MAX_BASIS_DIMS + 4u * PRT_POSE_MAX_COEFFICIENTS)
+/* The light block: vec4 bias, the t_00 clamp's light and bounds (two vec4), one vec4 of RGB
+ * weights (and the learned t_00's) per basis column, then one vec4 per coefficient of the exact
+ * part (model 1). */
+#define MAX_LIGHT_FLOATS (12u + 4u * PRT_POSE_MAX_BASIS_DIMS + 4u * PRT_POSE_MAX_COEFFICIENTS)
 /* The skin record as uint words (PRT_BLOB_PSTR_SKIN_*): normal at 3..5, joints at 6,
  * weights at 7..8. */
 #define SKIN_WORDS (PRT_BLOB_PSTR_SKIN_SIZE / 4u)
@@ -100,6 +101,8 @@ static const char kShaderDeclarations[] =
     "layout(std430, binding = 0) readonly restrict buffer Values { uint words[]; };\n"
     "layout(std140, binding = 0) uniform Light {\n"
     "  vec4 bias;\n"
+    "  vec4 dc_light;\n"
+    "  vec4 dc_bounds;\n"
     "  vec4 weight[BASIS_DIMS];\n"
     "#if MODEL == 1\n"
     "  vec4 exact[ORDER * ORDER];\n"
@@ -123,14 +126,14 @@ static const char kShaderDeclarations[] =
     "#endif\n"
     "\n"
     "/* Each word of the row is loaded once (rows need not start on a word). */\n"
-    "vec3 learned(uint v) {\n"
+    "vec4 learned(uint v) {\n"
     "  uint index = v * Q;\n"
     "  uint word = words[index >> PER_WORD_LOG2];\n"
-    "  vec3 sum = bias.xyz;\n"
+    "  vec4 sum = bias;\n"
     "  for (uint k = 0u; k < Q; ++k, ++index) {\n"
     "    uint slot = index & PER_WORD_MASK;\n"
     "    if (k > 0u && slot == 0u) word = words[index >> PER_WORD_LOG2];\n"
-    "    sum += float(bitfieldExtract(word, int(slot * uint(BITS)), BITS)) * weight[k].xyz;\n"
+    "    sum += float(bitfieldExtract(word, int(slot * uint(BITS)), BITS)) * weight[k];\n"
     "  }\n"
     "  return sum;\n"
     "}\n"
@@ -213,7 +216,8 @@ static const char kShaderMain[] =
     "  uint i = gl_GlobalInvocationID.x;\n"
     "  if (i >= vertex_count) return;\n"
     "  uint v = first_vertex + i;\n"
-    "  vec3 rgb = learned(v);\n"
+    "  vec4 sum = learned(v);\n"
+    "  vec3 rgb = sum.xyz + (clamp(sum.w, dc_bounds.x, dc_bounds.y) - sum.w) * dc_light.xyz;\n"
     "#if MODEL == 1\n"
     "  vec3 n = given_normals != 0u\n"
     "               ? vec3(normals[3u * v], normals[3u * v + 1u], normals[3u * v + 2u])\n"
@@ -392,7 +396,7 @@ prt_result prt_gl_pose_create(prt_context* context, const prt_asset* asset, prt_
   s->gl = gl;
   s->view = view;
   s->light_floats =
-      4u + 4u * view->info.basis_dims + (residual(s) ? 4u * view->layout.coefficients : 0u);
+      12u + 4u * view->info.basis_dims + (residual(s) ? 4u * view->layout.coefficients : 0u);
   r = compile_program(context, s);
   if (r == PRT_OK) r = create_buffers(context, s, &sizes);
   if (r != PRT_OK) {
@@ -414,9 +418,9 @@ void prt_gl_pose_destroy(prt_gl_pose_shader* shader) {
 
 /* ---- per frame ------------------------------------------------------------------------- */
 
-/* The light block from the folded frame: vec4 (bias r, g, b, 0), weight[k] = (scale_k w_k[ch],
- * 0), then exact[c] = (rgb, 0) for model 1; and the joints' K_j as three rows of vec4 each
- * (model 1). */
+/* The light block from the folded frame: vec4 (bias r, g, b, t_00 base), (L_00 rgb, 0),
+ * (t_00 lo, hi, 0, 0), weight[k] = (scale_k w_k[ch], t_00 weight), then exact[c] = (rgb, 0) for
+ * model 1; and the joints' K_j as three rows of vec4 each (model 1). */
 static void fill_uploads(prt_gl_pose_shader* s) {
   const prt_pose_view* view = s->view;
   const uint32_t q = view->info.basis_dims;
@@ -429,16 +433,22 @@ static void fill_uploads(prt_gl_pose_shader* s) {
     double bias = 0.0;
     for (k = 0; k < q; ++k) {
       bias += prt_pose_f32(view, params + 8u * k) * f->weight[k][ch];
-      light[4u + 4u * k + ch] =
+      light[12u + 4u * k + ch] =
           prt_pose_to_float(prt_pose_f32(view, params + 8u * k + 4u) * f->weight[k][ch]);
     }
     light[ch] = prt_pose_to_float(bias);
+    light[4u + ch] = prt_pose_to_float(f->light_dc[ch]);
   }
-  light[3] = 0.0f;
-  for (k = 0; k < q; ++k) light[4u + 4u * k + 3u] = 0.0f;
+  /* The learned t_00 rides in the fourth lane (SPEC §7.3's clamp): bias.w, weight[k].w. */
+  light[3] = prt_pose_to_float(f->dc.base);
+  light[7] = 0.0f;
+  light[8] = prt_pose_to_float(f->dc.lo);
+  light[9] = prt_pose_to_float(f->dc.hi);
+  light[10] = light[11] = 0.0f;
+  for (k = 0; k < q; ++k) light[12u + 4u * k + 3u] = prt_pose_to_float(f->dc.weight[k]);
   if (!residual(s)) return;
   for (c = 0; c < view->layout.coefficients; ++c) {
-    float* e = light + 4u + 4u * q + 4u * c;
+    float* e = light + 12u + 4u * q + 4u * c;
     for (ch = 0; ch < 3; ++ch) e[ch] = prt_pose_to_float(f->exact[c][ch]);
     e[3] = 0.0f;
   }

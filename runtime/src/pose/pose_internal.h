@@ -87,10 +87,26 @@ void prt_pose_basis_at_normal(uint32_t order, const double normal[3], double* ou
  * (pose_gl.c): the skeleton (K_j, model frame), the folded weights w_k[ch] = sum_c y[k][c]
  * L'[c][ch] and, for model 1, exact[c][ch] = factor_c L'[c][ch], with L' the light rotated into
  * the model frame. */
+/* The learned part's t_00 of a pose, base + sum_k weight[k] value[v][k], and the bounds SPEC
+ * §7.3 clamps it to: [0, u] for model 0, [-u, 0] for model 1 (t_00 = u + it where the normal is
+ * not 0), u = albedo / (2 sqrt(pi)) the unoccluded t_00. */
+typedef struct prt_pose_dc {
+  double base, weight[PRT_POSE_MAX_BASIS_DIMS];
+  double lo, hi;
+} prt_pose_dc;
+
+/* The learned t_00's clamp and coefficients at pose coordinates z. */
+void prt_pose_dc_of(const prt_pose_view* view, const double* z, prt_pose_dc* out);
+
+/* What clamping adds to vertex v's learned t_00 (0 inside the bounds). */
+double prt_pose_dc_correction(const prt_pose_view* view, const prt_pose_dc* dc, uint32_t v);
+
 typedef struct prt_pose_folded {
   prt_pose_skeleton skeleton;
   double weight[PRT_POSE_MAX_BASIS_DIMS][3];
   double exact[PRT_POSE_MAX_COEFFICIENTS][3];
+  prt_pose_dc dc;
+  double light_dc[3]; /* L_00 per channel: what a unit of t_00 adds to the radiance */
 } prt_pose_folded;
 
 /* Fills `out` for a checked pose and a light with light_rgb given (pose_asset.c, the scalar

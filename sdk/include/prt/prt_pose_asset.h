@@ -100,7 +100,9 @@ typedef struct prt_pose_light {
 } prt_pose_light;
 
 /* Transfer of vertices [first, first+count) at a pose: count·n² floats, vertex-major, in the
- * model frame (SPEC §7.3). `normals` as in prt_pose_light (model 1; NULL: skinned here).
+ * model frame (SPEC §7.3), t_00 kept within [0, albedo / (2√π)] (the uniform sky's bounds, which
+ * a learned model can cross on poses past its training; shading clamps the same way).
+ * `normals` as in prt_pose_light (model 1; NULL: skinned here).
  *   PRT_BACKEND_AUTO : the context's best CPU-side backend;
  *   PRT_BACKEND_CPU  : the scalar reference, summed in double;
  *   PRT_BACKEND_SIMD : AVX2+FMA kernels, summed in float (within the conformance bound);

@@ -100,7 +100,7 @@ struct Loaded {
   const prt_asset* get() const { return asset.asset; }
 };
 
-// Model 0: t[v][c] = sum_k U[v][k] y[k][c] from the SPEC's model in double.
+// Model 0: t[v][c] = sum_k U[v][k] y[k][c] from the SPEC's model in double, t_00 clamped.
 TEST(PoseTransfer, DirectModelMatchesTheSpec) {
   for (uint32_t bits : {8u, 16u}) {
     const PoseSection s = random_section(3, 9, 6, 5, 7, bits, 0, 30 + bits);
@@ -116,11 +116,54 @@ TEST(PoseTransfer, DirectModelMatchesTheSpec) {
           sum += basis_u(s, v, k) * y[k * 9 + c];
           magnitude += std::fabs(basis_u(s, v, k) * y[k * 9 + c]);
         }
-        const double err = std::fabs(t[v * 9 + c] - sum);
+        // SPEC §7.3 clamps t_00 of model 0 to [0, albedo / (2 sqrt(pi))]; the clamped value
+        // is the float sum moved by a correction summed in double, so one more rounding.
+        const double unoccluded = s.albedo / (2.0 * std::sqrt(3.14159265358979323846));
+        const double expected = c == 0 ? std::clamp(sum, 0.0, unoccluded) : sum;
+        const double err = std::fabs(t[v * 9 + c] - expected);
         worst = std::max(worst, err / (kU * magnitude));
-        EXPECT_LE(err, 3 * kU * magnitude) << v << " " << c;
+        EXPECT_LE(err, 3 * kU * magnitude + kU * std::fabs(expected)) << v << " " << c;
       }
     std::printf("direct transfer, %u bits: worst error %.2f u M\n", bits, worst);
+  }
+}
+
+// SPEC §7.3's clamp: t_00 within [0, albedo / (2 sqrt(pi))] on every backend, for random models
+// whose unclamped t_00 leaves that range at some vertices (counted, so the test exercises it).
+TEST(PoseTransfer, T00StaysInTheUniformSkysBounds) {
+  for (uint32_t model : {0u, 1u}) {
+    const PoseSection s = random_section(3, 37, 5, 4, 6, 16, model, 90 + model);
+    const Loaded a(s);
+    const std::vector<float> r = random_rotations(5, 91);
+    const std::vector<double> y = coefficients(s, r);
+    const double unoccluded = s.albedo / (2.0 * std::sqrt(3.14159265358979323846));
+    uint32_t crossing = 0;
+    std::vector<double> magnitude(s.vertices, 0.0);
+    for (uint32_t v = 0; v < s.vertices; ++v) {
+      double learned = 0;
+      for (uint32_t k = 0; k < s.basis_dims; ++k) {
+        learned += basis_u(s, v, k) * y[k * 9];
+        magnitude[v] += std::fabs(basis_u(s, v, k) * y[k * 9]);
+      }
+      const double t00 = learned + (model == 1 ? unoccluded : 0.0);
+      crossing += t00 < 0.0 || t00 > unoccluded;
+    }
+    EXPECT_GT(crossing, 0u) << "model " << model << ": nothing to clamp";
+    for (prt_backend backend : {PRT_BACKEND_CPU, PRT_BACKEND_SIMD}) {
+      std::vector<float> t(s.vertices * 9);
+      const prt_pose_input pose = pose_of(r);
+      const prt_result result =
+          prt_pose_transfer(a.get(), backend, &pose, nullptr, 0, s.vertices, t.data());
+      if (backend == PRT_BACKEND_SIMD && result == PRT_ERROR_UNSUPPORTED_BACKEND) continue;
+      ASSERT_EQ(result, PRT_OK);
+      // The clamp corrects the backend's float sum by a double one: within the sum's rounding
+      // (as DirectModelMatchesTheSpec bounds it) and one more of the bound.
+      for (uint32_t v = 0; v < s.vertices; ++v) {
+        const double slack = 3 * kU * magnitude[v] + kU * unoccluded;
+        EXPECT_GE(t[v * 9], -slack) << model << " " << v;
+        EXPECT_LE(t[v * 9], unoccluded + slack) << model << " " << v;
+      }
+    }
   }
 }
 
