@@ -10,6 +10,7 @@ typedef int prt_gl_common_unused; /* ISO C forbids an empty translation unit */
 #include <string.h>
 
 #include "gl_common.h"
+#include "techniques.h"
 
 #define LOG_EXCERPT 300
 
@@ -62,6 +63,33 @@ prt_result prt_gl_open(prt_context* context, const char* function, prt_gl_loader
 
 int prt_gl_allowed(const prt_context* context) {
   return context->backend_limit == PRT_BACKEND_AUTO || context->backend_limit >= PRT_BACKEND_GL;
+}
+
+prt_result prt_gl_check_create(prt_context* context, const char* function, const prt_asset* asset,
+                               const void* loader, const void* out_shader, prt_technique technique,
+                               const char* tag, const void** out_view) {
+  if (!context) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!asset || !loader || !out_shader)
+    return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
+                             "%s: asset, loader and out_shader must not be NULL", function);
+  if (!prt_gl_allowed(context))
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "%s: the context's backend limit (%s) excludes gl", function,
+                             prt_backend_name(context->backend_limit));
+  *out_view = prt_internal_view(asset, technique);
+  if (!*out_view)
+    return prt_internal_fail(context, PRT_ERROR_NOT_FOUND, "%s: the asset has no %s section",
+                             function, tag);
+  return PRT_OK;
+}
+
+void prt_gl_read_radiance(const prt_gl_functions* gl, prt_GLuint buffer, uint32_t first,
+                          uint32_t count, float* out_rgb) {
+  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, buffer);
+  gl->GetBufferSubData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLintptr)(12u * (size_t)first),
+                       (prt_GLsizeiptr)(12u * (size_t)count), out_rgb);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
 }
 
 prt_result prt_gl_check_block_sizes(prt_context* context, const prt_gl_functions* gl,

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* Private to the runtime: what every GL compute backend (sh/sh_gl.c, wavelet/wavelet_gl.c) does the
- * same way — loading the entry points, checking the context, compiling the program, uploading
- * little-endian words and checking the upload. Only compiled with PRT_HAS_GL. Every function
- * that can fail records the failure in `context` with `function` (the public entry point, e.g.
- * "prt_gl_sh_create") at the start of the message. */
+/* Private to the runtime: what every GL compute backend (sh, wavelet and pose's <t>_gl.c) does the
+ * same way — checking the create call's arguments, loading the entry points, checking the context,
+ * compiling the program, uploading little-endian words and checking the upload. Only compiled with
+ * PRT_HAS_GL. Every function that can fail records the failure in `context` with `function` (the
+ * public entry point, e.g. "prt_gl_sh_create") at the start of the message. */
 #ifndef PRT_RUNTIME_GL_COMMON_H
 #define PRT_RUNTIME_GL_COMMON_H
 
@@ -21,6 +21,18 @@ prt_result prt_gl_open(prt_context* context, const char* function, prt_gl_loader
 
 /* GL is allowed when the context's backend limit is AUTO (none) or GL. */
 int prt_gl_allowed(const prt_context* context);
+
+/* The checks every prt_gl_<t>_create starts with: a context, non-NULL asset, loader and
+ * out_shader, GL allowed by the context, and the technique's section present (`tag` names it in
+ * the message). PRT_OK with the technique's view in *out_view, or the failure recorded. */
+prt_result prt_gl_check_create(prt_context* context, const char* function, const prt_asset* asset,
+                               const void* loader, const void* out_shader, prt_technique technique,
+                               const char* tag, const void** out_view);
+
+/* Reads RGB floats of vertices [first, first+count) from the radiance SSBO `buffer` into out_rgb
+ * after the writes that made them (prt_gl_<t>_read). */
+void prt_gl_read_radiance(const prt_gl_functions* gl, prt_GLuint buffer, uint32_t first,
+                          uint32_t count, float* out_rgb);
 
 /* Every SSBO must fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE and stay below 4 GiB (the shaders index
  * with uint). `names` describes the buffers in the message. UNSUPPORTED_BACKEND otherwise. */

@@ -204,18 +204,9 @@ prt_result prt_gl_wavelet_create(prt_context* context, const prt_asset* asset,
   const char* const names[2] = {"light and transfer", "radiance"};
   prt_result r;
   if (out_shader) *out_shader = NULL;
-  if (!context) return PRT_ERROR_INVALID_ARGUMENT;
-  if (!asset || !loader || !out_shader)
-    return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
-                             "%s: asset, loader and out_shader must not be NULL", kCreate);
-  if (!prt_gl_allowed(context))
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "%s: the context's backend limit (%s) excludes gl", kCreate,
-                             prt_backend_name(context->backend_limit));
-  view = (const prt_wavelet_view*)prt_internal_view(asset, PRT_TECHNIQUE_WAVELET);
-  if (!view)
-    return prt_internal_fail(context, PRT_ERROR_NOT_FOUND, "%s: the asset has no WVLT section",
-                             kCreate);
+  r = prt_gl_check_create(context, kCreate, asset, (const void*)loader, out_shader,
+                          PRT_TECHNIQUE_WAVELET, "WVLT", (const void**)&view);
+  if (r != PRT_OK) return r;
   memset(&local, 0, sizeof local);
   local.allocator = asset->allocator;
   local.section = view->section;
@@ -300,17 +291,12 @@ uint32_t prt_gl_wavelet_output_buffer(const prt_gl_wavelet_shader* shader) {
 
 prt_result prt_gl_wavelet_read(prt_gl_wavelet_shader* shader, uint32_t first_vertex,
                                uint32_t vertex_count, float* out_rgb) {
-  const prt_gl_functions* gl;
   if (!shader || (!out_rgb && vertex_count > 0) ||
       !range_inside(shader, first_vertex, vertex_count))
     return PRT_ERROR_INVALID_ARGUMENT;
-  if (vertex_count == 0) return PRT_OK;
-  gl = &shader->gl;
-  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
-  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, shader->buffers[BUFFER_RADIANCE]);
-  gl->GetBufferSubData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLintptr)(12u * (size_t)first_vertex),
-                       (prt_GLsizeiptr)(12u * (size_t)vertex_count), out_rgb);
-  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+  if (vertex_count > 0)
+    prt_gl_read_radiance(&shader->gl, shader->buffers[BUFFER_RADIANCE], first_vertex, vertex_count,
+                         out_rgb);
   return PRT_OK;
 }
 
