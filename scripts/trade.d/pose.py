@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: MIT
 """The figure of `prt-bake trade pose` for scripts/plot_trade.py: shaded error on the test frames
 against model bytes under the first map and under the directional light (one line per model and
-pose dimension p; horizontal: the mean-pose baseline and the unshadowed part alone; dotted: the
-basis projection, the best any regression onto the residual model's basis could reach), the
+pose dimension p; horizontal: the mean-pose baseline, the unshadowed part alone and the visibility
+oracle; dotted: the basis projection, the best any regression onto the residual model's basis could reach), the
 cross-validation curve of alpha (alpha.csv beside trade.csv, like the paper's Fig. 3), and the
 shading time of every vertex against model bytes."""
 import csv
@@ -32,7 +32,8 @@ def _lines_vs_bytes(ax, rows, light):
         points.sort()
         ax.plot([x for x, _ in points], [y for _, y in points], ":", color="C1",
                 label="basis projection (bound)")
-    for style, model in (("--", "mean pose"), ("-.", "unshadowed only")):
+    for style, model in (("--", "mean pose"), ("-.", "unshadowed only"),
+                         (":", "visibility oracle")):
         for r in rows:
             if r["model"] == model:
                 ax.axhline(100 * r["shaded_rel_rmse"], linestyle=style, color="grey",

@@ -2,12 +2,12 @@
 // prt-bake trade pose CHARACTER --env MAP ... --out-dir DIR: the measured trade of technique
 // `pose` (docs/pose/trade.md). The character's clips are baked frame by frame once; the frames
 // are split into training and test frames (held-out clips, the clip's halves, or even and odd
-// frames); the mean-pose baseline, the paper's model (frame cross-validation, no clamping) and
-// the residual model (clip or block cross-validation, clamped) are fitted on the training frames
-// at each (p, q) swept and measured on the test frames against their baked transfer: transfer
-// error Σ|Δt|²/Σ|t|², and shaded relative RMSE under each map and under a narrow directional
-// light (both fixed in the model frame). Each model is written to a blob, loaded through the
-// runtime and timed shading every vertex. Writes DIR/trade.csv, trade.md and alpha.csv.
+// frames); the mean-pose baseline, a visibility oracle, the paper's model (frame cross-validation,
+// no clamping) and the residual model (clip or block cross-validation, clamped) are fitted on the
+// training frames at each (p, q) swept and measured on the test frames against their baked
+// transfer: transfer error Σ|Δt|²/Σ|t|², and shaded relative RMSE under each map and under a narrow
+// directional light (both fixed in the model frame). Each model is written to a blob, loaded
+// through the runtime and timed shading every vertex. Writes DIR/trade.csv, trade.md and alpha.csv.
 #include <prt/format/pose_layout.h>
 #include <prt/prt.h>
 #include <prt/prt_sh.h>
@@ -183,6 +183,50 @@ Row unshadowed_row(const PoseTrainingSet& set, const std::vector<std::size_t>& t
   return row;
 }
 
+// Each vertex's visibility scalar k = <t, u> / <u, u> of transfer t on its exact part u.
+double visibility_scalar(const float* t, const float* u, std::size_t C) {
+  double tu = 0.0, uu = 0.0;
+  for (std::size_t c = 0; c < C; ++c) {
+    tu += double(t[c]) * u[c];
+    uu += double(u[c]) * u[c];
+  }
+  return uu > 0.0 ? tu / uu : 0.0;
+}
+
+// What bounds every model that predicts how much of the exact part a vertex sees: each test
+// frame's own visibility scalars (fitted to its bake: an oracle no model has), plus the training
+// frames' mean of what the scalars leave.
+Row visibility_oracle_row(const PoseTrainingSet& set, const std::vector<std::size_t>& train,
+                          const std::vector<std::size_t>& test, const std::vector<Light>& lights) {
+  const std::size_t V = set.vertex_count, C = set.coefficient_count();
+  std::vector<double> rest(V * C, 0.0);
+  for (std::size_t f : train) {
+    const std::vector<float> u = unshadowed_frame(set, f);
+    const float* t = set.frame_transfer(f);
+    for (std::size_t v = 0; v < V; ++v) {
+      const double k = visibility_scalar(t + v * C, u.data() + v * C, C);
+      for (std::size_t c = 0; c < C; ++c) rest[v * C + c] += t[v * C + c] - k * u[v * C + c];
+    }
+  }
+  for (double& r : rest) r /= double(train.size());
+  Row row;
+  row.model = "visibility oracle";
+  measure(
+      set, test, lights,
+      [&](std::size_t f) {
+        std::vector<float> out = unshadowed_frame(set, f);
+        const float* t = set.frame_transfer(f);
+        for (std::size_t v = 0; v < V; ++v) {
+          const double k = visibility_scalar(t + v * C, out.data() + v * C, C);
+          for (std::size_t c = 0; c < C; ++c)
+            out[v * C + c] = float(k * out[v * C + c] + rest[v * C + c]);
+        }
+        return out;
+      },
+      row);
+  return row;
+}
+
 void time_runtime(const Scene& scene, const PoseTrainingSet& set, const PoseModel& model,
                   std::size_t frame, const Light& light, int frames, Row& row) {
   prt::format::BlobWriter writer = start_technique_blob(scene, "");
@@ -268,6 +312,7 @@ class PoseTrade final : public TechniqueTrade {
     split_frames(set, o_, train, test);
     rows_.push_back(baseline_row(set, train, test, lights_));
     rows_.push_back(unshadowed_row(set, test, lights_));
+    rows_.push_back(visibility_oracle_row(set, train, test, lights_));
     for (std::uint32_t p : o_.pose_dims) {
       for (std::uint32_t q : o_.basis_dims) {
         fit_and_measure(scene, set, train, test, p, q, input, ctx, PoseModelKind::Direct);
@@ -380,9 +425,9 @@ class PoseTrade final : public TechniqueTrade {
     // scripts/trade.d/pose.py; trade.md is the wide table.
     const std::string csv_path = input.out_dir + "/trade.csv";
     std::ofstream csv(csv_path);
-    write_csv_row(csv, {"model", "p", "q", "alpha", "model_bytes", "training_share", "frame_share",
-                        "transfer_error", "map", "shaded_rel_rmse", "shade_cpu_ms",
-                        "shade_simd_ms"});
+    write_csv_row(csv,
+                  {"model", "p", "q", "alpha", "model_bytes", "training_share", "frame_share",
+                   "transfer_error", "map", "shaded_rel_rmse", "shade_cpu_ms", "shade_simd_ms"});
     for (const Row& row : rows_) {
       const std::vector<std::string> c = cells(row, frame_bytes, training_bytes);
       for (std::size_t l = 0; l < lights_.size(); ++l) {

@@ -59,15 +59,15 @@ TEST_F(PoseTradeCli, RowsBoundsAndRepeats) {
     EXPECT_TRUE(fs::exists(dir_ / "a" / file)) << file;
   const Table rows = prt_test::read_csv(dir_ / "a" / "trade.csv");
 
-  // Per light (the map and the directional light): mean pose, unshadowed only, and per q the
-  // paper's model, the residual model and its basis projection.
+  // Per light (the map and the directional light): mean pose, unshadowed only, the visibility
+  // oracle, and per q the paper's model, the residual model and its basis projection.
   std::map<std::string, std::set<std::string>> models_by_light;
   std::map<std::string, std::map<std::string, double>> transfer_error;  // model -> q -> error
   for (const auto& row : rows) {
     models_by_light[row.at("map")].insert(row.at("model") + "/" + row.at("q"));
     transfer_error[row.at("model")][row.at("q")] = number(row, "transfer_error");
     const std::string& model = row.at("model");
-    if (model == "paper (direct)" || model == "residual") {
+    if (model == "paper (direct)" || model == "residual" || model == "visibility oracle") {
       EXPECT_LT(number(row, "shaded_rel_rmse"), 1.0) << model << " q " << row.at("q");
     }
     if (model == "mean pose") {
@@ -76,8 +76,9 @@ TEST_F(PoseTradeCli, RowsBoundsAndRepeats) {
     }
   }
   const std::set<std::string> expected = {
-      "mean pose/", "unshadowed only/", "paper (direct)/1",   "paper (direct)/2",
-      "residual/1", "residual/2",       "basis projection/1", "basis projection/2"};
+      "mean pose/",       "unshadowed only/",   "visibility oracle/",
+      "paper (direct)/1", "paper (direct)/2",   "residual/1",
+      "residual/2",       "basis projection/1", "basis projection/2"};
   ASSERT_EQ(models_by_light.size(), 2u);
   for (const auto& [light, models] : models_by_light) EXPECT_EQ(models, expected) << light;
   // The projection is the least-squares fit of each test frame onto the (unquantised) basis;
