@@ -9,7 +9,9 @@
 #include <prt/baker/cloth/cloth_blob.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -357,6 +359,41 @@ TEST(ClothBlob, WholeBlobRefusesABadMesh) {
   refused([](auto& m) { m.triangles[4] = 4; }, "index 4 is not below the vertex count");
   refused([](auto& m) { m.tangents[5] = INFINITY; }, "not finite");
   refused([](auto& m) { m.triangles.pop_back(); }, "multiple of 3");
+}
+
+// Raw (uncompressed) blobs of the encoder's section and a mesh with VTAN for the second reader
+// written from SPEC.md alone (tests/format/spec_reader.py): one valid, one with a value -128.
+// Written where PRT_CLOTH_RAW_BLOB says (the ctest fixture), each checked by the runtime here.
+TEST(ClothBlob, RawBlobsForTheSpecReader) {
+  const ClothSection s = random_section(11);
+  const prt::bake::ClothMesh mesh = small_mesh();
+  Bytes section = prt::bake::encode_clth_section(s, 8);
+  const auto raw_blob = [&](const Bytes& clth) {
+    prt::format::BlobWriter w;
+    prt::format::SectionOptions required;
+    required.required = true;
+    w.add_section(PRT_BLOB_TAG_VPOS, mesh.positions.data(), mesh.positions.size() * 4, 4, required);
+    w.add_section(PRT_BLOB_TAG_VTAN, mesh.tangents.data(), mesh.tangents.size() * 4, 4);
+    w.add_section(PRT_BLOB_TAG_TRIS, mesh.triangles.data(), mesh.triangles.size() * 4, 2, required);
+    w.add_section(PRT_BLOB_TAG_CLTH, clth.data(), clth.size(), s.fabrics.size(), required);
+    return w.finish();
+  };
+  const Bytes good = raw_blob(section);
+  prt_blob_clth_header h{};
+  prt_blob_clth_layout l{};
+  prt_blob_clth_read_header(section.data(), &h);
+  ASSERT_EQ(prt_blob_clth_layout_of(&h, &l), 1);
+  section[l.data + 8 * s.tables[0].full.rank] = 0x80;  // table 0 T's first V value: -128
+  const Bytes bad = raw_blob(section);
+  Context ctx;
+  EXPECT_EQ(validate(ctx.ctx, good, PRT_VALIDATE_FULL), PRT_OK);
+  EXPECT_EQ(validate(ctx.ctx, bad, PRT_VALIDATE_FULL), PRT_ERROR_CORRUPT);
+  const char* path = std::getenv("PRT_CLOTH_RAW_BLOB");
+  if (!path) return;
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(good.data()), std::streamsize(good.size()));
+  std::ofstream(std::string(path) + ".bad", std::ios::binary)
+      .write(reinterpret_cast<const char*>(bad.data()), std::streamsize(bad.size()));
 }
 
 }  // namespace
