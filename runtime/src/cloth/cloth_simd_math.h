@@ -142,16 +142,17 @@ static inline __m256 prt_v8_log(__m256 x) {
 
 /* ---- Sine and cosine ------------------------------------------------------------------------- */
 
-/* sin x and cos x within 1e-7 (absolute) for |x| <= 65536 (beyond, the three-part pi/2 loses
- * accuracy); sin(-0) = -0; NaN for +-inf and NaN. */
+/* sin x and cos x within 1e-7 (absolute) for |x| <= 2^18 (beyond, k = round(|x| 2/pi) taken in
+ * float can miss by one, leaving r outside the polynomials' range); sin(-0) = -0; NaN for +-inf
+ * and NaN. */
 static inline void prt_v8_sincos(__m256 x, __m256* s, __m256* c) {
   const __m256 ax = prt_v8_abs(x);
   const __m256 k = _mm256_round_ps(_mm256_mul_ps(ax, PRT_V8_CONST(6.366197467e-01f)),
                                    _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-  /* r = |x| - k pi/2 in [-pi/4, pi/4]: the first step is exact with FMA. */
+  /* r = |x| - k pi/2 in [-pi/4, pi/4], pi/2 in two floats: the first step is exact with FMA, and
+   * the third float of pi/2 would change r by under k 2^-48. */
   __m256 r = _mm256_fnmadd_ps(k, PRT_V8_CONST(1.570796371e+00f), ax);
   r = _mm256_fnmadd_ps(k, PRT_V8_CONST(-4.371138829e-08f), r);
-  r = _mm256_fnmadd_ps(k, PRT_V8_CONST(-1.715124510e-15f), r);
   const __m256 r2 = _mm256_mul_ps(r, r);
   /* sin r = r + r^3 S(r^2), cos r = 1 - r^2 / 2 + r^4 C(r^2). */
   __m256 sp = PRT_V8_CONST(-1.949595753e-04f);

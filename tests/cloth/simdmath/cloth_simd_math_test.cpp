@@ -254,7 +254,7 @@ std::pair<Worst, Worst> sweep_sincos(const std::vector<float>& xs) {
   return {ws, wc};
 }
 
-TEST_F(SimdMath, SinCosWithinAbsoluteBoundUpTo65536) {
+TEST_F(SimdMath, SinCosWithinAbsoluteBoundUpToTwoToThe18) {
   // Around each multiple of pi/2 up to 64: the reduction's hardest inputs.
   std::vector<float> near_axes;
   for (int k = -41; k <= 41; ++k) {
@@ -264,9 +264,9 @@ TEST_F(SimdMath, SinCosWithinAbsoluteBoundUpTo65536) {
       near_axes.push_back(std::copysign(from_bits(uint32_t(int64_t(b) + d)), float(k)));
   }
   const auto [ws, wc] = sweep_sincos(
-      joined({linear(-64, 64, 4000000), near_axes, by_bits(0x1p-149f, 65536, 509, true)}));
-  ws.print("sin |x| <= 65536", Measure::kAbsolute);
-  wc.print("cos |x| <= 65536", Measure::kAbsolute);
+      joined({linear(-64, 64, 4000000), near_axes, by_bits(0x1p-149f, 0x1p18f, 509, true)}));
+  ws.print("sin |x| <= 2^18", Measure::kAbsolute);
+  wc.print("cos |x| <= 2^18", Measure::kAbsolute);
   EXPECT_LE(ws.error, 1e-7) << "at x = " << ws.x;
   EXPECT_LE(wc.error, 1e-7) << "at x = " << wc.x;
 }
