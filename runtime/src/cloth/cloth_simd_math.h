@@ -305,6 +305,17 @@ static inline __m256 prt_v8_normal_cdf(__m256 z) {
                        _mm256_sub_ps(PRT_V8_CONST(1.0f), half_tail));
 }
 
+/* Phi(b) - Phi(a) for a <= b, both terms taken on the side of 0 where the interval's midpoint is
+ * not (Phi(b) - Phi(a) = Phi(-a) - Phi(-b)), so that neither is near 1 and a mass in either tail
+ * keeps its relative accuracy: within 12 ulp of the larger of the two terms; NaN for NaN. */
+static inline __m256 prt_v8_normal_cdf_diff(__m256 a, __m256 b) {
+  const __m256 flip = _mm256_cmp_ps(_mm256_add_ps(a, b), _mm256_setzero_ps(), _CMP_GT_OQ);
+  const __m256 neg_a = _mm256_xor_ps(a, PRT_V8_CONST(-0.0f)),
+               neg_b = _mm256_xor_ps(b, PRT_V8_CONST(-0.0f));
+  return _mm256_sub_ps(prt_v8_normal_cdf(prt_v8_select(flip, neg_a, b)),
+                       prt_v8_normal_cdf(prt_v8_select(flip, neg_b, a)));
+}
+
 /* The limit prt_v8_normal_quantile's results are clamped to: Phi(-8.5) is about 1e-17. */
 #define PRT_V8_NORMAL_QUANTILE_LIMIT 8.5f
 

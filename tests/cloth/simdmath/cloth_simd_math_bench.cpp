@@ -128,6 +128,24 @@ int main() {
     row("atan2", v, sf, sd);
   }
   {
+    // Phi(b) - Phi(a): two erfc calls per element in libm.
+    const std::vector<float> a = uniform(-8, 8, seed++), w = uniform(0, 1, seed++);
+    std::vector<float> b(kCount);
+    for (size_t i = 0; i < kCount; ++i) b[i] = a[i] + w[i];
+    const double v = ns_per_eight([&] {
+      eval_binary(Binary::kNormalCdfDiff, a.data(), b.data(), nullptr, out.data(), kCount);
+    });
+    const double sf = ns_per_eight([&] {
+      for (size_t i = 0; i < kCount; ++i) out[i] = normal_cdf_f(b[i]) - normal_cdf_f(a[i]);
+      asm volatile("" : : "r"(out.data()) : "memory");
+    });
+    const double sd = ns_per_eight([&] {
+      for (size_t i = 0; i < kCount; ++i) out[i] = float(normal_cdf_d(b[i]) - normal_cdf_d(a[i]));
+      asm volatile("" : : "r"(out.data()) : "memory");
+    });
+    row("normal_cdf_diff", v, sf, sd);
+  }
+  {
     // libm has no inverse normal CDF: only the vector figure.
     const std::vector<float> p = uniform(1e-7f, 1 - 1e-7f, seed++);
     const double v =

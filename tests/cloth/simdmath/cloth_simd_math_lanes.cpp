@@ -58,6 +58,8 @@ __m256 apply(Binary f, __m256 a, __m256 b, __m256 mask) {
   switch (f) {
     case Binary::kAtan2:
       return prt_v8_atan2(a, b);
+    case Binary::kNormalCdfDiff:
+      return prt_v8_normal_cdf_diff(a, b);
     case Binary::kMin:
       return prt_v8_min(a, b);
     case Binary::kMax:
@@ -118,6 +120,7 @@ void eval_binary(Binary f, const float* a, const float* b, const float* mask, fl
     binary_loop<Binary::name>(a, b, mask, out, n); \
     return;
     PRT_CASE(kAtan2)
+    PRT_CASE(kNormalCdfDiff)
     PRT_CASE(kMin)
     PRT_CASE(kMax)
     PRT_CASE(kSelect)

@@ -409,6 +409,54 @@ TEST_F(SimdMath, NormalCdfSpecialValues) {
   EXPECT_TRUE(std::isnan(one(Unary::kNormalCdf, kNaN)));
 }
 
+// Phi(b) - Phi(a) in double from erfc when both are on one side of 0 (both terms tails), from erf
+// across it (each term near 1/2): no cancellation that float would see.
+double ref_normal_cdf_diff(double a, double b) {
+  const double s = 1 / std::sqrt(2.0);
+  if (a >= 0) return 0.5 * (std::erfc(a * s) - std::erfc(b * s));
+  if (b <= 0) return 0.5 * (std::erfc(-b * s) - std::erfc(-a * s));
+  return 0.5 * (std::erf(b * s) - std::erf(a * s));
+}
+
+TEST_F(SimdMath, NormalCdfDiffWithinTwelveUlpOfTheLargerTermInBothTails) {
+  // Intervals of every width (down to adjacent floats) at every position over [-14.9, 14.9].
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> position(-14.9f, 14.9f);
+  std::uniform_real_distribution<float> log_width(-7, 1.5f);
+  std::vector<float> as, bs;
+  for (float a : linear(-14.9, 14.9, 20000)) {
+    as.push_back(a);
+    bs.push_back(std::nextafter(a, kInf));  // the next float up
+  }
+  while (as.size() < 3000000) {
+    const float a = position(rng), b = a + std::pow(10.0f, log_width(rng));
+    as.push_back(a);
+    bs.push_back(b);
+  }
+  std::vector<float> out(as.size());
+  eval_binary(Binary::kNormalCdfDiff, as.data(), bs.data(), nullptr, out.data(), as.size());
+  Worst w;
+  for (size_t i = 0; i < as.size(); ++i) {
+    // The larger term of the difference the function takes: that of the end nearer 0, folded
+    // to the negative side.
+    const double near = std::min(std::fabs(double(as[i])), std::fabs(double(bs[i])));
+    const bool straddles = as[i] < 0 && bs[i] > 0;
+    const double larger = straddles ? 0.5 : ref_normal_cdf(-near);
+    const double want = ref_normal_cdf_diff(as[i], bs[i]);
+    ++w.count;
+    const double e = std::fabs(out[i] - want) / ulp_of(larger);
+    if (!(e <= w.error)) w.error = e, w.x = as[i], w.x2 = bs[i], w.got = out[i], w.want = want;
+  }
+  w.print("normal_cdf_diff (ulp of larger term)", Measure::kUlp);
+  EXPECT_LE(w.error, 12.0) << "at a = " << w.x << ", b = " << w.x2;
+  // Far in the upper tail, where Phi(b) - Phi(a) taken directly would be 0.
+  const float a = 7, b = 8;
+  float d;
+  eval_binary(Binary::kNormalCdfDiff, &a, &b, nullptr, &d, 1);
+  EXPECT_NEAR(d, ref_normal_cdf_diff(a, b), 12 * ulp_of(ref_normal_cdf(-7)));
+  EXPECT_GT(d, 0);
+}
+
 // ---- the normal quantile -----------------------------------------------------------------------
 
 TEST_F(SimdMath, NormalQuantileWithinAbsoluteBoundFromOneInTenToTheFifteen) {
