@@ -6,10 +6,11 @@
  * Each function reduces its argument the usual way (Cody-Waite by ln 2 or pi/2, exponent split,
  * ratio of the smaller to the larger magnitude) and evaluates a polynomial or rational function
  * whose float coefficients are weighted minimax fits, made for these reductions, of the reduced
- * function. The accuracy stated on each function is the bound its test
- * (tests/cloth/simdmath) checks against libm in double over dense sweeps of the domain. An ulp is
- * that of the exact result rounded to float. No function raises or relies on floating-point
- * exceptions; none changes MXCSR. */
+ * function (tests/cloth/simdmath/fit_coefficients.py refits them). The accuracy stated on each
+ * function is the bound its test (tests/cloth/simdmath) checks against libm in double over dense
+ * sweeps of the domain. An ulp is that of the exact result rounded to float. They assume MXCSR's
+ * defaults (round to nearest, exceptions masked; with FTZ/DAZ set, denormals count as 0) and may
+ * set its sticky status flags. */
 #ifndef PRT_RUNTIME_CLOTH_SIMD_MATH_H
 #define PRT_RUNTIME_CLOTH_SIMD_MATH_H
 
@@ -61,8 +62,8 @@ static inline __m256 prt_v8_pow2i(__m256i n) {
 
 /* ---- Exponential ----------------------------------------------------------------------------- */
 
-/* e^r - 1 - r = r^2 P(r) for |r| <= ln2 / 2, then n = round(x / ln 2) and r = x - n ln 2 in two
- * steps (with FMA, n * float(ln 2) is subtracted exactly); returns 1 + r + r^2 P(r), n in *n. */
+/* e^x = 2^n e^r: n = round(x / ln 2) in *n, r = x - n ln 2 in [-ln2 / 2, ln2 / 2] with ln 2 in two
+ * floats (with FMA, n float(ln 2) is subtracted exactly); returns e^r = 1 + r + r^2 P(r). */
 static inline __m256 prt_v8_exp_reduced(__m256 x, __m256i* n) {
   const __m256 k = _mm256_round_ps(_mm256_mul_ps(x, PRT_V8_CONST(1.442695022e+00f)),
                                    _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
@@ -341,16 +342,16 @@ static inline __m256 prt_v8_normal_quantile(__m256 p) {
   central = prt_v8_fma(central, u, PRT_V8_CONST(3.488025069e-01f));
   central = prt_v8_fma(central, u, PRT_V8_CONST(2.123313427e+00f));
   const __m256 v = _mm256_sub_ps(_mm256_sqrt_ps(w), PRT_V8_CONST(3.0f));
-  __m256 num = PRT_V8_CONST(6.827177393e-02f);
-  num = prt_v8_fma(num, v, PRT_V8_CONST(7.924730077e-01f));
-  num = prt_v8_fma(num, v, PRT_V8_CONST(3.354454521e+00f));
-  num = prt_v8_fma(num, v, PRT_V8_CONST(6.895160395e+00f));
-  num = prt_v8_fma(num, v, PRT_V8_CONST(7.516608138e+00f));
-  num = prt_v8_fma(num, v, PRT_V8_CONST(4.006434343e+00f));
-  __m256 den = PRT_V8_CONST(4.820242631e-02f);
-  den = prt_v8_fma(den, v, PRT_V8_CONST(4.178954994e-01f));
-  den = prt_v8_fma(den, v, PRT_V8_CONST(1.179347959e+00f));
-  den = prt_v8_fma(den, v, PRT_V8_CONST(1.522557499e+00f));
+  __m256 num = PRT_V8_CONST(6.827177107e-02f);
+  num = prt_v8_fma(num, v, PRT_V8_CONST(7.924730182e-01f));
+  num = prt_v8_fma(num, v, PRT_V8_CONST(3.354454517e+00f));
+  num = prt_v8_fma(num, v, PRT_V8_CONST(6.895160198e+00f));
+  num = prt_v8_fma(num, v, PRT_V8_CONST(7.516608238e+00f));
+  num = prt_v8_fma(num, v, PRT_V8_CONST(4.006434441e+00f));
+  __m256 den = PRT_V8_CONST(4.820242524e-02f);
+  den = prt_v8_fma(den, v, PRT_V8_CONST(4.178954959e-01f));
+  den = prt_v8_fma(den, v, PRT_V8_CONST(1.179347992e+00f));
+  den = prt_v8_fma(den, v, PRT_V8_CONST(1.522557497e+00f));
   den = prt_v8_fma(den, v, PRT_V8_CONST(1.0f));
   const __m256 g = prt_v8_select(_mm256_cmp_ps(w, PRT_V8_CONST(5.0f), _CMP_LT_OQ), central,
                                  _mm256_div_ps(num, den));
