@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* Private to the runtime: the few OpenGL 4.3 core types, constants and entry points the GL
- * backend uses, declared here so that the runtime includes no GL header and links no GL
- * library. Values are those of the Khronos registry (GL/glcorearb.h). Every entry point is
- * loaded through the application's prt_gl_loader_fn (gl_common.c). */
+ * backends use (compute for sh, wavelet and pose; a full-screen draw for cloth), declared here so
+ * that the runtime includes no GL header and links no GL library. Values are those of the Khronos
+ * registry (GL/glcorearb.h). Every entry point is loaded through the application's prt_gl_loader_fn
+ * (gl_common.c). */
 #ifndef PRT_RUNTIME_GL_FUNCTIONS_H
 #define PRT_RUNTIME_GL_FUNCTIONS_H
 
@@ -45,6 +46,15 @@ typedef int64_t prt_GLint64;
 #define PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT 0x00000001u
 #define PRT_GL_BUFFER_UPDATE_BARRIER_BIT 0x00000200u
 #define PRT_GL_SHADER_STORAGE_BARRIER_BIT 0x00002000u
+#define PRT_GL_VERTEX_SHADER 0x8B31u
+#define PRT_GL_FRAGMENT_SHADER 0x8B30u
+#define PRT_GL_TRIANGLES 0x0004u
+#define PRT_GL_TEXTURE_2D 0x0DE1u
+#define PRT_GL_TEXTURE0 0x84C0u
+#define PRT_GL_DEPTH_TEST 0x0B71u
+#define PRT_GL_BLEND 0x0BE2u
+#define PRT_GL_CULL_FACE 0x0B44u
+#define PRT_GL_VIEWPORT 0x0BA2u
 
 /* The entry points (gl_common.c loads each one named in kGlFunctions). */
 typedef struct prt_gl_functions {
@@ -81,6 +91,15 @@ typedef struct prt_gl_functions {
                                           prt_GLsizeiptr size, void* data);
   void(PRT_GL_APIENTRY* DispatchCompute)(prt_GLuint x, prt_GLuint y, prt_GLuint z);
   void(PRT_GL_APIENTRY* MemoryBarrier)(prt_GLbitfield barriers);
+  void(PRT_GL_APIENTRY* GenVertexArrays)(prt_GLsizei n, prt_GLuint* arrays);
+  void(PRT_GL_APIENTRY* DeleteVertexArrays)(prt_GLsizei n, const prt_GLuint* arrays);
+  void(PRT_GL_APIENTRY* BindVertexArray)(prt_GLuint array);
+  void(PRT_GL_APIENTRY* ActiveTexture)(prt_GLenum texture);
+  void(PRT_GL_APIENTRY* BindTexture)(prt_GLenum target, prt_GLuint texture);
+  void(PRT_GL_APIENTRY* BindSampler)(prt_GLuint unit, prt_GLuint sampler);
+  void(PRT_GL_APIENTRY* Enable)(prt_GLenum cap);
+  void(PRT_GL_APIENTRY* Disable)(prt_GLenum cap);
+  void(PRT_GL_APIENTRY* DrawArrays)(prt_GLenum mode, prt_GLint first, prt_GLsizei count);
 } prt_gl_functions;
 
 #endif /* PRT_RUNTIME_GL_FUNCTIONS_H */
