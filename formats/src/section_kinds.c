@@ -6,11 +6,13 @@
 
 #include <inttypes.h>
 
+#include <prt/format/cloth_layout.h>
 #include <prt/format/mesh_layout.h>
 #include <prt/format/pose_layout.h>
 #include <prt/format/sh_layout.h>
 #include <prt/format/wavelet_layout.h>
 
+#include "cloth/cloth_section.h"
 #include "mesh/mesh_sections.h"
 #include "pose/pose_section.h"
 #include "reader_internal.h"
@@ -34,6 +36,9 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_VNRM, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_VERTEX, 0,
      PRT_BLOB_VNRM_ELEMENT_SIZE, {0},
      "vertex normals (3 x f32)", "normals", prt_blob_check_finite_f32},
+    {PRT_BLOB_TAG_VTAN, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_VERTEX, 0,
+     PRT_BLOB_VTAN_ELEMENT_SIZE, {0},
+     "vertex tangents (3 x f32)", "tangents", prt_blob_check_finite_f32},
     {PRT_BLOB_TAG_SHTR, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_VERTEX, 0,
      0u, {0},
      "sh transfer (element = vertex)", "transfer vectors", prt_blob_check_shtr},
@@ -43,6 +48,9 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_PSTR, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_VERTEX, 0,
      0u, {0},
      "pose transfer (element = vertex)", "skinned vertices", prt_blob_check_pstr},
+    {PRT_BLOB_TAG_CLTH, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_MATERIAL, 1,
+     0u, {0},
+     "cloth fabrics (element = material)", "fabrics", prt_blob_check_clth},
 };
 /* clang-format on */
 

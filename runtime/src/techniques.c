@@ -8,18 +8,21 @@
 extern const prt_technique_entry prt_sh_technique_entry;      /* sh/sh_section.c */
 extern const prt_technique_entry prt_wavelet_technique_entry; /* wavelet/wavelet_section.c */
 extern const prt_technique_entry prt_pose_technique_entry;    /* pose/pose_section.c */
+extern const prt_technique_entry prt_cloth_technique_entry;   /* cloth/cloth_section.c */
 
 static const prt_technique_entry* const kTechniques[] = {
     &prt_sh_technique_entry,
     &prt_wavelet_technique_entry,
     &prt_pose_technique_entry,
+    &prt_cloth_technique_entry,
 };
 
 #define TECHNIQUE_COUNT (sizeof kTechniques / sizeof kTechniques[0])
 
 PRT_STATIC_ASSERT(PRT_TECHNIQUE_SH < PRT_INTERNAL_MAX_TECHNIQUES &&
                       PRT_TECHNIQUE_WAVELET < PRT_INTERNAL_MAX_TECHNIQUES &&
-                      PRT_TECHNIQUE_POSE < PRT_INTERNAL_MAX_TECHNIQUES,
+                      PRT_TECHNIQUE_POSE < PRT_INTERNAL_MAX_TECHNIQUES &&
+                      PRT_TECHNIQUE_CLOTH < PRT_INTERNAL_MAX_TECHNIQUES,
                   technique_values_fit_a_bit_set);
 
 const prt_technique_entry* prt_internal_technique(prt_technique technique) {

@@ -267,10 +267,12 @@ TEST(SectionKinds, TableIsTheSpecs) {
       {PRT_BLOB_TAG('I', 'N', 'F', 'O'), 1, PRT_BLOB_DOMAIN_NONE},
       {PRT_BLOB_TAG('V', 'P', 'O', 'S'), 12, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('V', 'N', 'R', 'M'), 12, PRT_BLOB_DOMAIN_VERTEX},
+      {PRT_BLOB_TAG('V', 'T', 'A', 'N'), 12, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('T', 'R', 'I', 'S'), 12, PRT_BLOB_DOMAIN_TRIANGLE},
       {PRT_BLOB_TAG('S', 'H', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('W', 'V', 'L', 'T'), 0, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('P', 'S', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
+      {PRT_BLOB_TAG('C', 'L', 'T', 'H'), 0, PRT_BLOB_DOMAIN_MATERIAL},
   };
   EXPECT_EQ(prt_blob_kind_count(), sizeof spec / sizeof spec[0]);
   for (const Row& row : spec) {
@@ -283,6 +285,9 @@ TEST(SectionKinds, TableIsTheSpecs) {
   }
   EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_VERTEX)->tag, PRT_BLOB_TAG_VPOS);
   EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_TRIANGLE)->tag, PRT_BLOB_TAG_TRIS);
+  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_MATERIAL)->tag,
+            PRT_BLOB_TAG('C', 'L', 'T', 'H'));
+  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_OBJECT), nullptr);
   EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_NONE), nullptr);
   EXPECT_EQ(prt_blob_find_kind(PRT_BLOB_TAG_TRIS, 1)->depends_on[0], PRT_BLOB_TAG_VPOS);
 }

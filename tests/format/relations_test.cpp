@@ -51,7 +51,8 @@ std::pair<prt_blob_status, std::string> check(const Bytes& blob) {
 
 const uint32_t kVpos = PRT_BLOB_TAG('V', 'P', 'O', 'S'), kVnrm = PRT_BLOB_TAG('V', 'N', 'R', 'M'),
                kTris = PRT_BLOB_TAG('T', 'R', 'I', 'S'), kShtr = PRT_BLOB_TAG('S', 'H', 'T', 'R'),
-               kWvlt = PRT_BLOB_TAG('W', 'V', 'L', 'T'), kPstr = PRT_BLOB_TAG('P', 'S', 'T', 'R');
+               kWvlt = PRT_BLOB_TAG('W', 'V', 'L', 'T'), kPstr = PRT_BLOB_TAG('P', 'S', 'T', 'R'),
+               kVtan = PRT_BLOB_TAG('V', 'T', 'A', 'N'), kClth = PRT_BLOB_TAG('C', 'L', 'T', 'H');
 
 TEST(KindRelations, ConsistentBlobPasses) {
   const Bytes blob =
@@ -65,6 +66,7 @@ TEST(KindRelations, VertexDomainKindsHaveVposCount) {
     const char* message;
   } cases[] = {
       {{kVnrm, 24, 2}, "'VNRM' has 2 normals for 3 vertices"},
+      {{kVtan, 48, 4}, "'VTAN' has 4 tangents for 3 vertices"},
       {{kShtr, 64, 2}, "'SHTR' has 2 transfer vectors for 3 vertices"},
       {{kWvlt, 64, 4}, "'WVLT' has 4 transfer rows for 3 vertices"},
       {{kPstr, 64, 2}, "'PSTR' has 2 skinned vertices for 3 vertices"},
@@ -83,6 +85,7 @@ TEST(KindRelations, DependentsNeedVpos) {
   } cases[] = {
       {{kTris, 12, 1}, "section 'TRIS' needs a 'VPOS' section"},
       {{kVnrm, 12, 1}, "section 'VNRM' needs a 'VPOS' section"},
+      {{kVtan, 12, 1}, "section 'VTAN' needs a 'VPOS' section"},
       {{kShtr, 64, 1}, "section 'SHTR' needs a 'VPOS' section"},
       {{kWvlt, 64, 1}, "section 'WVLT' needs a 'VPOS' section"},
       {{kPstr, 64, 1}, "section 'PSTR' needs a 'VPOS' section"},
@@ -92,6 +95,14 @@ TEST(KindRelations, DependentsNeedVpos) {
     EXPECT_EQ(st, PRT_BLOB_CORRUPT) << c.message;
     EXPECT_EQ(msg, c.message);
   }
+}
+
+// CLTH counts the material domain: it needs no mesh, and a mesh beside it does not change that.
+TEST(KindRelations, ClothNeedsNoMesh) {
+  auto [st, msg] = check(make_blob({{kClth, 64, 2}}));
+  EXPECT_EQ(st, PRT_BLOB_OK) << msg;
+  std::tie(st, msg) = check(make_blob({{kVpos, 36, 3}, {kVtan, 36, 3}, {kClth, 64, 5}}));
+  EXPECT_EQ(st, PRT_BLOB_OK) << msg;
 }
 
 // The first failing kind is reported in the table's order (TRIS before VNRM), whatever the

@@ -25,11 +25,15 @@ TEST(Technique, EachTechniqueDescribesItself) {
     prt_technique technique;
     const char* name;
     uint32_t tag;
+    prt_element_domain domain;
   };
   const Expected expected[] = {
-      {PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG('S', 'H', 'T', 'R')},
-      {PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG('W', 'V', 'L', 'T')},
-      {PRT_TECHNIQUE_POSE, "pose", PRT_BLOB_TAG('P', 'S', 'T', 'R')},
+      {PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG('S', 'H', 'T', 'R'), PRT_ELEMENT_DOMAIN_VERTEX},
+      {PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG('W', 'V', 'L', 'T'),
+       PRT_ELEMENT_DOMAIN_VERTEX},
+      {PRT_TECHNIQUE_POSE, "pose", PRT_BLOB_TAG('P', 'S', 'T', 'R'), PRT_ELEMENT_DOMAIN_VERTEX},
+      {PRT_TECHNIQUE_CLOTH, "cloth", PRT_BLOB_TAG('C', 'L', 'T', 'H'),
+       PRT_ELEMENT_DOMAIN_MATERIAL},
   };
   for (const Expected& e : expected) {
     prt_technique_info info = prt::sized<prt_technique_info>();
@@ -37,11 +41,12 @@ TEST(Technique, EachTechniqueDescribesItself) {
     EXPECT_EQ(info.technique, e.technique);
     EXPECT_STREQ(info.name, e.name);
     EXPECT_EQ(info.section_tag, e.tag) << e.name;
-    EXPECT_EQ(info.domain, PRT_ELEMENT_DOMAIN_VERTEX) << e.name;
+    EXPECT_EQ(info.domain, e.domain) << e.name;
   }
   EXPECT_EQ(PRT_SECTION_SHTR, expected[0].tag);
   EXPECT_EQ(PRT_SECTION_WVLT, expected[1].tag);
   EXPECT_EQ(PRT_SECTION_PSTR, expected[2].tag);
+  EXPECT_EQ(PRT_SECTION_CLTH, expected[3].tag);
   // Every other value is not a technique of this runtime.
   int known = 0;
   for (uint32_t t = 0; t < 32; ++t) {
@@ -50,7 +55,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
     EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_NOT_FOUND) << t;
     known += r == PRT_OK;
   }
-  EXPECT_EQ(known, 3);
+  EXPECT_EQ(known, 4);
   prt_technique_info info = prt::sized<prt_technique_info>();
   EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_NONE, &info), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_SH, nullptr), PRT_ERROR_INVALID_ARGUMENT);

@@ -30,15 +30,20 @@ static size_t utf8_sequence_length(const uint8_t* p, size_t n) {
   return len;
 }
 
-prt_blob_status prt_blob_check_info(const prt_blob_content* content, char* msg, size_t cap) {
-  const uint8_t* p = content->bytes;
+size_t prt_blob_utf8_error(const uint8_t* p, size_t n) {
   size_t i;
-  for (i = 0; i < content->size;) {
-    size_t len = utf8_sequence_length(p + i, content->size - i);
-    if (len == 0)
-      return prt_blob_fail(PRT_BLOB_CORRUPT, msg, cap, "'INFO' is not UTF-8 (byte %zu)", i);
+  for (i = 0; i < n;) {
+    size_t len = utf8_sequence_length(p + i, n - i);
+    if (len == 0) return i;
     i += len;
   }
+  return n;
+}
+
+prt_blob_status prt_blob_check_info(const prt_blob_content* content, char* msg, size_t cap) {
+  const size_t bad = prt_blob_utf8_error(content->bytes, content->size);
+  if (bad < content->size)
+    return prt_blob_fail(PRT_BLOB_CORRUPT, msg, cap, "'INFO' is not UTF-8 (byte %zu)", bad);
   return PRT_BLOB_OK;
 }
 

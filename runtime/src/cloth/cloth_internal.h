@@ -47,6 +47,9 @@ typedef struct prt_cloth_view {
   prt_blob_clth_header header;
   prt_blob_clth_layout layout;
   const uint8_t* data; /* the section's bytes */
+  /* Each fabric's name, NUL-terminated (what prt_cloth_get_fabric hands out: a stored name of 32
+   * bytes has no NUL of its own). */
+  char names[PRT_BLOB_CLTH_MAX_FABRICS][PRT_BLOB_CLTH_NAME_SIZE + 1];
   /* Offset of each table's two factorisations' data ([q][0]: T, [q][1]: T_c) from data, and
    * their ranks, summed from the table records at load. */
   uint64_t factor_offset[PRT_BLOB_CLTH_MAX_TABLES][2];

@@ -10,6 +10,7 @@
 #include <prt/prt_asset.h>
 #include <prt/prt_backend.h>
 #include <prt/prt_cloth.h>
+#include <prt/prt_cloth_asset.h>
 #include <prt/prt_context.h>
 #include <prt/prt_env.h>
 #include <prt/prt_gl.h>

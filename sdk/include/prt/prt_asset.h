@@ -34,6 +34,7 @@ extern "C" {
 #define PRT_SECTION_INFO PRT_TAG('I', 'N', 'F', 'O') /* UTF-8 text; element = byte */
 #define PRT_SECTION_VPOS PRT_TAG('V', 'P', 'O', 'S') /* float x,y,z per vertex */
 #define PRT_SECTION_VNRM PRT_TAG('V', 'N', 'R', 'M') /* float x,y,z per vertex */
+#define PRT_SECTION_VTAN PRT_TAG('V', 'T', 'A', 'N') /* float x,y,z per vertex: the warp */
 #define PRT_SECTION_TRIS PRT_TAG('T', 'R', 'I', 'S') /* uint32 i0,i1,i2 per triangle */
 
 /* Bits of prt_section_info.flags. */

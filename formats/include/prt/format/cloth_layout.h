@@ -27,6 +27,11 @@ extern "C" {
 #define PRT_BLOB_CLTH_MAX_LEVELS 64u            /* lambda_levels */
 #define PRT_BLOB_CLTH_MAX_RANK 64u              /* rank of one factorisation */
 
+/* pi and pi/2 as the f32 nearest them (each just above the real number), the bounds the ranges
+ * below are checked against: a stored f32 x is in (0, pi] when 0 < x <= PRT_BLOB_CLTH_PI_F32. */
+#define PRT_BLOB_CLTH_PI_F32 3.14159274f
+#define PRT_BLOB_CLTH_HALF_PI_F32 1.57079637f
+
 /* Header, 64 bytes. */
 #define PRT_BLOB_CLTH_OFF_FABRICS 0u       /* u32: F, 1..64 = the section's element count */
 #define PRT_BLOB_CLTH_OFF_TANGENTS 4u      /* u32: G, 1..1024 tangent records */
