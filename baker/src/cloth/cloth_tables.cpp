@@ -79,6 +79,40 @@ void check_fabrics(const std::vector<ClothFabricSource>& fabrics) {
   }
 }
 
+// The tables of each multiset (indices into `tables`), multisets in order of first table.
+std::vector<std::vector<std::size_t>> multiset_groups(const std::vector<ClothTableKey>& tables) {
+  std::vector<std::vector<std::size_t>> groups;
+  for (std::size_t t = 0; t < tables.size(); ++t) {
+    auto same = [&](const std::vector<std::size_t>& g) {
+      return tables[g[0]].offsets == tables[t].offsets &&
+             tables[g[0]].multiplicities == tables[t].multiplicities;
+    };
+    const auto it = std::find_if(groups.begin(), groups.end(), same);
+    if (it == groups.end())
+      groups.push_back({t});
+    else
+      it->push_back(t);
+  }
+  return groups;
+}
+
+// Factors samples[k] (table group[k]) into the section and its report: task 2k takes T, 2k + 1
+// T_c.
+void factor_tables(const std::vector<ClothTableSamples>& samples,
+                   const std::vector<std::size_t>& group, const ClothTablesOptions& options,
+                   const Context& ctx, ClothTablesBake& bake) {
+  const std::uint64_t rows = options.grid.rows(), columns = options.grid.columns();
+  render::parallel_tasks(2 * group.size(), ctx, "cloth tables: factoring", [&](std::size_t task) {
+    const ClothTableSamples& s = samples[task / 2];
+    ClothTable& table = bake.section.tables[group[task / 2]];
+    ClothTableReport& report = bake.tables[group[task / 2]];
+    if (task % 2 == 0)
+      table.full = factor_cloth_table(s.full, rows, columns, options.factor, &report.full);
+    else
+      table.cone = factor_cloth_table(s.cone, rows, columns, options.factor, &report.cone);
+  });
+}
+
 }  // namespace
 
 ClothTablePlan plan_cloth_tables(const std::vector<prt_cloth_weave>& weaves) {
@@ -119,26 +153,22 @@ ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
     bake.section.fabrics[f].threads = plan.threads[f];
   }
 
-  auto start = std::chrono::steady_clock::now();
-  const std::vector<ClothTableSamples> samples =
-      sample_cloth_tables(plan.tables, options.grid, options.sampling, ctx);
-  bake.sample_seconds = seconds_since(start);
-
-  start = std::chrono::steady_clock::now();
-  const std::uint64_t rows = options.grid.rows(), columns = options.grid.columns();
   const std::size_t count = plan.tables.size();
   bake.section.tables.resize(count);
   bake.tables.resize(count);
-  // Task 2t factors table t's T, task 2t + 1 its T_c.
-  render::parallel_tasks(2 * count, ctx, "cloth tables: factoring", [&](std::size_t task) {
-    const ClothTableSamples& s = samples[task / 2];
-    ClothTable& table = bake.section.tables[task / 2];
-    ClothTableReport& report = bake.tables[task / 2];
-    if (task % 2 == 0)
-      table.full = factor_cloth_table(s.full, rows, columns, options.factor, &report.full);
-    else
-      table.cone = factor_cloth_table(s.cone, rows, columns, options.factor, &report.cone);
-  });
+  // One multiset at a time (its tables share their W calls), each factored as soon as sampled so
+  // that only one multiset's samples are held.
+  for (const std::vector<std::size_t>& group : multiset_groups(plan.tables)) {
+    std::vector<ClothTableKey> keys;
+    for (const std::size_t t : group) keys.push_back(plan.tables[t]);
+    auto start = std::chrono::steady_clock::now();
+    const std::vector<ClothTableSamples> samples =
+        sample_cloth_tables(keys, options.grid, options.sampling, ctx);
+    bake.sample_seconds += seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    factor_tables(samples, group, options, ctx, bake);
+    bake.factor_seconds += seconds_since(start);
+  }
   for (std::size_t t = 0; t < count; ++t) {
     ClothTableReport& report = bake.tables[t];
     report.key = plan.tables[t];
@@ -149,7 +179,6 @@ ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
     ctx.info("cloth table " + std::to_string(t) + ": rank " + std::to_string(report.full.rank) +
              " (T), " + std::to_string(report.cone.rank) + " (T_c)");
   }
-  bake.factor_seconds = seconds_since(start);
   return bake;
 }
 
