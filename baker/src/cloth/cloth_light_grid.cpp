@@ -1,0 +1,294 @@
+// SPDX-License-Identifier: MIT
+// The SG light's measures: the map on a lat-long grid, spherical Gaussians smoothed by a vMF
+// kernel (exact), the smoothed map (each grid cell, or block of cells, taken as the vMF lobe
+// with its power, mean direction and spread, so that its second moments survive), and the
+// plain, smoothed and power errors.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cloth_light_detail.hpp"
+
+namespace prt::bake::sg_light {
+
+namespace {
+
+// Where a lobe's mean over a cell needs no samples: below exp(-kCutoff) of its peak.
+constexpr double kCutoff = 30.0;
+// Where a smoothed source adds nothing: its value below exp(-kSmoothedCutoff) of its peak.
+constexpr double kSmoothedCutoff = 40.0;
+constexpr std::uint32_t kMaxCellSamples = 16;
+
+std::uint32_t row_of(std::uint32_t rows, double y) {
+  const double theta = std::acos(std::clamp(y, -1.0, 1.0));
+  return std::min(rows - 1, static_cast<std::uint32_t>(theta / kPi * rows));
+}
+
+std::uint32_t col_of(std::uint32_t cols, double x, double z) {
+  const double u = (std::atan2(x, -z) + kPi) / (2.0 * kPi);
+  return std::min(cols - 1, static_cast<std::uint32_t>(std::max(0.0, u) * cols));
+}
+
+// The mean of a unit-amplitude lobe over cell (row, col) of a grid of `rows`: a midpoint rule on
+// n x n sub-cells, n growing with the lobe's sharpness against the cell's size.
+double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, std::uint32_t col) {
+  const double dtheta = kPi / rows, dphi = kPi / rows;  // cols = 2 rows
+  const double t0 = row * dtheta, t1 = t0 + dtheta, p0 = col * dphi - kPi;
+  const double widest =
+      (t0 < 0.5 * kPi && t1 > 0.5 * kPi) ? 1.0 : std::max(std::sin(t0), std::sin(t1));
+  const double radius = 0.5 * dtheta + 0.5 * widest * dphi;
+  const double d = glm::dot(lobe.axis, cell_centre(rows, row, col));
+  const double nearest = d >= std::cos(radius) ? 1.0 : std::cos(std::acos(d) - radius);
+  if (lobe.sharpness * (1.0 - nearest) > kCutoff) return 0.0;
+  const auto n = std::clamp<std::uint32_t>(
+      static_cast<std::uint32_t>(
+          std::ceil(1.5 * std::sqrt(lobe.sharpness) * std::max(dtheta, widest * dphi))),
+      1, kMaxCellSamples);
+  if (n == 1) return std::exp(lobe.sharpness * (d - 1.0));
+  double sum = 0.0;
+  for (std::uint32_t j = 0; j < n; ++j) {
+    const double ta = t0 + dtheta * j / n, tb = t0 + dtheta * (j + 1) / n;
+    const double t = 0.5 * (ta + tb), band = std::cos(ta) - std::cos(tb);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double p = p0 + dphi * (i + 0.5) / n;
+      const glm::dvec3 w{std::sin(t) * std::sin(p), std::cos(t), -std::sin(t) * std::cos(p)};
+      sum += band * std::exp(lobe.sharpness * (glm::dot(lobe.axis, w) - 1.0));
+    }
+  }
+  return sum / n / (std::cos(t0) - std::cos(t1));
+}
+
+// A block of b x b grid cells as a smoothed source: the vMF lobe with its power, mean direction
+// and spread.
+std::vector<Lobe> block_sources(const MapGrid& grid, std::uint32_t b) {
+  std::vector<Lobe> sources;
+  for (std::uint32_t r0 = 0; r0 < grid.rows; r0 += b) {
+    for (std::uint32_t c0 = 0; c0 < grid.cols; c0 += b) {
+      glm::dvec3 power{0.0}, resultant{0.0};
+      double weight = 0.0;
+      for (std::uint32_t r = r0; r < std::min(grid.rows, r0 + b); ++r) {
+        for (std::uint32_t c = c0; c < std::min(grid.cols, c0 + b); ++c) {
+          const std::size_t k = std::size_t(r) * grid.cols + c;
+          power += grid.power[k];
+          resultant += grid.resultant[k];
+          weight += grid.weight[k];
+        }
+      }
+      const double length = glm::length(resultant);
+      if (!(weight > 0.0) || !(length > 0.0)) continue;
+      Lobe source;
+      source.axis = resultant / length;
+      source.sharpness = sharpness_of_resultant(std::min(1.0, length / weight), 1e-3, 1e9);
+      source.rgb = power / lobe_integral(source.sharpness);
+      sources.push_back(source);
+    }
+  }
+  return sources;
+}
+
+// The smoothed sum of lobes at v (sources that cannot reach it skipped).
+glm::dvec3 smoothed_sum(const std::vector<Lobe>& lobes, double kappa, const glm::dvec3& v) {
+  glm::dvec3 sum{0.0};
+  for (const Lobe& lobe : lobes) {
+    const double t = glm::dot(lobe.axis, v), l = lobe.sharpness;
+    const double rho = std::sqrt(std::max(0.0, l * l + kappa * kappa + 2.0 * l * kappa * t));
+    if (2.0 * l * kappa * (t - 1.0) / (rho + l + kappa) < -kSmoothedCutoff) continue;
+    sum += lobe.rgb * smoothed_lobe(l, kappa, t);
+  }
+  return sum;
+}
+
+}  // namespace
+
+std::vector<Lobe> to_lobes(const std::vector<prt_cloth_lobe>& lobes) {
+  std::vector<Lobe> out;
+  for (const prt_cloth_lobe& l : lobes) {
+    Lobe lobe;
+    lobe.axis = glm::normalize(glm::dvec3(l.axis[0], l.axis[1], l.axis[2]));
+    lobe.sharpness = l.sharpness;
+    lobe.rgb = glm::dvec3(l.rgb[0], l.rgb[1], l.rgb[2]);
+    out.push_back(lobe);
+  }
+  return out;
+}
+
+std::vector<prt_cloth_lobe> to_cloth_lobes(const std::vector<Lobe>& lobes) {
+  std::vector<prt_cloth_lobe> out;
+  for (const Lobe& lobe : lobes) {
+    const glm::dvec3 axis = glm::normalize(lobe.axis);
+    prt_cloth_lobe l{};
+    for (int c = 0; c < 3; ++c) {
+      l.axis[c] = static_cast<float>(axis[c]);
+      l.rgb[c] = static_cast<float>(std::min<double>(lobe.rgb[c], 3.4e38));
+    }
+    l.sharpness = static_cast<float>(
+        std::clamp<double>(lobe.sharpness, PRT_CLOTH_MIN_SHARPNESS, PRT_CLOTH_MAX_SHARPNESS));
+    out.push_back(l);
+  }
+  return out;
+}
+
+glm::dvec3 cell_centre(std::uint32_t rows, std::uint32_t row, std::uint32_t col) {
+  const double t = kPi * (row + 0.5) / rows, p = kPi * (col + 0.5) / rows - kPi;
+  return {std::sin(t) * std::sin(p), std::cos(t), -std::sin(t) * std::cos(p)};
+}
+
+double cell_solid_angle(std::uint32_t rows, std::uint32_t row) {
+  return kPi / rows * (std::cos(kPi * row / rows) - std::cos(kPi * (row + 1) / rows));
+}
+
+MapGrid grid_of(const io::EnvMap& map, std::uint32_t rows) {
+  MapGrid grid;
+  grid.rows = rows;
+  grid.cols = 2 * rows;
+  const std::size_t cells = std::size_t(grid.rows) * grid.cols;
+  grid.power.assign(cells, glm::dvec3(0.0));
+  grid.weight.assign(cells, 0.0);
+  grid.resultant.assign(cells, glm::dvec3(0.0));
+  grid.solid_angle.assign(cells, 0.0);
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      glm::vec3 dir;
+      float solid_angle = 0.0f;
+      if (!map.texel(x, y, &dir, &solid_angle)) continue;
+      const glm::dvec3 d = glm::normalize(glm::dvec3(dir));
+      const std::size_t k =
+          std::size_t(row_of(grid.rows, d.y)) * grid.cols + col_of(grid.cols, d.x, d.z);
+      const glm::dvec3 power = glm::dvec3(map.texel_value(x, y)) * double(solid_angle);
+      const double weight = power.x + power.y + power.z;
+      grid.solid_angle[k] += solid_angle;
+      grid.power[k] += power;
+      grid.weight[k] += weight;
+      grid.resultant[k] += weight * d;
+      grid.total_power += power;
+    }
+  }
+  return grid;
+}
+
+double sharpness_of_resultant(double r, double lo, double hi) {
+  const auto resultant = [](double l) { return 1.0 / std::tanh(l) - 1.0 / l; };
+  if (!(r > resultant(lo))) return lo;
+  if (r >= resultant(hi)) return hi;
+  double l = std::clamp(r * (3.0 - r * r) / (1.0 - r * r), lo, hi);
+  for (int i = 0; i < 32; ++i) {
+    const double s = std::sinh(l);
+    const double slope = 1.0 / (l * l) - (s > 1e150 ? 0.0 : 1.0 / (s * s));
+    const double next = std::clamp(l - (resultant(l) - r) / slope, lo, hi);
+    if (std::fabs(next - l) <= 1e-12 * l) return next;
+    l = next;
+  }
+  return l;
+}
+
+double lobe_integral(double sharpness) {
+  return -2.0 * kPi / sharpness * std::expm1(-2.0 * sharpness);
+}
+
+// G = kappa / (1 - e^(-2 kappa)) e^(rho - l - kappa) (1 - e^(-2 rho)) / rho, with
+// rho = |l a + kappa v| and rho - l - kappa = 2 l kappa (t - 1) / (rho + l + kappa).
+void smoothed_lobe_derivatives(double l, double kappa, double t, double* value, double* d_l,
+                               double* d_t) {
+  const double rho = std::sqrt(std::max(0.0, l * l + kappa * kappa + 2.0 * l * kappa * t));
+  const double scale = -kappa / std::expm1(-2.0 * kappa);
+  const double e = std::exp(2.0 * l * kappa * (t - 1.0) / (rho + l + kappa));
+  // u = (1 - e^(-2 rho)) / rho and u' near rho = 0 by their series.
+  double u, du;
+  if (rho < 1e-4) {
+    u = 2.0 - 2.0 * rho + 4.0 / 3.0 * rho * rho;
+    du = -2.0 + 8.0 / 3.0 * rho;
+  } else {
+    u = -std::expm1(-2.0 * rho) / rho;
+    du = 2.0 * std::exp(-2.0 * rho) / rho - u / rho;
+  }
+  *value = scale * e * u;
+  if (d_l) {
+    const double drho_dl = rho > 0.0 ? (l + kappa * t) / rho : 1.0;
+    *d_l = scale * e * ((u + du) * drho_dl - u);
+  }
+  if (d_t) *d_t = rho > 0.0 ? scale * e * (u + du) * l * kappa / rho : 0.0;
+}
+
+double smoothed_lobe(double l, double kappa, double t) {
+  double value;
+  smoothed_lobe_derivatives(l, kappa, t, &value, nullptr, nullptr);
+  return value;
+}
+
+double relative_error(const MapGrid& grid, const std::vector<Lobe>& lobes) {
+  double error = 0.0, norm = 0.0;
+  for (std::uint32_t row = 0; row < grid.rows; ++row) {
+    for (std::uint32_t col = 0; col < grid.cols; ++col) {
+      const std::size_t k = std::size_t(row) * grid.cols + col;
+      if (!(grid.solid_angle[k] > 0.0)) continue;
+      glm::dvec3 model{0.0};
+      for (const Lobe& lobe : lobes) model += lobe.rgb * lobe_cell_mean(lobe, grid.rows, row, col);
+      const glm::dvec3 map = grid.power[k] / grid.solid_angle[k];
+      error += grid.solid_angle[k] * glm::dot(model - map, model - map);
+      norm += grid.solid_angle[k] * glm::dot(map, map);
+    }
+  }
+  return norm > 0.0 ? std::sqrt(error / norm) : 0.0;
+}
+
+double power_error(const MapGrid& grid, const std::vector<Lobe>& lobes) {
+  const double map = grid.total_power.x + grid.total_power.y + grid.total_power.z;
+  double fitted = 0.0;
+  for (const Lobe& lobe : lobes)
+    fitted += (lobe.rgb.x + lobe.rgb.y + lobe.rgb.z) * lobe_integral(lobe.sharpness);
+  return map > 0.0 ? std::fabs(fitted - map) / map : 0.0;
+}
+
+std::vector<SmoothedTarget> smoothed_targets(const MapGrid& grid,
+                                             const std::vector<double>& degrees,
+                                             const Context& ctx) {
+  std::vector<SmoothedTarget> targets;
+  const double cell = kPi / grid.rows;
+  for (double deg : degrees) {
+    const double sigma = deg * kPi / 180.0;
+    SmoothedTarget target;
+    target.kappa = 1.0 / (sigma * sigma);
+    // Sources: blocks as wide as the kernel at most (their spread is kept); points: a grid
+    // spaced at most two thirds of the kernel's width, no finer than the map's.
+    std::uint32_t block = 1;
+    while (2 * block * cell <= sigma && grid.rows % (2 * block) == 0) block *= 2;
+    const std::vector<Lobe> sources = block_sources(grid, block);
+    const auto rows = std::clamp<std::uint32_t>(
+        static_cast<std::uint32_t>(std::ceil(1.5 * kPi / sigma)), 8, grid.rows);
+    for (std::uint32_t row = 0; row < rows; ++row) {
+      for (std::uint32_t col = 0; col < 2 * rows; ++col) {
+        target.points.push_back(cell_centre(rows, row, col));
+        target.weights.push_back(cell_solid_angle(rows, row));
+      }
+    }
+    target.target.assign(target.points.size(), glm::dvec3(0.0));
+    tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, target.points.size()),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i < range.end(); ++i)
+                            target.target[i] =
+                                smoothed_sum(sources, target.kappa, target.points[i]);
+                        });
+    });
+    for (std::size_t i = 0; i < target.points.size(); ++i)
+      target.norm += target.weights[i] * glm::dot(target.target[i], target.target[i]);
+    targets.push_back(std::move(target));
+  }
+  return targets;
+}
+
+double smoothed_error(const SmoothedTarget& target, const std::vector<Lobe>& lobes) {
+  if (!(target.norm > 0.0)) return 0.0;
+  double error = 0.0;
+  for (std::size_t i = 0; i < target.points.size(); ++i) {
+    const glm::dvec3 diff = smoothed_sum(lobes, target.kappa, target.points[i]) - target.target[i];
+    error += target.weights[i] * glm::dot(diff, diff);
+  }
+  return std::sqrt(error / target.norm);
+}
+
+}  // namespace prt::bake::sg_light
