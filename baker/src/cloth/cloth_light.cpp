@@ -131,8 +131,9 @@ SgLightFit fit_sg_light(const io::EnvMap& map, const SgLightOptions& options, co
   fit.resolution = options.resolution;
   fit.smoothing_degrees = options.smoothing_degrees;
   const std::vector<prt_cloth_lobe> fast = fast_sg_light(map, options);
-  const sg_light::MapGrid grid = sg_light::grid_of(map, options.resolution);
-  const auto targets = sg_light::smoothed_targets(grid, options.smoothing_degrees, ctx);
+  const sg_light::MapGrid fine = sg_light::grid_of(map, 2 * options.resolution);
+  const sg_light::MapGrid grid = sg_light::coarser(fine);
+  const auto targets = sg_light::smoothed_targets(fine, options.smoothing_degrees, ctx);
   fit.fast = measure(grid, targets, sg_light::to_lobes(fast));
   // The finest kernel's sharpness: lobes at least this sharp are points to every kernel.
   double fixed_sharpness = 0.0;
@@ -161,8 +162,9 @@ SgLightFit fit_sg_light(const io::EnvMap& map, const SgLightOptions& options, co
 SgLightError measure_sg_light(const io::EnvMap& map, const std::vector<prt_cloth_lobe>& lobes,
                               const SgLightOptions& options, const Context& ctx) {
   check_options(options);
-  const sg_light::MapGrid grid = sg_light::grid_of(map, options.resolution);
-  return measure(grid, sg_light::smoothed_targets(grid, options.smoothing_degrees, ctx),
+  const sg_light::MapGrid fine = sg_light::grid_of(map, 2 * options.resolution);
+  return measure(sg_light::coarser(fine),
+                 sg_light::smoothed_targets(fine, options.smoothing_degrees, ctx),
                  sg_light::to_lobes(lobes));
 }
 

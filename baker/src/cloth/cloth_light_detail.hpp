@@ -40,6 +40,9 @@ struct MapGrid {
   glm::dvec3 total_power{0.0};
 };
 MapGrid grid_of(const io::EnvMap& map, std::uint32_t rows);
+// The grid of half the rows: each cell the sum of 2 x 2 cells (a texel falls in the cell of the
+// coarser grid it would fall in directly: the bins nest exactly).
+MapGrid coarser(const MapGrid& fine);
 
 // The cell (row, col)'s centre direction and exact solid angle.
 glm::dvec3 cell_centre(std::uint32_t rows, std::uint32_t row, std::uint32_t col);
@@ -64,7 +67,8 @@ double relative_error(const MapGrid& grid, const std::vector<Lobe>& lobes);
 double power_error(const MapGrid& grid, const std::vector<Lobe>& lobes);
 
 // One smoothing kernel's evaluation: points (the centres of a 2R' x R' grid with R' fitting the
-// kernel's width), their solid angles, and the smoothed map there.
+// kernel's width, at most half the fine grid's rows), their solid angles, and the smoothed map
+// there, from the map's grid at twice the error grid's rows.
 struct SmoothedTarget {
   double kappa = 0.0;  // 1 / sigma^2
   std::vector<glm::dvec3> points;
@@ -72,7 +76,7 @@ struct SmoothedTarget {
   std::vector<glm::dvec3> target;
   double norm = 0.0;  // sum of weights x |target|^2 (RGB)
 };
-std::vector<SmoothedTarget> smoothed_targets(const MapGrid& grid,
+std::vector<SmoothedTarget> smoothed_targets(const MapGrid& fine,
                                              const std::vector<double>& degrees,
                                              const Context& ctx);
 // sqrt(sum of weights x |smoothed lobes - target|^2 / norm); 0 for a black target.

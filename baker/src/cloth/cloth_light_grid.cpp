@@ -18,8 +18,8 @@ namespace {
 
 // Where a lobe's mean over a cell needs no samples: below exp(-kCutoff) of its peak.
 constexpr double kCutoff = 30.0;
-// Where a smoothed source adds nothing: its value below exp(-kSmoothedCutoff) of its peak.
-constexpr double kSmoothedCutoff = 40.0;
+// Where a smoothed lobe adds nothing: below exp(-kSmoothedCutoff) of its peak.
+constexpr double kSmoothedCutoff = 20.0;
 constexpr std::uint32_t kMaxCellSamples = 16;
 
 std::uint32_t row_of(std::uint32_t rows, double y) {
@@ -33,7 +33,7 @@ std::uint32_t col_of(std::uint32_t cols, double x, double z) {
 }
 
 // The mean of a unit-amplitude lobe over cell (row, col) of a grid of `rows`: a midpoint rule on
-// n x n sub-cells, n growing with the lobe's sharpness against the cell's size.
+// n x n sub-cells a quarter of the lobe's width (1 / sqrt(sharpness)) apart at most.
 double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, std::uint32_t col) {
   const double dtheta = kPi / rows, dphi = kPi / rows;  // cols = 2 rows
   const double t0 = row * dtheta, t1 = t0 + dtheta, p0 = col * dphi - kPi;
@@ -45,7 +45,7 @@ double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, s
   if (lobe.sharpness * (1.0 - nearest) > kCutoff) return 0.0;
   const auto n = std::clamp<std::uint32_t>(
       static_cast<std::uint32_t>(
-          std::ceil(1.5 * std::sqrt(lobe.sharpness) * std::max(dtheta, widest * dphi))),
+          std::ceil(4.0 * std::sqrt(lobe.sharpness) * std::max(dtheta, widest * dphi))),
       1, kMaxCellSamples);
   if (n == 1) return std::exp(lobe.sharpness * (d - 1.0));
   double sum = 0.0;
@@ -61,33 +61,84 @@ double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, s
   return sum / n / (std::cos(t0) - std::cos(t1));
 }
 
-// A block of b x b grid cells as a smoothed source: the vMF lobe with its power, mean direction
-// and spread.
-std::vector<Lobe> block_sources(const MapGrid& grid, std::uint32_t b) {
-  std::vector<Lobe> sources;
-  for (std::uint32_t r0 = 0; r0 < grid.rows; r0 += b) {
-    for (std::uint32_t c0 = 0; c0 < grid.cols; c0 += b) {
-      glm::dvec3 power{0.0}, resultant{0.0};
-      double weight = 0.0;
-      for (std::uint32_t r = r0; r < std::min(grid.rows, r0 + b); ++r) {
-        for (std::uint32_t c = c0; c < std::min(grid.cols, c0 + b); ++c) {
-          const std::size_t k = std::size_t(r) * grid.cols + c;
-          power += grid.power[k];
-          resultant += grid.resultant[k];
-          weight += grid.weight[k];
-        }
+// The map smoothed by one kernel, from blocks of b x b cells of a grid, each the vMF lobe with
+// its power, mean direction and spread (a blob). Blocks are at most half the kernel's width, so
+// a blob is several times sharper than the kernel and reaches as far as the kernel does, about:
+// a point adds only the blobs of the blocks within `reach` of it.
+class SmoothedMap {
+ public:
+  SmoothedMap(const MapGrid& grid, std::uint32_t b, double kappa)
+      : rows_(grid.rows / b), cols_(grid.cols / b), kappa_(kappa), blobs_(rows_ * cols_) {
+    double softest = 1e300;
+    for (std::uint32_t row = 0; row < rows_; ++row)
+      for (std::uint32_t col = 0; col < cols_; ++col) {
+        Lobe& blob = blobs_[std::size_t(row) * cols_ + col];
+        blob.sharpness = 0.0;  // no power
+        glm::dvec3 power{0.0}, resultant{0.0};
+        double weight = 0.0;
+        for (std::uint32_t r = row * b; r < (row + 1) * b; ++r)
+          for (std::uint32_t c = col * b; c < (col + 1) * b; ++c) {
+            const std::size_t k = std::size_t(r) * grid.cols + c;
+            power += grid.power[k];
+            resultant += grid.resultant[k];
+            weight += grid.weight[k];
+          }
+        const double length = glm::length(resultant);
+        if (!(weight > 0.0) || !(length > 0.0)) continue;
+        blob.axis = resultant / length;
+        blob.sharpness = sharpness_of_resultant(std::min(1.0, length / weight), 1e-3, 1e9);
+        blob.rgb = power / lobe_integral(blob.sharpness);
+        softest = std::min(softest, blob.sharpness);
       }
-      const double length = glm::length(resultant);
-      if (!(weight > 0.0) || !(length > 0.0)) continue;
-      Lobe source;
-      source.axis = resultant / length;
-      source.sharpness = sharpness_of_resultant(std::min(1.0, length / weight), 1e-3, 1e9);
-      source.rgb = power / lobe_integral(source.sharpness);
-      sources.push_back(source);
-    }
+    // A blob of sharpness l smoothed falls off as exp(-l kappa / (l + kappa) (1 - cos)); a
+    // blob's direction may lie a block's diagonal outside its block.
+    const double falloff = softest * kappa / (softest + kappa);
+    reach_ = std::acos(std::max(-1.0, 1.0 - kSmoothedCutoff / falloff)) + 2.0 * kPi / cols_ +
+             kPi / rows_;
   }
-  return sources;
-}
+
+  glm::dvec3 at(const glm::dvec3& v) const {
+    const double theta = std::acos(std::clamp(v.y, -1.0, 1.0));
+    const double phi = std::atan2(v.x, -v.z);
+    const double row_height = kPi / rows_, col_width = 2.0 * kPi / cols_;
+    const auto first_row = static_cast<std::int64_t>(std::floor((theta - reach_) / row_height));
+    const auto last_row = static_cast<std::int64_t>(std::floor((theta + reach_) / row_height));
+    glm::dvec3 sum{0.0};
+    for (std::int64_t row = std::max<std::int64_t>(0, first_row);
+         row <= std::min<std::int64_t>(rows_ - 1, last_row); ++row) {
+      // The azimuths within reach on this row: all of them when a pole is within reach.
+      std::int64_t first_col = 0, count = cols_;
+      const double t0 = std::max(row * row_height, theta - reach_);
+      const double t1 = std::min((row + 1) * row_height, theta + reach_);
+      const double narrowest = std::min(std::sin(t0), std::sin(t1));
+      if (theta - reach_ > 0.0 && theta + reach_ < kPi && std::sin(reach_) < narrowest) {
+        const double half = std::asin(std::sin(reach_) / narrowest);
+        first_col = static_cast<std::int64_t>(std::floor((phi - half + kPi) / col_width));
+        count = std::min<std::int64_t>(
+            cols_,
+            static_cast<std::int64_t>(std::floor((phi + half + kPi) / col_width)) - first_col + 1);
+      }
+      for (std::int64_t k = 0; k < count; ++k) {
+        const std::int64_t col = ((first_col + k) % cols_ + cols_) % cols_;
+        add(blobs_[std::size_t(row) * cols_ + std::size_t(col)], v, &sum);
+      }
+    }
+    return sum;
+  }
+
+ private:
+  void add(const Lobe& blob, const glm::dvec3& v, glm::dvec3* sum) const {
+    const double t = glm::dot(blob.axis, v), l = blob.sharpness;
+    if (l == 0.0) return;
+    const double rho = std::sqrt(std::max(0.0, l * l + kappa_ * kappa_ + 2.0 * l * kappa_ * t));
+    if (2.0 * l * kappa_ * (t - 1.0) / (rho + l + kappa_) < -kSmoothedCutoff) return;
+    *sum += blob.rgb * smoothed_lobe(l, kappa_, t);
+  }
+
+  std::int64_t rows_, cols_;
+  double kappa_, reach_ = kPi;
+  std::vector<Lobe> blobs_;
+};
 
 // The smoothed sum of lobes at v (sources that cannot reach it skipped).
 glm::dvec3 smoothed_sum(const std::vector<Lobe>& lobes, double kappa, const glm::dvec3& v) {
@@ -169,6 +220,28 @@ MapGrid grid_of(const io::EnvMap& map, std::uint32_t rows) {
   return grid;
 }
 
+MapGrid coarser(const MapGrid& fine) {
+  MapGrid grid;
+  grid.rows = fine.rows / 2;
+  grid.cols = fine.cols / 2;
+  const std::size_t cells = std::size_t(grid.rows) * grid.cols;
+  grid.power.assign(cells, glm::dvec3(0.0));
+  grid.weight.assign(cells, 0.0);
+  grid.resultant.assign(cells, glm::dvec3(0.0));
+  grid.solid_angle.assign(cells, 0.0);
+  grid.total_power = fine.total_power;
+  for (std::uint32_t r = 0; r < fine.rows; ++r)
+    for (std::uint32_t c = 0; c < fine.cols; ++c) {
+      const std::size_t from = std::size_t(r) * fine.cols + c;
+      const std::size_t to = std::size_t(r / 2) * grid.cols + c / 2;
+      grid.power[to] += fine.power[from];
+      grid.weight[to] += fine.weight[from];
+      grid.resultant[to] += fine.resultant[from];
+      grid.solid_angle[to] += fine.solid_angle[from];
+    }
+  return grid;
+}
+
 double sharpness_of_resultant(double r, double lo, double hi) {
   const auto resultant = [](double l) { return 1.0 / std::tanh(l) - 1.0 / l; };
   if (!(r > resultant(lo))) return lo;
@@ -193,13 +266,17 @@ double lobe_integral(double sharpness) {
 void smoothed_lobe_derivatives(double l, double kappa, double t, double* value, double* d_l,
                                double* d_t) {
   const double rho = std::sqrt(std::max(0.0, l * l + kappa * kappa + 2.0 * l * kappa * t));
-  const double scale = -kappa / std::expm1(-2.0 * kappa);
+  const double scale = kappa > 20.0 ? kappa : -kappa / std::expm1(-2.0 * kappa);
   const double e = std::exp(2.0 * l * kappa * (t - 1.0) / (rho + l + kappa));
-  // u = (1 - e^(-2 rho)) / rho and u' near rho = 0 by their series.
+  // u = (1 - e^(-2 rho)) / rho and u', by their series near rho = 0 and without the
+  // exponential where it is below double precision.
   double u, du;
   if (rho < 1e-4) {
     u = 2.0 - 2.0 * rho + 4.0 / 3.0 * rho * rho;
     du = -2.0 + 8.0 / 3.0 * rho;
+  } else if (rho > 20.0) {
+    u = 1.0 / rho;
+    du = -u / rho;
   } else {
     u = -std::expm1(-2.0 * rho) / rho;
     du = 2.0 * std::exp(-2.0 * rho) / rho - u / rho;
@@ -242,22 +319,23 @@ double power_error(const MapGrid& grid, const std::vector<Lobe>& lobes) {
   return map > 0.0 ? std::fabs(fitted - map) / map : 0.0;
 }
 
-std::vector<SmoothedTarget> smoothed_targets(const MapGrid& grid,
+std::vector<SmoothedTarget> smoothed_targets(const MapGrid& fine,
                                              const std::vector<double>& degrees,
                                              const Context& ctx) {
   std::vector<SmoothedTarget> targets;
-  const double cell = kPi / grid.rows;
+  const double cell = kPi / fine.rows;
   for (double deg : degrees) {
     const double sigma = deg * kPi / 180.0;
     SmoothedTarget target;
     target.kappa = 1.0 / (sigma * sigma);
-    // Sources: blocks as wide as the kernel at most (their spread is kept); points: a grid
-    // spaced at most two thirds of the kernel's width, no finer than the map's.
+    // Blocks at most half the kernel's width; points on a grid spaced at most two thirds of
+    // it, no finer than the error's grid (half the fine grid's rows).
     std::uint32_t block = 1;
-    while (2 * block * cell <= sigma && grid.rows % (2 * block) == 0) block *= 2;
-    const std::vector<Lobe> sources = block_sources(grid, block);
-    const auto rows = std::clamp<std::uint32_t>(
-        static_cast<std::uint32_t>(std::ceil(1.5 * kPi / sigma)), 8, grid.rows);
+    while (4 * block * cell <= sigma && fine.rows % (2 * block) == 0) block *= 2;
+    const SmoothedMap map(fine, block, target.kappa);
+    const auto rows =
+        std::clamp<std::uint32_t>(static_cast<std::uint32_t>(std::ceil(1.5 * kPi / sigma)),
+                                  std::min(8u, fine.rows / 2), fine.rows / 2);
     for (std::uint32_t row = 0; row < rows; ++row) {
       for (std::uint32_t col = 0; col < 2 * rows; ++col) {
         target.points.push_back(cell_centre(rows, row, col));
@@ -270,8 +348,7 @@ std::vector<SmoothedTarget> smoothed_targets(const MapGrid& grid,
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, target.points.size()),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i < range.end(); ++i)
-                            target.target[i] =
-                                smoothed_sum(sources, target.kappa, target.points[i]);
+                            target.target[i] = map.at(target.points[i]);
                         });
     });
     for (std::size_t i = 0; i < target.points.size(); ++i)

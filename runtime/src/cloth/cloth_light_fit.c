@@ -1009,7 +1009,8 @@ static double lobe_cell_mean(const fit_lobe* lobe, const row_shape* r, const col
       lobe->sharpness * (1.0 - d * r->cos_radius - sqrt(fmax(0.0, 1.0 - d * d)) * r->sin_radius) >
           LOBE_CUTOFF)
     return 0.0;
-  n = (uint32_t)ceil(1.5 * sqrt(lobe->sharpness) * r->size);
+  /* Samples a quarter of the lobe's width (1 / sqrt(sharpness)) apart. */
+  n = (uint32_t)ceil(4.0 * sqrt(lobe->sharpness) * r->size);
   /* One sample: single precision is plenty for the report and much faster. */
   if (n <= 1u) return expf((float)(lobe->sharpness * (d - 1.0)));
   if (n > MAX_CELL_SAMPLES) n = MAX_CELL_SAMPLES;
