@@ -32,9 +32,28 @@ std::uint32_t col_of(std::uint32_t cols, double x, double z) {
   return std::min(cols - 1, static_cast<std::uint32_t>(std::max(0.0, u) * cols));
 }
 
-// The mean of a unit-amplitude lobe over cell (row, col) of a grid of `rows`: a midpoint rule on
-// n x n sub-cells a quarter of the lobe's width (1 / sqrt(sharpness)) apart at most.
-double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, std::uint32_t col) {
+// The mean of exp(l (a . w - 1)) over a lat-long cell centred at polar angle t and azimuth p,
+// of extents dt and dp: f + (dt^2 / 12) cot t f_t + (dt^2 / 24) f_tt + (dp^2 / 24) f_pp (the
+// first-order term from the sin t weight of the solid angle), as the runtime's report takes it.
+double corrected_mean(const Lobe& lobe, double t, double p, double dt, double dp) {
+  const glm::dvec3& a = lobe.axis;
+  const double l = lobe.sharpness, st = std::sin(t), ct = std::cos(t);
+  const double across = a.x * std::sin(p) - a.z * std::cos(p);
+  const double dot = st * across + ct * a.y;
+  const double polar = ct * across - st * a.y;                     // a . e_t
+  const double azimuthal = a.x * std::cos(p) + a.z * std::sin(p);  // a . e_p
+  const double correction =
+      1.0 + dt * dt / 12.0 * (ct / st) * l * polar +
+      dt * dt / 24.0 * (l * l * polar * polar - l * dot) +
+      dp * dp / 24.0 * (l * l * st * st * azimuthal * azimuthal - l * st * across);
+  return correction > 0.0 ? std::exp(l * (dot - 1.0)) * correction : 0.0;
+}
+
+// The mean of a unit-amplitude lobe over cell (row, col) of a grid of `rows`: the solid-angle
+// weighted mean of its corrected means over n x n sub-cells; 0 where the lobe is below
+// exp(-kCutoff) of its peak.
+double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, std::uint32_t col,
+                      std::uint32_t n) {
   const double dtheta = kPi / rows, dphi = kPi / rows;  // cols = 2 rows
   const double t0 = row * dtheta, t1 = t0 + dtheta, p0 = col * dphi - kPi;
   const double widest =
@@ -43,20 +62,14 @@ double lobe_cell_mean(const Lobe& lobe, std::uint32_t rows, std::uint32_t row, s
   const double d = glm::dot(lobe.axis, cell_centre(rows, row, col));
   const double nearest = d >= std::cos(radius) ? 1.0 : std::cos(std::acos(d) - radius);
   if (lobe.sharpness * (1.0 - nearest) > kCutoff) return 0.0;
-  const auto n = std::clamp<std::uint32_t>(
-      static_cast<std::uint32_t>(
-          std::ceil(4.0 * std::sqrt(lobe.sharpness) * std::max(dtheta, widest * dphi))),
-      1, kMaxCellSamples);
-  if (n == 1) return std::exp(lobe.sharpness * (d - 1.0));
   double sum = 0.0;
   for (std::uint32_t j = 0; j < n; ++j) {
     const double ta = t0 + dtheta * j / n, tb = t0 + dtheta * (j + 1) / n;
-    const double t = 0.5 * (ta + tb), band = std::cos(ta) - std::cos(tb);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const double p = p0 + dphi * (i + 0.5) / n;
-      const glm::dvec3 w{std::sin(t) * std::sin(p), std::cos(t), -std::sin(t) * std::cos(p)};
-      sum += band * std::exp(lobe.sharpness * (glm::dot(lobe.axis, w) - 1.0));
-    }
+    double row_sum = 0.0;
+    for (std::uint32_t i = 0; i < n; ++i)
+      row_sum +=
+          corrected_mean(lobe, 0.5 * (ta + tb), p0 + dphi * (i + 0.5) / n, dtheta / n, dphi / n);
+    sum += (std::cos(ta) - std::cos(tb)) * row_sum;
   }
   return sum / n / (std::cos(t0) - std::cos(t1));
 }
@@ -296,13 +309,20 @@ double smoothed_lobe(double l, double kappa, double t) {
 }
 
 double relative_error(const MapGrid& grid, const std::vector<Lobe>& lobes) {
+  // Sub-cells at most half a lobe's width (1 / sqrt(sharpness)) across.
+  std::vector<std::uint32_t> samples;
+  for (const Lobe& lobe : lobes)
+    samples.push_back(std::clamp<std::uint32_t>(
+        static_cast<std::uint32_t>(std::ceil(2.0 * std::sqrt(lobe.sharpness) * kPi / grid.rows)), 1,
+        kMaxCellSamples));
   double error = 0.0, norm = 0.0;
   for (std::uint32_t row = 0; row < grid.rows; ++row) {
     for (std::uint32_t col = 0; col < grid.cols; ++col) {
       const std::size_t k = std::size_t(row) * grid.cols + col;
       if (!(grid.solid_angle[k] > 0.0)) continue;
       glm::dvec3 model{0.0};
-      for (const Lobe& lobe : lobes) model += lobe.rgb * lobe_cell_mean(lobe, grid.rows, row, col);
+      for (std::size_t i = 0; i < lobes.size(); ++i)
+        model += lobes[i].rgb * lobe_cell_mean(lobes[i], grid.rows, row, col, samples[i]);
       const glm::dvec3 map = grid.power[k] / grid.solid_angle[k];
       error += grid.solid_angle[k] * glm::dot(model - map, model - map);
       norm += grid.solid_angle[k] * glm::dot(map, map);
