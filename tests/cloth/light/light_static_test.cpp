@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../../baker/src/cloth/cloth_light_detail.hpp"
 #include "cloth/light/sg_maps.hpp"
 #include "prt/baker/cloth/cloth_light.hpp"
 #include "support/test_files.hpp"
@@ -55,13 +56,14 @@ bool same_lobes(const std::vector<prt_cloth_lobe>& a, const std::vector<prt_clot
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
 }
 
-void expect_never_worse(const prt::io::EnvMap& map, const SgLightFit& fit) {
-  ASSERT_EQ(fit.error.smoothed.size(), 3u);
-  ASSERT_EQ(fit.fast.smoothed.size(), 3u);
-  for (std::size_t i = 0; i < 3; ++i)
+void expect_never_worse(const prt::io::EnvMap& map, const SgLightOptions& options,
+                        const SgLightFit& fit) {
+  const std::size_t kernels = options.smoothing_degrees.size();
+  ASSERT_EQ(fit.error.smoothed.size(), kernels);
+  ASSERT_EQ(fit.fast.smoothed.size(), kernels);
+  for (std::size_t i = 0; i < kernels; ++i)
     EXPECT_LE(fit.error.smoothed[i], fit.fast.smoothed[i]) << map.source() << ", kernel " << i;
   // fit.fast is the runtime's fit measured as any light is.
-  SgLightOptions options;
   const prt::bake::SgLightError fast =
       prt::bake::measure_sg_light(map, prt::bake::fast_sg_light(map, options), options);
   EXPECT_EQ(fast.smoothed, fit.fast.smoothed) << map.source();
@@ -71,7 +73,7 @@ void expect_never_worse(const prt::io::EnvMap& map, const SgLightFit& fit) {
 TEST(ClothLightStatic, NeverWorseThanTheFastFitItStartsFrom) {
   const prt::io::EnvMap patchy = patchy_map();
   const SgLightFit fit = prt::bake::fit_sg_light(patchy, SgLightOptions{});
-  expect_never_worse(patchy, fit);
+  expect_never_worse(patchy, SgLightOptions{}, fit);
   // Here the refinement has room: every kernel's error comes down.
   EXPECT_GT(fit.steps, 0u);
   for (std::size_t i = 0; i < 3; ++i) EXPECT_LT(fit.error.smoothed[i], fit.fast.smoothed[i]);
@@ -79,7 +81,66 @@ TEST(ClothLightStatic, NeverWorseThanTheFastFitItStartsFrom) {
     const std::string path = shared_asset(name);
     if (path.empty()) continue;
     const prt::io::EnvMap map = prt::io::load_envmap(path, prt::io::EnvMapping::Auto);
-    expect_never_worse(map, prt::bake::fit_sg_light(map, SgLightOptions{}));
+    expect_never_worse(map, SgLightOptions{}, prt::bake::fit_sg_light(map, SgLightOptions{}));
+  }
+  // Kernels of 1 and 3 degrees under a sun: lowering their sum alone would raise the 1-degree
+  // error (measured: 0.107 to 0.111 at K = 4); the refinement must not.
+  const std::string path = shared_asset("envmaps/spiaggia_di_mondello_1k.hdr");
+  if (path.empty()) return;
+  const prt::io::EnvMap map = prt::io::load_envmap(path, prt::io::EnvMapping::LatLong);
+  SgLightOptions narrow;
+  narrow.lobe_count = 4;
+  narrow.smoothing_degrees = {1.0, 3.0};
+  expect_never_worse(map, narrow, prt::bake::fit_sg_light(map, narrow));
+}
+
+// The smoothed lobe (the refinement's model) against the convolution integrated here: the
+// kernel's axis at +Z, the lobe's at angle alpha from it, a periodic trapezoid rule in azimuth
+// and a midpoint rule in polar angle.
+TEST(ClothLightStatic, TheSmoothedLobeIsTheConvolution) {
+  struct Case {
+    double sharpness, kappa, alpha_degrees;
+  };
+  const Case cases[] = {{0.25, 3.65, 100.0},
+                        {40.0, 32.8, 20.0},
+                        {150.0, 3.65, 60.0},
+                        {600.0, 365.0, 3.0},
+                        {1.0e4, 365.0, 1.0}};
+  for (const Case& c : cases) {
+    const double alpha = c.alpha_degrees * kSgPi / 180.0;
+    // Polar angles where the kernel is above exp(-50) of its peak.
+    const double reach = std::acos(std::max(-1.0, 1.0 - 50.0 / c.kappa));
+    const int polar = 100000, azimuth = 128;
+    double sum = 0.0;
+    for (int i = 0; i < polar; ++i) {
+      const double t0 = reach * i / polar, t1 = reach * (i + 1) / polar, t = 0.5 * (t0 + t1);
+      const double band = (std::cos(t0) - std::cos(t1)) * 2.0 * kSgPi / azimuth;
+      const double kernel = std::exp(c.kappa * (std::cos(t) - 1.0));
+      for (int j = 0; j < azimuth; ++j) {
+        const double p = 2.0 * kSgPi * j / azimuth;
+        const double dot =
+            std::sin(t) * std::cos(p) * std::sin(alpha) + std::cos(t) * std::cos(alpha);
+        sum += band * kernel * std::exp(c.sharpness * (dot - 1.0));
+      }
+    }
+    const double expected = sum * c.kappa / (2.0 * kSgPi * (1.0 - std::exp(-2.0 * c.kappa)));
+    const double got = prt::bake::sg_light::smoothed_lobe(c.sharpness, c.kappa, std::cos(alpha));
+    // Measured: within 3e-9 relatively.
+    EXPECT_NEAR(got, expected, 1e-8 * expected) << c.sharpness << " " << c.kappa;
+    // Its derivatives against central differences (measured: within 2e-8 relatively).
+    double value, d_l, d_t;
+    prt::bake::sg_light::smoothed_lobe_derivatives(c.sharpness, c.kappa, std::cos(alpha), &value,
+                                                   &d_l, &d_t);
+    const double hl = 1e-5 * c.sharpness, ht = 1e-6;
+    const auto g = [&](double l, double t) {
+      return prt::bake::sg_light::smoothed_lobe(l, c.kappa, t);
+    };
+    const double fd_l =
+        (g(c.sharpness + hl, std::cos(alpha)) - g(c.sharpness - hl, std::cos(alpha))) / (2 * hl);
+    const double fd_t =
+        (g(c.sharpness, std::cos(alpha) + ht) - g(c.sharpness, std::cos(alpha) - ht)) / (2 * ht);
+    EXPECT_NEAR(d_l, fd_l, 1e-7 * std::fabs(fd_l) + 1e-12 * value);
+    EXPECT_NEAR(d_t, fd_t, 1e-7 * std::fabs(fd_t) + 1e-12 * value);
   }
 }
 
@@ -134,8 +195,7 @@ TEST(ClothLightStatic, ItsPlainErrorIsTheRuntimeReports) {
     const std::vector<prt_cloth_lobe> fast = prt::bake::fast_sg_light(map, options, &report);
     EXPECT_EQ(fast.size(), report.lobe_count);
     const prt::bake::SgLightError e = prt::bake::measure_sg_light(map, fast, options);
-    std::printf("%s %.3g\n", map.source().c_str(),
-                (e.relative - report.relative_error) / e.relative);
+    // Measured: 2e-8 and 2.3e-6 apart relatively.
     EXPECT_NEAR(e.relative, report.relative_error, 1e-5 * e.relative) << map.source();
     EXPECT_NEAR(e.power, report.power_error, 1e-7) << map.source();
   }
