@@ -125,7 +125,7 @@ static int plan_scratch(const light_fit* fit, scratch_plan* plan) {
          reserve(plan, &plan->cells, cells, sizeof(grid_cell)) &&
          reserve(plan, &plan->levels, PRT_CLOTH_LIGHT_LEVEL_COUNT, sizeof(level_bin)) &&
          reserve(plan, &plan->points, cells, PRT_CLOTH_LIGHT_POINT_ARRAYS * sizeof(float)) &&
-         reserve(plan, &plan->groups, fit->lobes + MAX_COMPACT_GROUPS, sizeof(power_group)) &&
+         reserve(plan, &plan->groups, fit->lobes, sizeof(power_group)) &&
          reserve(plan, &plan->fitted, fit->lobes, sizeof(fit_lobe)) &&
          reserve(plan, &plan->model, cells, 3u * sizeof(double)) &&
          reserve(plan, &plan->sub_rows, fit->rows, 3u * (samples + 1u) * sizeof(double)) &&

@@ -281,67 +281,81 @@ void prt_cloth_light_build_grid(light_fit* fit) {
   }
 }
 
-/* Visits every texel of level >= floor (rows that cannot hold one are skipped):
- * without out, adds it to fit->levels; with out, appends it there (up to capacity). Returns the
- * texels visited (listed). */
+/* A texel's solid angle: a lat-long row's exact one, a cube texel's differential one
+ * (step^2 / |(1, s, t)|^3 at its centre). */
+static double approximate_solid_angle(const prt_env_view* env, uint32_t x, uint32_t row) {
+  if (env->layout == PRT_ENV_LATLONG)
+    return 2.0 * PRT_SPHERE_PI / (double)env->width *
+           (cos(PRT_SPHERE_PI * (double)row / (double)env->height) -
+            cos(PRT_SPHERE_PI * (double)(row + 1u) / (double)env->height));
+  {
+    const double step = 2.0 / (double)env->width;
+    const double s = step * ((double)x + 0.5) - 1.0, t = step * ((double)row + 0.5) - 1.0;
+    const double r2 = 1.0 + s * s + t * t;
+    return step * step / (r2 * sqrt(r2));
+  }
+}
+
+/* Visits every texel whose level is at least floor (see cloth_light_internal.h). */
+/* Texel (x, row) of face `face`: its direction, solid angle and grid cell, as the grid has it. */
+static void bright_geometry(const light_fit* fit, uint32_t face, uint32_t x, uint32_t row,
+                            bright_texel* t) {
+  const prt_env_view* env = &fit->env;
+  double solid_angle;
+  uint32_t c;
+  if (env->layout == PRT_ENV_LATLONG) {
+    const double theta = PRT_SPHERE_PI * ((double)row + 0.5) / (double)env->height;
+    const double phi = 2.0 * PRT_SPHERE_PI * (((double)x + 0.5) / (double)env->width - 0.5);
+    uint32_t grid_row = 0u, grid_col = 0u;
+    t->direction[0] = sin(theta) * sin(phi), t->direction[1] = cos(theta);
+    t->direction[2] = -sin(theta) * cos(phi);
+    solid_angle = 2.0 * PRT_SPHERE_PI / (double)env->width *
+                  (cos(PRT_SPHERE_PI * (double)row / (double)env->height) -
+                   cos(PRT_SPHERE_PI * (double)(row + 1u) / (double)env->height));
+    /* The grid bins a lat-long image's texels by index. */
+    while (row >= fit->row_first[grid_row + 1u]) ++grid_row;
+    while (x >= fit->col_first[grid_col + 1u]) ++grid_col;
+    t->cell = grid_row * fit->cols + grid_col;
+  } else {
+    const double step = 2.0 / (double)env->width;
+    const double s0 = step * (double)x - 1.0, t0 = step * (double)row - 1.0;
+    uint32_t cells[6];
+    cube_texel cube;
+    cube_texel_at(env->width, x, row, &cube);
+    cube_texel_direction(face, &cube, t->direction);
+    solid_angle = prt_cube_rect_solid_angle(s0, s0 + step, t0, t0 + step);
+    cube_texel_cells(fit, x, &cube, cells);
+    t->cell = cells[face];
+  }
+  t->weight = (double)t->level * solid_angle;
+  for (c = 0; c < 3u; ++c) t->power[c] *= solid_angle;
+}
+
 uint32_t prt_cloth_light_visit_bright(light_fit* fit, float floor, bright_texel* out,
                                       uint32_t capacity) {
   const prt_env_view* env = &fit->env;
-  uint32_t count = 0u, x, y;
+  uint32_t count = 0u, x, y, c;
   for (y = 0; y < fit->image_rows; ++y) {
+    const uint32_t face = env->layout == PRT_ENV_LATLONG ? 0u : y / env->width;
+    const uint32_t row = env->layout == PRT_ENV_LATLONG ? y : y % env->width;
     if (3.0f * fit->row_max[y] < floor) continue; /* a level is at most 3 channels' largest */
     for (x = 0; x < env->width; ++x) {
-      const uint32_t face = env->layout == PRT_ENV_LATLONG ? 0u : y / env->width;
-      const uint32_t row = env->layout == PRT_ENV_LATLONG ? y : y % env->width;
       const float* texel = prt_env_texel(env, face, x, row);
-      const float rgb[3] = {prt_cloth_light_sanitised(texel[0]),
-                            prt_cloth_light_sanitised(texel[1]),
-                            prt_cloth_light_sanitised(texel[2])};
-      const float level = rgb[0] + rgb[1] + rgb[2];
-      double d[3], solid_angle;
-      cube_texel cube;
-      if (!(level >= floor)) continue;
+      bright_texel t;
+      for (c = 0; c < 3u; ++c) t.power[c] = prt_cloth_light_sanitised(texel[c]);
+      t.level = (float)t.power[0] + (float)t.power[1] + (float)t.power[2];
+      if (!(t.level >= floor)) continue;
       if (out && count == capacity) return count;
-      if (env->layout == PRT_ENV_LATLONG) {
-        const double theta = PRT_SPHERE_PI * ((double)row + 0.5) / (double)env->height;
-        const double phi = 2.0 * PRT_SPHERE_PI * (((double)x + 0.5) / (double)env->width - 0.5);
-        d[0] = sin(theta) * sin(phi), d[1] = cos(theta), d[2] = -sin(theta) * cos(phi);
-        solid_angle = 2.0 * PRT_SPHERE_PI / (double)env->width *
-                      (cos(PRT_SPHERE_PI * (double)row / (double)env->height) -
-                       cos(PRT_SPHERE_PI * (double)(row + 1u) / (double)env->height));
-      } else {
-        const double step = 2.0 / (double)env->width;
-        const double s0 = step * (double)x - 1.0, t0 = step * (double)row - 1.0;
-        cube_texel_at(env->width, x, row, &cube);
-        cube_texel_direction(face, &cube, d);
-        solid_angle = prt_cube_rect_solid_angle(s0, s0 + step, t0, t0 + step);
-      }
+      t.order = (size_t)y * env->width + x;
+      t.group = UINT32_MAX;
       if (out) {
-        bright_texel* t = &out[count];
-        uint32_t c;
-        t->level = level;
-        t->order = (size_t)y * env->width + x;
-        t->group = UINT32_MAX;
-        t->weight = (double)level * solid_angle;
-        for (c = 0; c < 3u; ++c) {
-          t->power[c] = (double)rgb[c] * solid_angle;
-          t->direction[c] = d[c];
-        }
-        if (env->layout == PRT_ENV_LATLONG) {
-          /* The grid cell it was added to (build_grid bins texels by index). */
-          uint32_t gr = 0u, gc = 0u;
-          while (row >= fit->row_first[gr + 1u]) ++gr;
-          while (x >= fit->col_first[gc + 1u]) ++gc;
-          t->cell = gr * fit->cols + gc;
-        } else {
-          uint32_t cells[6];
-          cube_texel_cells(fit, x, &cube, cells);
-          t->cell = cells[face];
-        }
+        bright_geometry(fit, face, x, row, &t);
+        out[count] = t;
       } else {
-        level_bin* bin = &fit->levels[prt_cloth_light_level_bin(level)];
+        /* The histogram needs solid angles only, and only roughly (it sets a budget). */
+        const double solid_angle = approximate_solid_angle(env, x, row);
+        level_bin* bin = &fit->levels[prt_cloth_light_level_bin(t.level)];
         bin->solid_angle += solid_angle;
-        bin->weight += (double)level * solid_angle;
         bin->texels += 1u;
       }
       ++count;

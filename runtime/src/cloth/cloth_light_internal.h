@@ -27,8 +27,9 @@ typedef struct grid_cell {
   double removed[3];   /* power taken out for compact sources (the map's is power + removed) */
 } grid_cell;
 
+/* A histogram bin of texel levels: the solid angle and count of its texels. */
 typedef struct level_bin {
-  double solid_angle, weight;
+  double solid_angle;
   uint32_t texels;
 } level_bin;
 
@@ -87,7 +88,7 @@ typedef struct light_fit {
   grid_cell* cells;       /* rows x cols */
   level_bin* levels;      /* PRT_CLOTH_LIGHT_LEVEL_COUNT */
   cluster_points points;  /* up to rows x cols */
-  power_group* groups;    /* lobes + the compact-group cap */
+  power_group* groups;    /* lobes: the compact sources, then the clusters */
   fit_lobe* fitted;       /* lobes */
   double* model;          /* report: rows x cols x 3, the lobes' mean radiance per cell */
   double* sub_rows;       /* report: rows x (CELL_SAMPLES + 1) x 3: each sub-row's (then the
@@ -117,8 +118,9 @@ static inline double prt_cloth_light_integral(double l) {
 void prt_cloth_light_build_grid(light_fit* fit);
 
 /* Visits every texel whose level (r + g + b) is at least `floor`, skipping image rows that
- * cannot hold one. Without out, adds it to histogram bin level_bin_of(level) of fit->levels;
- * with out, appends it there (up to capacity) with its grid cell. Returns the texels visited. */
+ * cannot hold one. Without out, counts it in fit->levels[prt_cloth_light_level_bin(level)]
+ * (with a rough solid angle); with out, appends it there (up to capacity) with its power,
+ * direction and grid cell as the grid has them. Returns the texels visited. */
 uint32_t prt_cloth_light_visit_bright(light_fit* fit, float floor, bright_texel* out,
                                       uint32_t capacity);
 
