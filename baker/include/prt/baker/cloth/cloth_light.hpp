@@ -27,7 +27,8 @@ struct SgLightOptions {
   // Standard deviations (degrees) of the smoothing kernels of the refinement's error: cloth
   // reflects the environment through lobes this wide or wider. Each in (0, 90].
   std::vector<double> smoothing_degrees{3.0, 10.0, 30.0};
-  // Refinement steps at most (0: the runtime's fit as it is).
+  // Refinement steps at most (0: the runtime's fit as it is); it stops earlier once a step
+  // gains little.
   std::uint32_t max_steps = 100;
 };
 
@@ -37,7 +38,10 @@ struct SgLightError {
   // cell minus the map's, over the map's RMS radiance: prt_cloth_fit_report's relative_error.
   double relative = 0.0;
   // The same for the map and the light each smoothed by the kernel of smoothing_degrees[i]
-  // (a normalised von Mises-Fisher kernel of sharpness 1 / sigma^2), at the grid's cell centres.
+  // (a normalised von Mises-Fisher kernel of sharpness 1 / sigma^2), at the centres of a grid
+  // spaced about two thirds of the kernel's width (no finer than the grid above). The light is
+  // smoothed exactly; the map from a grid of twice the rows, each block of cells at most half
+  // the kernel wide taken as the vMF lobe with its power, mean direction and spread.
   std::vector<double> smoothed;
   // |the light's power - the map's power| / the map's power (RGB summed; 0 for a black map).
   double power = 0.0;
@@ -54,7 +58,7 @@ struct SgLightFit {
   // (the smoothed error sees them as points), which includes every compact source (a sun), so
   // their power stays exact. The others' axes, sharpness and amplitudes are refined.
   std::uint32_t fixed_lobes = 0;
-  std::uint32_t steps = 0;  // refinement steps taken (each lowered the error)
+  std::uint32_t steps = 0;  // refinement steps taken, each of which lowered the objective
 };
 
 // The runtime's fit (prt_cloth_fit_light) of the map: a lat-long map as it is (its rotation
@@ -66,9 +70,10 @@ std::vector<prt_cloth_lobe> fast_sg_light(const io::EnvMap& map, const SgLightOp
 
 // The static fit: the runtime's fit refined (Levenberg-Marquardt on the free lobes' axes and
 // log sharpness, non-negative least squares for their amplitudes at each step) to lower the sum
-// of the squared relative smoothed errors; a step is kept only when it lowers that sum without
-// raising any smoothed error above the runtime fit's. Deterministic (any thread count).
-// Throws Error for invalid options.
+// over kernels of (smoothed error / the runtime fit's)^2. The result is the best step that
+// raised no smoothed error above the runtime fit's (the runtime's fit itself when none did), so
+// no smoothed error is ever larger. Deterministic (any thread count). Throws Error for invalid
+// options.
 SgLightFit fit_sg_light(const io::EnvMap& map, const SgLightOptions& options = {},
                         const Context& ctx = {});
 
