@@ -199,6 +199,61 @@ TEST(ClothLightFit, NanInfiniteAndNegativeTexelsCountAsZero) {
   }
 }
 
+// The same texels given as RGBA (the fourth float NaN) with padded rows and faces.
+prt_env_image padded(const EnvImage& env, std::vector<float>* storage) {
+  const std::size_t row = std::size_t(env.width) * 4 + 3, face = row * env.height + 5;
+  const std::size_t faces = env.layout == PRT_ENV_CUBE ? 6 : 1;
+  storage->assign(face * faces, -1.0f);
+  for (std::size_t f = 0; f < faces; ++f)
+    for (std::size_t y = 0; y < env.height; ++y)
+      for (std::size_t x = 0; x < env.width; ++x) {
+        const std::size_t from = 3 * ((f * env.height + y) * env.width + x);
+        float* to = storage->data() + f * face + y * row + 4 * x;
+        for (int c = 0; c < 3; ++c) to[c] = env.rgb[from + c];
+        to[3] = std::numeric_limits<float>::quiet_NaN();
+      }
+  prt_env_image image = env.image();
+  image.channels = 4;
+  image.texels = storage->data();
+  image.row_stride = row;
+  image.face_stride = env.layout == PRT_ENV_CUBE ? face : 0;
+  return image;
+}
+
+TEST(ClothLightFit, ReadsRgbaAndStridesAsRgb) {
+  std::vector<TrueLobe> lobes = three_lobes();
+  lobes.push_back({normalised({0.0, 1.0, 0.1}), 1.0e4, {4.0e4, 4.0e4, 4.0e4}});  // a sun
+  for (const EnvImage& env :
+       {with_lobes(latlong_image(512, 256), lobes), with_lobes(cube_image(64), lobes)}) {
+    std::vector<float> storage;
+    const Fit a = fit(env.image(), 10), b = fit(padded(env, &storage), 10);
+    ASSERT_EQ(a.result, PRT_OK);
+    ASSERT_EQ(b.result, PRT_OK);
+    EXPECT_EQ(std::memcmp(a.lobes.data(), b.lobes.data(), a.lobes.size() * sizeof a.lobes[0]), 0);
+    EXPECT_EQ(std::memcmp(&a.report, &b.report, sizeof a.report), 0);
+  }
+}
+
+TEST(ClothLightFit, TinyMapsGiveFiniteLobes) {
+  std::vector<EnvImage> maps = {
+      with_noise(latlong_image(1, 1), 1.0f, 5), with_noise(latlong_image(3, 1), 1.0f, 6),
+      with_noise(latlong_image(1, 5), 1.0f, 7), with_noise(cube_image(1), 1.0f, 8)};
+  for (const EnvImage& env : maps) {
+    const Fit f = fit(env.image(), 10);
+    ASSERT_EQ(f.result, PRT_OK);
+    EXPECT_GE(f.report.lobe_count, 1u);
+    EXPECT_TRUE(std::isfinite(f.report.relative_error));
+    const double expected = map_power(env);
+    EXPECT_NEAR(power_of(f.lit()), expected, 1e-6 * expected);
+    for (const prt_cloth_lobe& l : f.lobes) {
+      EXPECT_NEAR(dot(axis_of(l), axis_of(l)), 1.0, 1e-6);
+      EXPECT_GE(l.sharpness, PRT_CLOTH_MIN_SHARPNESS);
+      EXPECT_LE(l.sharpness, PRT_CLOTH_MAX_SHARPNESS);
+      for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(l.rgb[c]) && l.rgb[c] >= 0.0f);
+    }
+  }
+}
+
 TEST(ClothLightFit, AxesTurnWithTheEnvRotation) {
   const EnvImage env = with_lobes(latlong_image(512, 256), three_lobes());
   // 40 degrees about (1, 2, 2) / 3, row-major (Rodrigues).
