@@ -6,7 +6,9 @@
 #include <prt/prt.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -66,6 +68,15 @@ SgLightError measure(const sg_light::MapGrid& grid,
     error.smoothed.push_back(sg_light::smoothed_error(target, lobes));
   error.power = sg_light::power_error(grid, lobes);
   return error;
+}
+
+// The double nearest the shortest decimal that reads back as f: the file shows 0.5361001, not
+// 0.5361000895500183, and still reads back to the same float.
+double shortest(float f) {
+  char text[32];
+  const std::to_chars_result end = std::to_chars(text, text + sizeof text - 1, f);
+  *end.ptr = '\0';
+  return std::strtod(text, nullptr);
 }
 
 nlohmann::ordered_json error_json(const SgLightError& error) {
@@ -181,9 +192,9 @@ glm::vec3 sg_radiance(const std::vector<prt_cloth_lobe>& lobes, const glm::vec3&
 std::string sg_light_json(const SgLightFit& fit) {
   nlohmann::ordered_json lobes = nlohmann::ordered_json::array();
   for (const prt_cloth_lobe& l : fit.lobes) {
-    lobes.push_back({{"axis", {l.axis[0], l.axis[1], l.axis[2]}},
-                     {"sharpness", l.sharpness},
-                     {"rgb", {l.rgb[0], l.rgb[1], l.rgb[2]}}});
+    lobes.push_back({{"axis", {shortest(l.axis[0]), shortest(l.axis[1]), shortest(l.axis[2])}},
+                     {"sharpness", shortest(l.sharpness)},
+                     {"rgb", {shortest(l.rgb[0]), shortest(l.rgb[1]), shortest(l.rgb[2])}}});
   }
   nlohmann::ordered_json j;
   j["lobes"] = lobes;
