@@ -3,20 +3,22 @@
 """A second, independent reader of prtkit blobs written from formats/SPEC.md alone (no code shared
 with the C reader), used as a cross-check: it validates a blob by the rules of SPEC.md §8 (quick
 checks, checksums, padding, contents of uncompressed known kinds including the SHTR (§7.1), WVLT
-(§7.2) and PSTR (§7.3) layouts; zstd frames are not decoded, the standard library has no zstd) and
+(§7.2), PSTR (§7.3) and CLTH (§7.4) layouts; zstd frames are not decoded, the standard library has no zstd) and
 prints the section table and the technique headers. It also holds a blob to the rules SPEC.md
 states for writers where a reader need not check them (PSTR: every vertex's weights sum to 65535,
 or are all 0), since what it reads are the writer's golden blobs; such failures say "WRITER".
 
 usage: spec_reader.py FILE.prtk   -> exit 0 if valid, 1 with the failed rule otherwise
 """
+import math
 import struct
 import sys
 
 # (tag, layout version) -> element size; None = variable, the exact size is in the layout (§7).
-KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"TRIS", 1): 12,
-         (b"SHTR", 1): None, (b"WVLT", 1): None, (b"PSTR", 1): None}
-PER_VERTEX = (b"VNRM", b"SHTR", b"WVLT", b"PSTR")  # one element per VPOS vertex (§7 relations)
+KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"VTAN", 1): 12, (b"TRIS", 1): 12,
+         (b"SHTR", 1): None, (b"WVLT", 1): None, (b"PSTR", 1): None, (b"CLTH", 1): None}
+# One element per VPOS vertex (§7 relations); CLTH counts its own domain and needs nothing.
+PER_VERTEX = (b"VNRM", b"VTAN", b"SHTR", b"WVLT", b"PSTR")
 
 
 def crc32c(data, crc=0):
@@ -206,6 +208,123 @@ def read_pstr(data, vertex_count):
                 bounces=bounces, albedo=albedo, flags=flags)
 
 
+def f32(x):
+    """x rounded to the nearest f32."""
+    return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+# A CLTH thread's floats in record order: (name, low, high, low excluded), SPEC.md §7.4; pi is
+# compared as the f32 nearest it.
+CLTH_THREAD_FLOATS = (("eta", 1, 4, False), ("albedo", 0, 1, False), ("albedo", 0, 1, False),
+                      ("albedo", 0, 1, False), ("k_d", 0, 1, False),
+                      ("gamma_s", 0, f32(math.pi), True), ("gamma_v", 0, f32(math.pi), True),
+                      ("coverage", 0, 1, False))
+
+
+def read_clth_fabric(data, at, tangent_count):
+    """One CLTH fabric record: name padding, thread floats and ranges, coverages. Returns the name
+    and the threads' (first, count)."""
+    name = data[at:at + 32]
+    length = name.find(b"\0") if b"\0" in name else 32
+    require(length > 0, "CORRUPT: CLTH empty name")
+    require(name[length:] == bytes(32 - length), "CORRUPT: CLTH name padding")
+    threads, coverages = [], []
+    for j in range(2):
+        t = at + 32 + 64 * j
+        floats = struct.unpack_from("<8f", data, t)
+        for x, (what, low, high, low_excluded) in zip(floats, CLTH_THREAD_FLOATS):
+            require(finite(x), f"NON_FINITE: CLTH {what}")
+            require(low <= x <= high and not (low_excluded and x == low), f"CORRUPT: CLTH {what}")
+        first, count = struct.unpack_from("<2I", data, t + 32)
+        require(1 <= count <= 16, "CORRUPT: CLTH thread tangent count")
+        require(first + count <= tangent_count, "CORRUPT: CLTH thread range")
+        require(data[t + 40:t + 64] == bytes(24), "CORRUPT: CLTH thread reserved")
+        threads.append((first, count))
+        coverages.append(floats[7])
+    require(coverages[0] + coverages[1] <= 1, "CORRUPT: CLTH coverages")
+    return name[:length], threads
+
+
+def read_clth(data, element_count):
+    """CLTH, SPEC.md §7.4: header fields, records, the exact size, names UTF-8 and distinct,
+    offsets distinct per thread, then every factorisation's scales, values and padding."""
+    require(len(data) >= 64, "CORRUPT: CLTH header")
+    fabrics, tangents, tables, xi_size, levels = struct.unpack_from("<5I", data)
+    lambda_min, lambda_max = struct.unpack_from("<2f", data, 20)
+    view_theta, view_phi, bits, flags = struct.unpack_from("<4I", data, 28)
+    require(1 <= fabrics <= 64, "CORRUPT: CLTH fabric count")
+    require(1 <= tangents <= 1024, "CORRUPT: CLTH tangent count")
+    require(1 <= tables <= 1024, "CORRUPT: CLTH table count")
+    require(2 <= xi_size <= 256, "CORRUPT: CLTH N_xi")
+    require(1 <= levels <= 64, "CORRUPT: CLTH levels")
+    require(finite(lambda_min), "NON_FINITE: CLTH lambda_min")
+    require(lambda_min > 0, "CORRUPT: CLTH lambda_min")
+    require(finite(lambda_max), "NON_FINITE: CLTH lambda_max")
+    require(lambda_max >= lambda_min, "CORRUPT: CLTH lambda_max")
+    require(levels != 1 or lambda_max == lambda_min, "CORRUPT: CLTH one level, two sharpnesses")
+    require(2 <= view_theta <= 256, "CORRUPT: CLTH N_theta")
+    require(2 <= view_phi <= 256, "CORRUPT: CLTH N_phi")
+    require(bits in (8, 16), "CORRUPT: CLTH bits")
+    require(flags == 0, "CORRUPT: CLTH flags")
+    require(data[44:64] == bytes(20), "CORRUPT: CLTH reserved")
+    require(fabrics == element_count, "CORRUPT: CLTH fabric count is not the element count")
+
+    tangents_at = 64 + 160 * fabrics
+    tables_at = tangents_at + 16 * tangents
+    data_at = tables_at + 16 * tables
+    require(len(data) >= data_at, "CORRUPT: CLTH records")
+    fabric_records = [read_clth_fabric(data, 64 + 160 * f, tangents) for f in range(fabrics)]
+    offsets = []
+    for g in range(tangents):
+        offset, multiplicity, table, mirror = struct.unpack_from("<f3I", data, tangents_at + 16 * g)
+        require(finite(offset), "NON_FINITE: CLTH offset")
+        require(abs(offset) <= f32(math.pi / 2), "CORRUPT: CLTH offset")
+        require(1 <= multiplicity <= 64, "CORRUPT: CLTH multiplicity")
+        require(table < tables, "CORRUPT: CLTH table index")
+        require(mirror in (0, 1), "CORRUPT: CLTH mirror")
+        offsets.append(offset)
+    ranks = []
+    for q in range(tables):
+        rank, cone_rank, reserved0, reserved1 = struct.unpack_from("<4I", data, tables_at + 16 * q)
+        require(1 <= rank <= 64 and 1 <= cone_rank <= 64, "CORRUPT: CLTH rank")
+        require(reserved0 == 0 and reserved1 == 0, "CORRUPT: CLTH table reserved")
+        ranks += [rank, cone_rank]
+    rows, columns, value_size = levels * xi_size * xi_size, view_theta * view_phi, bits // 8
+
+    def factor_size(rank):
+        return 8 * rank + padded4(columns * rank * value_size) + padded4(rows * rank * value_size)
+
+    require(len(data) == data_at + sum(factor_size(r) for r in ranks), "CORRUPT: CLTH size")
+
+    names = [name for name, _ in fabric_records]
+    for name in names:
+        try:
+            name.decode("utf-8", errors="strict")
+        except UnicodeDecodeError:
+            raise Invalid("CORRUPT: CLTH name is not UTF-8")
+    require(len(set(names)) == len(names), "CORRUPT: CLTH names repeat")
+    for _, threads in fabric_records:
+        for first, count in threads:
+            thread = offsets[first:first + count]
+            require(len(set(thread)) == len(thread), "CORRUPT: CLTH offset repeats in a thread")
+
+    at, invalid = data_at, -(1 << (bits - 1))
+    for rank in ranks:
+        scales = struct.unpack_from(f"<{2 * rank}f", data, at)
+        require(all(finite(x) for x in scales), "NON_FINITE: CLTH scale")
+        require(all(x >= 0 for x in scales), "CORRUPT: CLTH scale < 0")
+        at += 8 * rank
+        for count in (columns * rank, rows * rank):  # V, then U
+            values = struct.unpack_from(f"<{count}{'b' if bits == 8 else 'h'}", data, at)
+            require(invalid not in values, "CORRUPT: CLTH value -128 / -32768")
+            end, padded_end = at + count * value_size, at + padded4(count * value_size)
+            require(data[end:padded_end] == bytes(padded_end - end), "CORRUPT: CLTH padding")
+            at = padded_end
+    return dict(fabrics=fabrics, tangents=tangents, tables=tables, xi_size=xi_size, levels=levels,
+                lambda_min=lambda_min, lambda_max=lambda_max, view_theta=view_theta,
+                view_phi=view_phi, bits=bits)
+
+
 def read(blob):
     size = len(blob)
     require(size >= 4, "TRUNCATED: fewer than 4 bytes")
@@ -274,7 +393,7 @@ def read(blob):
                 data.decode("utf-8", errors="strict")
             except UnicodeDecodeError:
                 raise Invalid("CORRUPT: INFO is not UTF-8")
-        elif s["tag"] in (b"VPOS", b"VNRM"):
+        elif s["tag"] in (b"VPOS", b"VNRM", b"VTAN"):
             for (bits,) in struct.iter_unpack("<I", data):
                 require(bits & 0x7F800000 != 0x7F800000, "NON_FINITE")
         elif s["tag"] == b"TRIS":
@@ -287,6 +406,8 @@ def read(blob):
             s["header"] = read_wvlt(data, s["elements"])
         elif s["tag"] == b"PSTR":
             s["header"] = read_pstr(data, s["elements"])
+        elif s["tag"] == b"CLTH":
+            s["header"] = read_clth(data, s["elements"])
     require(blob[end:total] == bytes(total - end), "CORRUPT: final padding")
     return (major, minor), sections
 

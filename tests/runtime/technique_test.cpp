@@ -32,8 +32,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
       {PRT_TECHNIQUE_WAVELET, "wavelet", PRT_BLOB_TAG('W', 'V', 'L', 'T'),
        PRT_ELEMENT_DOMAIN_VERTEX},
       {PRT_TECHNIQUE_POSE, "pose", PRT_BLOB_TAG('P', 'S', 'T', 'R'), PRT_ELEMENT_DOMAIN_VERTEX},
-      {PRT_TECHNIQUE_CLOTH, "cloth", PRT_BLOB_TAG('C', 'L', 'T', 'H'),
-       PRT_ELEMENT_DOMAIN_MATERIAL},
+      {PRT_TECHNIQUE_CLOTH, "cloth", PRT_BLOB_TAG('C', 'L', 'T', 'H'), PRT_ELEMENT_DOMAIN_MATERIAL},
   };
   for (const Expected& e : expected) {
     prt_technique_info info = prt::sized<prt_technique_info>();

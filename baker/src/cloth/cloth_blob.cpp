@@ -73,19 +73,21 @@ prt_blob_clth_layout check_shape(const ClothSection& s, int bits) {
     fail(std::to_string(s.fabrics.size()) + " fabrics (must be 1..64)");
   if (s.tables.empty() || s.tables.size() > PRT_BLOB_CLTH_MAX_TABLES)
     fail(std::to_string(s.tables.size()) + " tables (must be 1..1024)");
-  for (const ClothFabric& f : s.fabrics) {
+  for (std::size_t i = 0; i < s.fabrics.size(); ++i) {
+    const ClothFabric& f = s.fabrics[i];
     if (f.name.empty() || f.name.size() > PRT_BLOB_CLTH_NAME_SIZE ||
         f.name.find('\0') != std::string::npos)
-      fail("fabric name '" + f.name + "' is not 1..32 bytes without NUL");
+      fail("fabric " + std::to_string(i) + ": a name of " + std::to_string(f.name.size()) +
+           " bytes (must be 1..32 bytes without NUL)");
     for (const auto& thread : f.threads)
       if (thread.empty() || thread.size() > PRT_BLOB_CLTH_MAX_THREAD_TANGENTS)
-        fail("fabric '" + f.name + "' has a thread of " + std::to_string(thread.size()) +
+        fail("fabric " + std::to_string(i) + " has a thread of " + std::to_string(thread.size()) +
              " offsets (must be 1..16)");
   }
   if (tangent_record_count(s) > PRT_BLOB_CLTH_MAX_TANGENTS)
     fail(std::to_string(tangent_record_count(s)) + " tangent records (must be at most 1024)");
   const prt_blob_clth_header h = header_of(s, bits);
-  prt_blob_clth_layout layout;
+  prt_blob_clth_layout layout{};
   if (!prt_blob_clth_layout_of(&h, &layout))
     fail("grid out of range (N_xi, N_theta, N_phi 2..256, levels 1..64)");
   for (std::size_t q = 0; q < s.tables.size(); ++q) {
@@ -331,8 +333,8 @@ void add_mesh(prt::format::BlobWriter& w, const ClothMesh& m) {
 
 DecodedClothSection decode_clth_section(const std::uint8_t* bytes, std::size_t size) {
   check_bytes(bytes, size);
-  prt_blob_clth_header h;
-  prt_blob_clth_layout l;
+  prt_blob_clth_header h{};
+  prt_blob_clth_layout l{};
   prt_blob_clth_read_header(bytes, &h);
   prt_blob_clth_layout_of(&h, &l);  // valid: checked
   DecodedClothSection out;

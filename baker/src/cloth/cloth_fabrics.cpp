@@ -5,7 +5,7 @@
 #include "prt/baker/cloth/fabrics.hpp"
 
 #include <cmath>
-#include <initializer_list>
+#include <vector>
 
 #include "prt/baker/context.hpp"
 
@@ -22,7 +22,8 @@ struct ThreadRow {
   double kd;
   double gamma_s_deg, gamma_v_deg;
   double coverage;
-  std::initializer_list<double> offsets_deg;
+  // Owned, since rows are copied out of the helpers that build them.
+  std::vector<double> offsets_deg;
 };
 
 struct FabricRow {
@@ -61,8 +62,8 @@ void thread_weave(const ThreadRow& row, int j, prt_cloth_weave& weave) {
   }
 }
 
-ClothFabric fabric_of(const FabricRow& row) {
-  ClothFabric fabric;
+ClothPreset fabric_of(const FabricRow& row) {
+  ClothPreset fabric;
   fabric.name = row.name;
   fabric.params.struct_size = sizeof(prt_cloth_params);
   fabric.weave.struct_size = sizeof(prt_cloth_weave);
@@ -78,7 +79,7 @@ ThreadRow satin_weft(double coverage) {
   return {1.539, {1.0, 0.37, 0.3}, kSatinWeftAlbedoScale, 0.7, 30, 60, coverage, {0}};
 }
 
-std::vector<ClothFabric> build_fabrics() {
+std::vector<ClothPreset> build_fabrics() {
   const ThreadRow satin_warp_front = {
       1.539, {1.0, 0.37, 0.3}, 0.035, 0.1, 2.5, 5, 0.9, {-32, -32, -18, 0, 0, 18, 32, 32}};
   const ThreadRow satin_warp_back = {
@@ -99,32 +100,32 @@ std::vector<ClothFabric> build_fabrics() {
        {{1.46, {0.05, 0.02, 0.0}, 0.3, 0.1, 6, 12, 0.5, {-90, -50}},
         {1.46, {0.05, 0.02, 0.0}, 0.3, 0.1, 6, 12, 0.5, {-90, -55, 55, 90}}}},
   };
-  std::vector<ClothFabric> fabrics;
+  std::vector<ClothPreset> fabrics;
   for (const FabricRow& row : rows) fabrics.push_back(fabric_of(row));
   return fabrics;
 }
 
 }  // namespace
 
-const std::vector<ClothFabric>& cloth_fabrics() {
-  static const std::vector<ClothFabric> fabrics = build_fabrics();
+const std::vector<ClothPreset>& cloth_fabrics() {
+  static const std::vector<ClothPreset> fabrics = build_fabrics();
   return fabrics;
 }
 
 std::vector<std::string> cloth_fabric_names() {
   std::vector<std::string> names;
-  for (const ClothFabric& fabric : cloth_fabrics()) names.push_back(fabric.name);
+  for (const ClothPreset& fabric : cloth_fabrics()) names.push_back(fabric.name);
   return names;
 }
 
-const ClothFabric* find_cloth_fabric(std::string_view name) {
-  for (const ClothFabric& fabric : cloth_fabrics())
+const ClothPreset* find_cloth_fabric(std::string_view name) {
+  for (const ClothPreset& fabric : cloth_fabrics())
     if (fabric.name == name) return &fabric;
   return nullptr;
 }
 
-const ClothFabric& cloth_fabric(std::string_view name) {
-  if (const ClothFabric* fabric = find_cloth_fabric(name)) return *fabric;
+const ClothPreset& cloth_fabric(std::string_view name) {
+  if (const ClothPreset* fabric = find_cloth_fabric(name)) return *fabric;
   std::string known;
   for (const std::string& n : cloth_fabric_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown fabric '" + std::string(name) + "' (known: " + known + ")");

@@ -46,8 +46,8 @@ typedef struct prt_cloth_params {
  * with their multiplicities. Baked into an asset's tables; the exact model takes it as is. */
 typedef struct prt_cloth_weave {
   size_t struct_size; /* set by the caller: sizeof(prt_cloth_weave) */
-  uint32_t tangent_count[2];
-  float offsets[2][PRT_CLOTH_MAX_THREAD_TANGENTS];
+  uint32_t tangent_count[2]; /* 1..PRT_CLOTH_MAX_THREAD_TANGENTS per thread */
+  float offsets[2][PRT_CLOTH_MAX_THREAD_TANGENTS]; /* distinct within a thread */
   uint32_t multiplicity[2][PRT_CLOTH_MAX_THREAD_TANGENTS]; /* each 1..PRT_CLOTH_MAX_MULTIPLICITY */
 } prt_cloth_weave;
 
@@ -103,7 +103,9 @@ typedef struct prt_cloth_pixels {
  * the surface or a sample whose vectors are degenerate). Cost: count x texels x tangents. The
  * ground truth the technique's error is measured against (a quadrature of the map as piecewise
  * constant: its own error is stated by the tools that call it, from a finer quadrature).
- * PRT_ERROR_INVALID_ARGUMENT for NULL pointers, invalid params or weave, bad struct sizes. */
+ * PRT_ERROR_INVALID_ARGUMENT for NULL pointers, invalid params or weave, bad struct sizes, or a
+ * texel outside its contract (a direction not finite or more than 1e-3 from unit length, a power
+ * not finite or negative). */
 PRT_API prt_result prt_cloth_reference(const prt_cloth_params* params,
                                        const prt_cloth_weave* weave,
                                        const prt_cloth_env_texels* env,

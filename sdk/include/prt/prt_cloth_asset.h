@@ -67,8 +67,8 @@ typedef struct prt_cloth_settings {
   uint32_t flags;         /* PRT_CLOTH_* above */
   float weak_lobe;        /* a lobe whose power is below this fraction of the light's total is
                              skipped; 0: 1e-3 */
-  uint32_t theta_segments; /* segments of each theta window (the quadrature's accuracy); 0: 4 */
-  uint32_t phi_nodes;      /* nodes of each phi integral; 0: 6 */
+  uint32_t theta_segments; /* panels (of three nodes) per theta window, 1..16; 0: 2 */
+  uint32_t phi_nodes;      /* nodes of each phi integral, 1..8; 0: 3 */
 } prt_cloth_settings;
 
 /* Outgoing radiance of samples [first, first+count) (pixels->normals[3 i] ..., i in the range)

@@ -13,10 +13,10 @@
 namespace prt::bake {
 
 // Thread 2's albedo scale of satin charmeuse, front and back: the two open sources of the table
-// disagree (0.2 or 0.02); see docs/cloth/model.md#satin-decision. The shared table's value.
-inline constexpr float kSatinWeftAlbedoScale = 0.2f;
+// disagree (0.2 or 0.02); docs/cloth/model.md#satin-decision says why it is 0.02.
+inline constexpr float kSatinWeftAlbedoScale = 0.02f;
 
-struct ClothFabric {
+struct ClothPreset {
   std::string name;           // the table's key, e.g. "linen_plain"
   prt_cloth_params params{};  // albedo = A_color x A_scale, angles in radians
   prt_cloth_weave weave{};    // offsets in radians; repeated values merged, in order of first
@@ -24,11 +24,11 @@ struct ClothFabric {
 };
 
 // The six presets, in the table's order.
-const std::vector<ClothFabric>& cloth_fabrics();
+const std::vector<ClothPreset>& cloth_fabrics();
 std::vector<std::string> cloth_fabric_names();
 // The preset called `name`, or nullptr.
-const ClothFabric* find_cloth_fabric(std::string_view name);
+const ClothPreset* find_cloth_fabric(std::string_view name);
 // The preset called `name`; Error naming the presets when there is none.
-const ClothFabric& cloth_fabric(std::string_view name);
+const ClothPreset& cloth_fabric(std::string_view name);
 
 }  // namespace prt::bake
