@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cloth_presets.hpp"
+#include "prt/baker/cloth/fabrics.hpp"
 #include "prt/baker/cloth/cloth_tables.hpp"
 
 namespace prt::bake {
@@ -141,7 +141,7 @@ TEST(ClothTableFactor, RanksForEnergyFromSingularValues) {
 TEST(ClothTablesBake, TheSectionHoldsTheFabricsAndTheirTables) {
   std::vector<ClothFabricSource> fabrics;
   for (const char* name : {"linen_plain", "polyester_satin_charmeuse"}) {
-    const cloth_test::Preset p = cloth_test::preset(name);
+    const prt::bake::ClothPreset& p = prt::bake::cloth_fabric(name);
     fabrics.push_back({p.name, p.params, p.weave});
   }
   ClothTablesOptions options;
@@ -177,7 +177,7 @@ TEST(ClothTablesBake, TheSectionHoldsTheFabricsAndTheirTables) {
 }
 
 TEST(ClothTablesBake, RejectsInvalidFabrics) {
-  cloth_test::Preset p = cloth_test::preset("linen_plain");
+  prt::bake::ClothPreset p = prt::bake::cloth_fabric("linen_plain");
   p.params.threads[0].coverage = 0.9f;  // with 0.33: more than 1
   EXPECT_THROW(bake_cloth_tables({{p.name, p.params, p.weave}}, {}, Context{}), Error);
   EXPECT_THROW(bake_cloth_tables({}, {}, Context{}), Error);

@@ -11,7 +11,7 @@
 #include <set>
 #include <vector>
 
-#include "cloth_presets.hpp"
+#include "prt/baker/cloth/fabrics.hpp"
 #include "prt/baker/cloth/cloth_tables.hpp"
 
 namespace prt::bake {
@@ -125,12 +125,12 @@ TEST(ClothTablePlan, WIsUnchangedByMirrorInY) {
 
 std::vector<prt_cloth_weave> preset_weaves() {
   std::vector<prt_cloth_weave> weaves;
-  for (const cloth_test::Preset& p : cloth_test::presets()) weaves.push_back(p.weave);
+  for (const prt::bake::ClothPreset& p : prt::bake::cloth_fabrics()) weaves.push_back(p.weave);
   return weaves;
 }
 
 TEST(ClothTablePlan, LinensThreadsShareOneTable) {
-  const ClothTablePlan plan = plan_cloth_tables({cloth_test::preset("linen_plain").weave});
+  const ClothTablePlan plan = plan_cloth_tables({prt::bake::cloth_fabric("linen_plain").weave});
   ASSERT_EQ(plan.tables.size(), 1u);
   EXPECT_EQ(plan.tables[0].offsets, (std::vector<float>{degrees(-25), degrees(25)}));
   EXPECT_EQ(plan.tables[0].offset(), degrees(25));
@@ -147,7 +147,7 @@ TEST(ClothTablePlan, LinensThreadsShareOneTable) {
 
 TEST(ClothTablePlan, SatinsWarpHasThreeTablesForFiveOffsets) {
   const ClothTablePlan plan =
-      plan_cloth_tables({cloth_test::preset("polyester_satin_charmeuse").weave});
+      plan_cloth_tables({prt::bake::cloth_fabric("polyester_satin_charmeuse").weave});
   ASSERT_EQ(plan.tables.size(), 4u);  // 0, 18, 32 degrees of the warp; the weft's 0
   const std::vector<ClothTangent>& warp = plan.threads[0][0];
   ASSERT_EQ(warp.size(), 5u);
