@@ -22,18 +22,21 @@ typedef struct gl_function_slot {
 #define SLOT(fn) \
   { "gl" #fn, offsetof(prt_gl_functions, fn) }
 static const gl_function_slot kGlFunctions[] = {
-    SLOT(GetError),         SLOT(GetIntegerv),      SLOT(GetInteger64v),
-    SLOT(CreateShader),     SLOT(ShaderSource),     SLOT(CompileShader),
-    SLOT(GetShaderiv),      SLOT(GetShaderInfoLog), SLOT(DeleteShader),
-    SLOT(CreateProgram),    SLOT(AttachShader),     SLOT(DetachShader),
-    SLOT(LinkProgram),      SLOT(GetProgramiv),     SLOT(GetProgramInfoLog),
-    SLOT(DeleteProgram),    SLOT(UseProgram),       SLOT(ProgramUniform1ui),
-    SLOT(GenBuffers),       SLOT(DeleteBuffers),    SLOT(BindBuffer),
-    SLOT(BindBufferBase),   SLOT(BufferData),       SLOT(BufferSubData),
-    SLOT(GetBufferSubData), SLOT(DispatchCompute),  SLOT(MemoryBarrier),
-    SLOT(ActiveTexture),    SLOT(BindTexture),      SLOT(BindSampler),
-    SLOT(GenVertexArrays),  SLOT(BindVertexArray),  SLOT(DeleteVertexArrays),
-    SLOT(Enable),           SLOT(Disable),          SLOT(DrawArrays)};
+    SLOT(GetError),         SLOT(GetIntegerv),        SLOT(GetInteger64v),
+    SLOT(CreateShader),     SLOT(ShaderSource),       SLOT(CompileShader),
+    SLOT(GetShaderiv),      SLOT(GetShaderInfoLog),   SLOT(DeleteShader),
+    SLOT(CreateProgram),    SLOT(AttachShader),       SLOT(DetachShader),
+    SLOT(LinkProgram),      SLOT(GetProgramiv),       SLOT(GetProgramInfoLog),
+    SLOT(DeleteProgram),    SLOT(UseProgram),         SLOT(ProgramUniform1ui),
+    SLOT(GenBuffers),       SLOT(DeleteBuffers),      SLOT(BindBuffer),
+    SLOT(BindBufferBase),   SLOT(BufferData),         SLOT(BufferSubData),
+    SLOT(GetBufferSubData), SLOT(DispatchCompute),    SLOT(MemoryBarrier),
+    SLOT(DeleteTextures),   SLOT(DeleteVertexArrays), SLOT(BlendFuncSeparate),
+    SLOT(PixelStorei),      SLOT(GenTextures),        SLOT(ActiveTexture),
+    SLOT(DrawArrays),       SLOT(TexParameteri),      SLOT(GenVertexArrays),
+    SLOT(Enable),           SLOT(TexStorage2D),       SLOT(TexSubImage2D),
+    SLOT(Disable),          SLOT(BindTexture),        SLOT(BlendEquationSeparate),
+    SLOT(BindSampler),      SLOT(BindVertexArray)};
 #undef SLOT
 
 const char* prt_gl_load_functions(prt_gl_loader_fn loader, void* user, prt_gl_functions* gl) {

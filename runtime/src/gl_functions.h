@@ -55,6 +55,28 @@ typedef int64_t prt_GLint64;
 #define PRT_GL_BLEND 0x0BE2u
 #define PRT_GL_CULL_FACE 0x0B44u
 #define PRT_GL_VIEWPORT 0x0BA2u
+#define PRT_GL_MAX_TEXTURE_SIZE 0x0D33u
+#define PRT_GL_R32UI 0x8236u
+#define PRT_GL_RED_INTEGER 0x8D94u
+#define PRT_GL_UNSIGNED_INT 0x1405u
+#define PRT_GL_TEXTURE_MIN_FILTER 0x2801u
+#define PRT_GL_TEXTURE_MAG_FILTER 0x2800u
+#define PRT_GL_NEAREST 0x2600u
+#define PRT_GL_PIXEL_UNPACK_BUFFER 0x88ECu
+#define PRT_GL_PIXEL_UNPACK_BUFFER_BINDING 0x88EFu
+#define PRT_GL_UNPACK_SWAP_BYTES 0x0CF0u
+#define PRT_GL_UNPACK_ROW_LENGTH 0x0CF2u
+#define PRT_GL_UNPACK_SKIP_ROWS 0x0CF3u
+#define PRT_GL_UNPACK_SKIP_PIXELS 0x0CF4u
+#define PRT_GL_UNPACK_ALIGNMENT 0x0CF5u
+#define PRT_GL_ONE 1u
+#define PRT_GL_FUNC_ADD 0x8006u
+#define PRT_GL_BLEND_SRC_RGB 0x80C9u
+#define PRT_GL_BLEND_DST_RGB 0x80C8u
+#define PRT_GL_BLEND_SRC_ALPHA 0x80CBu
+#define PRT_GL_BLEND_DST_ALPHA 0x80CAu
+#define PRT_GL_BLEND_EQUATION_RGB 0x8009u
+#define PRT_GL_BLEND_EQUATION_ALPHA 0x883Du
 
 /* The entry points (gl_common.c loads each one named in kGlFunctions). */
 typedef struct prt_gl_functions {
@@ -100,6 +122,19 @@ typedef struct prt_gl_functions {
   void(PRT_GL_APIENTRY* Enable)(prt_GLenum cap);
   void(PRT_GL_APIENTRY* Disable)(prt_GLenum cap);
   void(PRT_GL_APIENTRY* DrawArrays)(prt_GLenum mode, prt_GLint first, prt_GLsizei count);
+  void(PRT_GL_APIENTRY* GenTextures)(prt_GLsizei n, prt_GLuint* textures);
+  void(PRT_GL_APIENTRY* DeleteTextures)(prt_GLsizei n, const prt_GLuint* textures);
+  void(PRT_GL_APIENTRY* TexStorage2D)(prt_GLenum target, prt_GLsizei levels,
+                                      prt_GLenum internal_format, prt_GLsizei width,
+                                      prt_GLsizei height);
+  void(PRT_GL_APIENTRY* TexSubImage2D)(prt_GLenum target, prt_GLint level, prt_GLint x, prt_GLint y,
+                                       prt_GLsizei width, prt_GLsizei height, prt_GLenum format,
+                                       prt_GLenum type, const void* pixels);
+  void(PRT_GL_APIENTRY* TexParameteri)(prt_GLenum target, prt_GLenum name, prt_GLint value);
+  void(PRT_GL_APIENTRY* PixelStorei)(prt_GLenum name, prt_GLint value);
+  void(PRT_GL_APIENTRY* BlendFuncSeparate)(prt_GLenum src_rgb, prt_GLenum dst_rgb,
+                                           prt_GLenum src_alpha, prt_GLenum dst_alpha);
+  void(PRT_GL_APIENTRY* BlendEquationSeparate)(prt_GLenum rgb, prt_GLenum alpha);
 } prt_gl_functions;
 
 #endif /* PRT_RUNTIME_GL_FUNCTIONS_H */

@@ -45,13 +45,17 @@ typedef struct prt_cloth_gl_block {
   uint32_t lobe_bits[PRT_CLOTH_MAX_LOBES]; /* as uvec4[MAX_LOBES / 4] in the shader */
 } prt_cloth_gl_block;
 
+/* The most terms of a panel's moment series (the fragment shader's SERIES_TERMS). */
+#define PRT_CLOTH_GL_SERIES_TERMS 28u
+
 /* GL guarantees uniform blocks of 16 KiB. */
 PRT_STATIC_ASSERT(sizeof(prt_cloth_gl_block) <= 16384u, cloth_gl_block_fits);
 PRT_STATIC_ASSERT(PRT_CLOTH_MAX_LOBES % 4u == 0u, cloth_gl_lobe_bits_pack);
 
 /* The shaders. The fragment shader's sources follow a header the backend writes (the #version
  * line and the asset's constants: BITS, MAX_RANK, XI_SIZE, LEVELS, VIEW_THETA, VIEW_PHI,
- * MAX_TANGENTS, MAX_LOBES). */
+ * MAX_TANGENTS, MAX_LOBES, TABLE_SHIFT: the table texture is 2^TABLE_SHIFT texels wide,
+ * SERIES_TERMS). */
 extern const char prt_cloth_gl_vertex_source[];
 #define PRT_CLOTH_GL_FRAGMENT_PARTS 4
 extern const char* const prt_cloth_gl_fragment_sources[PRT_CLOTH_GL_FRAGMENT_PARTS];
