@@ -301,10 +301,49 @@ TEST(GlCloth, LightsFromNoLobeToTheMostShadeLikeTheScalarReference) {
     if (!g.cloth[i]) continue;
     for (int c = 0; c < 3; ++c) EXPECT_EQ(none[4 * target.texel_of(i) + c], 0.0f) << i;
   }
+  // So many lobes take several passes (cloth_gl.c: PASS_ITERATIONS) added by blending, with the
+  // caller's blend functions put back and blending left off.
+  calls.Enable(GL_BLEND);
+  calls.BlendFuncSeparate(GL_SRC_ALPHA, GL_ZERO, GL_DST_ALPHA, GL_ONE_MINUS_SRC_COLOR);
+  calls.BlendEquationSeparate(GL_FUNC_SUBTRACT, GL_MAX);
   const std::vector<prt_cloth_lobe> most = random_lobes(PRT_CLOTH_MAX_LOBES, 43);
   shade_and_compare(shader.get(), a, 0, nullptr, most, nullptr, g, target, "256 lobes");
+  EXPECT_FALSE(calls.IsEnabled(GL_BLEND));
+  const std::pair<GLenum, GLint> blend[] = {
+      {GL_BLEND_SRC_RGB, GL_SRC_ALPHA},          {GL_BLEND_DST_RGB, GL_ZERO},
+      {GL_BLEND_SRC_ALPHA, GL_DST_ALPHA},        {GL_BLEND_DST_ALPHA, GL_ONE_MINUS_SRC_COLOR},
+      {GL_BLEND_EQUATION_RGB, GL_FUNC_SUBTRACT}, {GL_BLEND_EQUATION_ALPHA, GL_MAX}};
+  for (const auto& [name, expected] : blend) {
+    GLint value = -1;
+    calls.GetIntegerv(name, &value);
+    EXPECT_EQ(value, expected) << name;
+  }
+  calls.BlendFuncSeparate(GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+  calls.BlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
   const prt_cloth_settings keep = settings_of(PRT_CLOTH_KEEP_WEAK_LOBES);
   shade_and_compare(shader.get(), a, 0, nullptr, most, &keep, g, target, "256 lobes, all kept");
+  const prt_cloth_settings finest = settings_of(PRT_CLOTH_KEEP_WEAK_LOBES, 16, 8);
+  shade_and_compare(shader.get(), a, 0, nullptr, most, &finest, g, target,
+                    "256 lobes, all kept, 16 segments, 8 phi nodes");
+}
+
+// Grazing views (87 to 89.94 degrees from the normal), where the fibres' fronts and the theta
+// windows are cut hardest, for every preset fabric, under a light with lobes at and below the
+// horizon as well as above.
+TEST(GlCloth, GrazingViewsShadeLikeTheScalarReference) {
+  PRT_REQUIRE_GL(gl);
+  GlCalls calls;
+  const std::vector<FabricSpec> fabrics = all_fabrics();
+  const ClothAsset a(cloth_section(fabrics, small_grid(), {4, 6, 2}, 81), 16);
+  GlClothShaderPtr shader = create_shader(a, gl.gl);
+  ASSERT_TRUE(shader);
+  GBufferSamples g = random_gbuffer(19, 13, 82);
+  make_views_grazing(g, 83);
+  GlTarget target(calls, g, 1, 3, kClear);
+  const std::vector<prt_cloth_lobe> lobes = random_lobes(12, 84);
+  for (uint32_t f = 0; f < fabrics.size(); ++f)
+    shade_and_compare(shader.get(), a, f, nullptr, lobes, nullptr, g, target,
+                      fabrics[f].name + ", grazing views");
 }
 
 // ---- GL state ------------------------------------------------------------------------------
@@ -335,7 +374,7 @@ TEST(GlCloth, StateIsSetForTheDrawAndLeftAsDocumented) {
   GLuint sampler = 0, other = float_texture(calls, 2, 2, nullptr), vertex_array = 0;
   calls.GenSamplers(1, &sampler);
   calls.SamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  for (GLuint unit = 0; unit < 3; ++unit) calls.BindSampler(unit, sampler);
+  for (GLuint unit = 0; unit < 4; ++unit) calls.BindSampler(unit, sampler);
   calls.ActiveTexture(GL_TEXTURE5);
   calls.BindTexture(GL_TEXTURE_2D, other);
   calls.GenVertexArrays(1, &vertex_array);
@@ -355,7 +394,7 @@ TEST(GlCloth, StateIsSetForTheDrawAndLeftAsDocumented) {
   EXPECT_EQ(value, GL_TEXTURE0);
   calls.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &value);
   EXPECT_EQ(value, 0);
-  for (GLuint unit = 0; unit < 3; ++unit) {
+  for (GLuint unit = 0; unit < 4; ++unit) {  // the G-buffer's and the tables'
     calls.ActiveTexture(GL_TEXTURE0 + unit);
     calls.GetIntegerv(GL_TEXTURE_BINDING_2D, &value);
     EXPECT_EQ(value, 0) << "unit " << unit;
@@ -395,6 +434,43 @@ TEST(GlCloth, StateIsSetForTheDrawAndLeftAsDocumented) {
 
 // ---- creation ------------------------------------------------------------------------------
 
+// Pixel-unpack state an application left set (a bound unpack buffer, row length, skips, byte
+// swapping, alignment) would garble the tables' upload: create uploads as if it were not set,
+// shades as the reference does, and puts every value back.
+TEST(GlCloth, UnpackStateTheApplicationLeftSetDoesNotSpoilTheTables) {
+  PRT_REQUIRE_GL(gl);
+  GlCalls calls;
+  const std::vector<FabricSpec> fabrics = presets({"linen_plain"});
+  const ClothAsset a(cloth_section(fabrics, small_grid(), {3, 2}, 55), 16);
+  GLuint unpack = 0;
+  calls.GenBuffers(1, &unpack);
+  calls.BindBuffer(GL_PIXEL_UNPACK_BUFFER, unpack);
+  const std::vector<unsigned char> junk(1 << 16, 0x5a);
+  calls.BufferData(GL_PIXEL_UNPACK_BUFFER, GLsizeiptr(junk.size()), junk.data(), GL_STATIC_DRAW);
+  const GLenum names[] = {GL_UNPACK_SWAP_BYTES, GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS,
+                          GL_UNPACK_SKIP_PIXELS, GL_UNPACK_ALIGNMENT};
+  const GLint values[] = {1, 3, 1, 2, 8};
+  for (int i = 0; i < 5; ++i) calls.PixelStorei(names[i], values[i]);
+  GlClothShaderPtr shader = create_shader(a, gl.gl);
+  ASSERT_TRUE(shader);
+  GLint value = -1;
+  calls.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &value);
+  EXPECT_EQ(value, GLint(unpack));
+  for (int i = 0; i < 5; ++i) {
+    calls.GetIntegerv(names[i], &value);
+    EXPECT_EQ(value, values[i]) << names[i];
+  }
+  calls.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  calls.DeleteBuffers(1, &unpack);
+  const GLint defaults[] = {0, 0, 0, 0, 4};
+  for (int i = 0; i < 5; ++i) calls.PixelStorei(names[i], defaults[i]);
+  const GBufferSamples g = random_gbuffer(11, 9, 56);
+  GlTarget target(calls, g, 0, 0, kClear);
+  shade_and_compare(shader.get(), a, 0, nullptr, random_lobes(5, 57), nullptr, g, target,
+                    "unpack state set at create");
+  EXPECT_EQ(take_gl_error(), 0u);
+}
+
 ClothAsset small_asset(prt_backend limit = PRT_BACKEND_AUTO,
                        const prt_allocator* allocator = nullptr) {
   return ClothAsset(cloth_section(presets({"linen_plain"}), small_grid(), {2}, 61), 8, limit,
@@ -425,14 +501,29 @@ TEST(GlCloth, ContextOlderThan43IsUnsupported) {
   expect_refused_below_gl_43(try_create(a), a.context.get());
 }
 
-TEST(GlCloth, TablesLargerThanTheSsboLimitAreUnsupported) {
+// A loader whose GL answers a GL_MAX_TEXTURE_SIZE of 8.
+void narrow_textures_get_integerv(GLenum name, GLint* data) {
+  reinterpret_cast<PFNGLGETINTEGERVPROC>(headless_gl_get_proc(nullptr, "glGetIntegerv"))(name,
+                                                                                         data);
+  if (name == GL_MAX_TEXTURE_SIZE) *data = 8;
+}
+void* narrow_textures_loader(void*, const char* name) {
+  if (std::string(name) == "glGetIntegerv")
+    return reinterpret_cast<void*>(&narrow_textures_get_integerv);
+  return headless_gl_get_proc(nullptr, name);
+}
+
+// The tables' words fill a square texture of a power-of-two side: 936 bytes (234 words) need 16
+// texels a side, more than the 8 this GL claims.
+TEST(GlCloth, TablesWiderThanTheLargestTextureAreUnsupported) {
   PRT_REQUIRE_GL(gl);
-  const ClothAsset a = small_asset();  // 4 x 7 x 7 lobe nodes of rank 2, 8-bit: over 1024 bytes
+  const ClothAsset a = small_asset();
   prt_cloth_info info{};
   info.struct_size = sizeof info;
   ASSERT_EQ(prt_cloth_get_info(a.asset(), &info), PRT_OK);
-  ASSERT_GT(info.table_bytes, 1024u);
-  expect_refused_above_ssbo_limit(try_create(a), a.context.get());
+  ASSERT_GT(info.table_bytes, 4u * 8u * 8u);
+  expect_refused(try_create(a), a.context.get(), narrow_textures_loader, nullptr,
+                 "need a texture 16 texels wide; this GL allows 8");
 }
 
 TEST(GlCloth, BackendLimitBelowGlIsUnsupported) {
