@@ -17,11 +17,11 @@
 // way. (2) The evaluation at given angles: a theta node's value is a product of about 30 rounded
 // factors (sin, cos, atan2 and acos within about an ulp, exp within 2 ulp and its argument's
 // rounding, the Fresnel term, the phi weights), and the panels, parts, lobes and tangents add
-// terms that are positive but for the quadrature's small undershoots, which keeps their sum's
-// relative error to that of its terms: 32 u S, S the pixel's largest channel. So
+// terms that are positive but for the quadrature's small undershoots (in one draw or, for many
+// lobes, in several added by blending), which keeps their sum's relative error to that of its
+// terms: 32 u S, S the pixel's largest channel. So
 //   |gl - reference| <= 2 D + 32 u S        per pixel and channel.
-// The worst ratio of error to bound is printed; measured on llvmpipe it is below 0.5 (see the
-// report of each test), the error itself below 40 u S.
+// Each case prints its worst ratio of error to bound and its worst error in units of u S.
 #include <gtest/gtest.h>
 
 #include <algorithm>
