@@ -405,7 +405,6 @@ static void pass_sizes(const prt_gl_cloth_shader* s, const prt_cloth_method* met
   const uint32_t per_tangent = tangent_iterations(s->max_rank);
   const uint32_t per_lobe = lobe_iterations(method, s->max_rank);
   uint32_t tangents = PASS_ITERATIONS / (per_tangent + per_lobe), lobes;
-  if (tangents < 1u) tangents = 1u;
   if (tangents > s->fabric.tangent_count) tangents = s->fabric.tangent_count;
   if (tangents < 1u) tangents = 1u;
   lobes = PASS_ITERATIONS / tangents > per_tangent
