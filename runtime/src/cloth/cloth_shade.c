@@ -13,7 +13,7 @@
 #include "cloth_shade_internal.h"
 #include "cloth_shade_simd.h"
 
-#define PRT_CLOTH_KNOWN_FLAGS                                                     \
+#define PRT_CLOTH_KNOWN_FLAGS                                                          \
   (PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_CONE_TABLE | \
    PRT_CLOTH_NO_FRAME_CACHE)
 

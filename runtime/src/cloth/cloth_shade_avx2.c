@@ -70,7 +70,8 @@ static const float kWeights[MAX_Q][MAX_Q] = {
      0.3626837833783620f, 0.3137066458778873f, 0.2223810344533745f, 0.1012285362903763f},
 };
 
-/* ---- Lane helpers ------------------------------------------------------------------------------ */
+/* ---- Lane helpers ------------------------------------------------------------------------------
+ */
 
 static inline v8 add8(v8 a, v8 b) {
   return _mm256_add_ps(a, b);
@@ -123,8 +124,8 @@ static inline float lane0(v8 x) {
 /* The lanes whose bit is set in `bits`. */
 static inline v8 mask_of_bits(unsigned bits) {
   const __m256i lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  return _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-      _mm256_and_si256(_mm256_set1_epi32((int)bits), lane_bits), lane_bits));
+  return _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lane_bits), lane_bits));
 }
 /* Lane l of the result is the sum of the eight lanes of x[l]. */
 static inline v8 sum_each(const v8 x[LANES]) {
@@ -135,7 +136,8 @@ static inline v8 sum_each(const v8 x[LANES]) {
               _mm256_permute2f128_ps(s0123, s4567, 0x31));
 }
 
-/* ---- The call's uniform data ------------------------------------------------------------------- */
+/* ---- The call's uniform data -------------------------------------------------------------------
+ */
 
 typedef struct factor_info {
   const uint8_t* u;
@@ -180,7 +182,9 @@ typedef struct call_c {
   const prt_cloth_view* view;
   uint32_t lobes, tangents, nodes, q, levels, xi, nt, np;
   int cone, keep_hidden;
-  float frac[3][MAX_NODES]; /* node fractions: even, graded to the low end, to the high end */
+  /* node fractions: even, graded to the low end, to the high end; and the fraction left to the
+   * high end when graded there */
+  float frac[4][MAX_NODES];
   float gl_x[MAX_Q], gl_g[MAX_Q], gl_hw[MAX_Q]; /* nodes, (x + 1) / 2, weights / 2 */
   size_t record;                                /* cache floats per pair */
   thread_c threads[2];
@@ -227,8 +231,8 @@ static void prepare_lobe(const call_c* cc, const prt_cloth_lobe_prep* lp,
   }
   out->lambda = (float)lambda;
   /* exp(lambda (s - 1)) >= PRT_CLOTH_HIDDEN_LOBE as a bound on s */
-  out->cull = (flags & PRT_CLOTH_KEEP_HIDDEN_LOBES) ? -INFINITY
-                                                    : 1.0 + log(PRT_CLOTH_HIDDEN_LOBE) / lambda;
+  out->cull =
+      (flags & PRT_CLOTH_KEEP_HIDDEN_LOBES) ? -INFINITY : 1.0 + log(PRT_CLOTH_HIDDEN_LOBE) / lambda;
   out->level = 0;
   out->level_frac = 0.0f;
   if (cc->levels > 1) {
@@ -298,6 +302,7 @@ static void prepare_call(const prt_cloth_view* view, const prt_cloth_fabric_prep
     cc->frac[0][s] = (float)f;
     cc->frac[1][s] = (float)(f * f);
     cc->frac[2][s] = (float)(1.0 - (1.0 - f) * (1.0 - f));
+    cc->frac[3][s] = (float)((1.0 - f) * (1.0 - f));
   }
   for (i = 0; i < cc->q; ++i) {
     cc->gl_x[i] = kNodes[cc->q - 1][i];
@@ -332,7 +337,8 @@ static void prepare_call(const prt_cloth_view* view, const prt_cloth_fabric_prep
                2u * (1u + (cc->nodes + 1u) * (5u + 3u * cc->q) + (cc->nodes / 2u) * 6u);
 }
 
-/* ---- The frame cache --------------------------------------------------------------------------- */
+/* ---- The frame cache ---------------------------------------------------------------------------
+ */
 
 enum { CACHE_NONE, CACHE_FILL, CACHE_READ };
 
@@ -354,7 +360,8 @@ static inline int get_flag(cursor* c) {
   return *c->at++ != 0.0f;
 }
 
-/* ---- Tables (cloth_tables.c) ------------------------------------------------------------------- */
+/* ---- Tables (cloth_tables.c) -------------------------------------------------------------------
+ */
 
 /* Values [8 c, 8 c + 8) of row `row` as floats; past the rank they belong to the next rows (the
  * caller multiplies them by zero) or, at the array's end, are 0. */
@@ -363,7 +370,8 @@ static inline v8 load_values(const factor_info* f, const uint8_t* base, uint64_t
   const uint64_t at = row * f->rank + 8u * c;
   if (row < safe) {
     if (f->bits == 16)
-      return _mm256_cvtepi32_ps(_mm256_cvtepi16_epi32(_mm_loadu_si128((const __m128i*)(base + 2u * at))));
+      return _mm256_cvtepi32_ps(
+          _mm256_cvtepi16_epi32(_mm_loadu_si128((const __m128i*)(base + 2u * at))));
     return _mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(_mm_loadl_epi64((const __m128i*)(base + at))));
   } else {
     const uint32_t n = f->rank - 8u * c < 8u ? f->rank - 8u * c : 8u;
@@ -446,8 +454,8 @@ static void lobe_row(const call_c* cc, const factor_info* f, const lobe_c* lobe,
 }
 
 /* The octahedral cells of canonical lobe directions (formats/SPEC.md §7.4). */
-static void octahedral_cells(const call_c* cc, v8 x, v8 y, v8 z, int32_t ci[LANES],
-                             float fi[LANES], int32_t cj[LANES], float fj[LANES]) {
+static void octahedral_cells(const call_c* cc, v8 x, v8 y, v8 z, int32_t ci[LANES], float fi[LANES],
+                             int32_t cj[LANES], float fj[LANES]) {
   const v8 l1 = add8(add8(prt_v8_abs(x), prt_v8_abs(y)), prt_v8_abs(z));
   v8 px = div8(x, l1), py = div8(y, l1);
   const v8 below = lt8(z, _mm256_setzero_ps());
@@ -461,15 +469,16 @@ static void octahedral_cells(const call_c* cc, v8 x, v8 y, v8 z, int32_t ci[LANE
   grid_cells(mul8(C8(0.5f), add8(py, one)), cc->xi, cj, fj);
 }
 
-/* ---- Lanes of one batch ------------------------------------------------------------------------ */
+/* ---- Lanes of one batch ------------------------------------------------------------------------
+ */
 
 typedef struct batch {
   v8 n[3], u[3], v[3];
   v8 du, dv, dn; /* the view's components along u, v, n */
   v8 active;
-  int uniform;                        /* all lanes share lane 0's frame */
-  uint8_t vis[PRT_CLOTH_MAX_LOBES];   /* lanes that see each lobe */
-  float key[6];                       /* lane 0's normal and warp */
+  int uniform;                      /* all lanes share lane 0's frame */
+  uint8_t vis[PRT_CLOTH_MAX_LOBES]; /* lanes that see each lobe */
+  float key[6];                     /* lane 0's normal and warp */
 } batch;
 
 /* A tangent's view in each lane. */
@@ -480,7 +489,8 @@ typedef struct view_l {
   float vc[LANES][PRT_BLOB_CLTH_MAX_RANK] __attribute__((aligned(32))); /* T_c's */
 } view_l;
 
-/* A direction's components along the tangent's canonical x_j, y_j and n from those along u, v, n. */
+/* A direction's components along the tangent's canonical x_j, y_j and n from those along u, v, n.
+ */
 static inline void thread_axes(const tangent_c* tc, v8 du, v8 dv, v8* x, v8* y) {
   if (tc->thread == 0) {
     *x = du;
@@ -526,11 +536,13 @@ static void tangent_view(const call_c* cc, const tangent_c* tc, const batch* b, 
   for (l = 0; l < LANES; ++l) {
     if (!(lanes >> l & 1u)) continue;
     view_row(cc, &tc->full, (uint32_t)ia[l], (uint32_t)ib[l], fa[l], fb[l], out->vf[l]);
-    if (cc->cone) view_row(cc, &tc->cone, (uint32_t)ia[l], (uint32_t)ib[l], fa[l], fb[l], out->vc[l]);
+    if (cc->cone)
+      view_row(cc, &tc->cone, (uint32_t)ia[l], (uint32_t)ib[l], fa[l], fb[l], out->vc[l]);
   }
 }
 
-/* ---- One pair (tangent, lobe) across the lanes ------------------------------------------------- */
+/* ---- One pair (tangent, lobe) across the lanes -------------------------------------------------
+ */
 
 typedef struct pair_l {
   float lambda;
@@ -551,10 +563,10 @@ typedef struct window_l {
 
 /* What one theta node of a window needs that the view does not change. */
 typedef struct node_static {
-  v8 x;      /* theta - mu */
-  v8 ct;     /* cos theta */
-  v8 c1, s1; /* cos, sin of (theta - theta_k) / 2 */
-  v8 lobe;   /* the lobe's profile over the window's Gaussian */
+  v8 x;                              /* theta - mu */
+  v8 ct;                             /* cos theta */
+  v8 c1, s1;                         /* cos, sin of (theta - theta_k) / 2 */
+  v8 lobe;                           /* the lobe's profile over the window's Gaussian */
   v8 dc[MAX_Q], ds[MAX_Q], w[MAX_Q]; /* phi nodes: cos, sin of (phi - phi_k) / 2; weights */
 } node_static;
 
@@ -586,33 +598,40 @@ static void get_node(cursor* c, node_static* ns, uint32_t q) {
   }
 }
 
-/* The half-width of the phi range at theta (phi_half_width). A vertical fibre's front opens on
- * one side of theta = 0 only: the sign of theta decides it, exact at the split node where
- * sin(theta) from the half-angle formulas would be a rounding error of either sign. */
-static inline v8 phi_half_width(const tangent_c* tc, v8 theta, v8 ct, v8 st) {
-  const v8 half_pi = C8(HALF_PI);
-  if (tc->vertical)
-    return and8(gt8(mul8(C8(tc->sin_tau), theta), _mm256_setzero_ps()), half_pi);
+/* The half-width of the phi range at theta (phi_half_width): acos(c), c = -tan(tau) tan(theta),
+ * as atan2(sqrt((1 - c)(1 + c)), c) with both scaled by cos(tau) cos(theta), where
+ * 1 - c ~ cos(theta - tau) and 1 + c ~ cos(theta + tau). At a pinched end cos(theta - tau)
+ * vanishes like the distance to the end, and the half-width like its square root: there it is
+ * sin(distance) (`end_cos`, in lanes `pinched`), the distance being known to its last bit where
+ * theta is not. A vertical fibre's front opens on one side of theta = 0 only: the sign of theta
+ * decides it (exact at the split node, theta = mu + (-mu)). */
+static inline v8 phi_half_width(const tangent_c* tc, v8 theta, v8 ct, v8 st, v8 pinched,
+                                v8 end_cos) {
+  const v8 half_pi = C8(HALF_PI), zero = _mm256_setzero_ps();
+  if (tc->vertical) return and8(gt8(mul8(C8(tc->sin_tau), theta), zero), half_pi);
   if (!tc->tilted) return half_pi;
   {
-    const v8 c = div8(mul8(C8(tc->tan_coef), st), ct);
-    const v8 a = prt_v8_acos(_mm256_min_ps(C8(1.0f), _mm256_max_ps(C8(-1.0f), c)));
-    return sel8(le8(c, _mm256_setzero_ps()), half_pi,
-                sel8(ge8(c, C8(1.0f)), _mm256_setzero_ps(), a));
+    const v8 s = C8(tc->sin_tau), c = C8(tc->cos_tau);
+    const v8 num = _mm256_xor_ps(mul8(s, st), C8(-0.0f)); /* c cos(tau) cos(theta) */
+    const v8 minus = sel8(pinched, end_cos, fma8(ct, c, mul8(st, s)));
+    const v8 plus = _mm256_fmsub_ps(ct, c, mul8(st, s));
+    const v8 a = prt_v8_atan2(_mm256_sqrt_ps(_mm256_max_ps(mul8(minus, plus), zero)), num);
+    return sel8(le8(num, zero), half_pi, and8(gt8(minus, zero), a));
   }
 }
 
 /* The phi nodes of the lobe's von Mises profile at theta (phi_integrals' placement): weights with
  * the profile folded in, and the half-angle trigonometry of each node's offset from phi_k. */
 static void phi_static(const call_c* cc, const tangent_c* tc, const pair_l* p, v8 theta, v8 ct,
-                       v8 st, node_static* ns) {
+                       v8 st, v8 pinched, v8 end_cos, node_static* ns) {
   const v8 zero = _mm256_setzero_ps();
   const v8 kappa = _mm256_max_ps(mul8(mul8(C8(p->lambda), ct), p->cos_k), zero);
-  const v8 half = phi_half_width(tc, theta, ct, st);
+  const v8 half = phi_half_width(tc, theta, ct, st, pinched, end_cos);
   const v8 sdp = div8(C8(1.0f), _mm256_sqrt_ps(kappa)); /* +inf for kappa = 0 */
   const v8 rk = _mm256_sqrt_ps(kappa);
   const v8 wide = ge8(mul8(C8(4.0f), sdp), C8(HALF_PI));
-  const v8 za = _mm256_max_ps(mul8(sub8(_mm256_xor_ps(half, C8(-0.0f)), p->phi_k), rk), C8(-PHI_SIGMAS));
+  const v8 za =
+      _mm256_max_ps(mul8(sub8(_mm256_xor_ps(half, C8(-0.0f)), p->phi_k), rk), C8(-PHI_SIGMAS));
   const v8 zb = _mm256_min_ps(mul8(sub8(half, p->phi_k), rk), C8(PHI_SIGMAS));
   const v8 open = gt8(half, zero);
   const v8 live = and8(open, _mm256_or_ps(wide, gt8(zb, za)));
@@ -650,26 +669,26 @@ static void phi_static(const call_c* cc, const tangent_c* tc, const pair_l* p, v
   }
 }
 
-/* The static part of theta node x of window w. */
+/* The static part of theta node x of window w; `end` is the node's distance from the pinched end
+ * of its piece in lanes `pinched`. */
 static void node_static_of(const call_c* cc, const tangent_c* tc, const pair_l* p,
-                           const window_l* w, v8 x, node_static* ns) {
+                           const window_l* w, v8 x, v8 pinched, v8 end, node_static* ns) {
   const v8 z = mul8(x, C8(w->inv_sd));
-  v8 s1, c1;
+  const v8 theta = add8(w->mu, x);
+  v8 s1, c1, st, ct, end_sin = _mm256_setzero_ps(), end_c;
   prt_v8_sincos(mul8(C8(0.5f), add8(x, w->y0)), &s1, &c1);
+  prt_v8_sincos(theta, &st, &ct);
+  if (tc->tilted && !tc->vertical && any8(pinched)) prt_v8_sincos(end, &end_sin, &end_c);
   {
-    const v8 cos2 = _mm256_fnmadd_ps(add8(s1, s1), s1, C8(1.0f));
-    const v8 sin2 = mul8(add8(s1, s1), c1);
-    const v8 ct = _mm256_fmsub_ps(p->cos_k, cos2, mul8(p->sin_k, sin2));
-    const v8 st = fma8(p->sin_k, cos2, mul8(p->cos_k, sin2));
     /* lambda (cos(theta - theta_k) - 1) - log N(theta; mu, sd) */
-    const v8 e = fma8(mul8(C8(-2.0f * p->lambda), s1), s1,
-                      fma8(mul8(C8(0.5f), z), z, C8(w->log_root)));
+    const v8 e =
+        fma8(mul8(C8(-2.0f * p->lambda), s1), s1, fma8(mul8(C8(0.5f), z), z, C8(w->log_root)));
     ns->x = x;
     ns->ct = ct;
     ns->c1 = c1;
     ns->s1 = s1;
     ns->lobe = prt_v8_exp(e);
-    phi_static(cc, tc, p, add8(w->mu, x), ct, st, ns);
+    phi_static(cc, tc, p, theta, ct, st, pinched, end_sin, ns);
   }
 }
 
@@ -686,8 +705,8 @@ static inline v8 fresnel(v8 nu, v8 c) {
 }
 
 /* The integrands over the window's Gaussian at one node (integrands_over_gaussian): h[part]. */
-static void node_dynamic(const call_c* cc, const thread_c* th, const pair_l* p,
-                         const window_l* w, const node_static* ns, v8 h[3]) {
+static void node_dynamic(const call_c* cc, const thread_c* th, const pair_l* p, const window_l* w,
+                         const node_static* ns, v8 h[3]) {
   const v8 zero = _mm256_setzero_ps();
   const v8 cd = _mm256_fmsub_ps(ns->c1, p->cos_b, mul8(ns->s1, p->sin_b));
   const v8 live = and8(gt8(ns->ct, zero), gt8(cd, C8(1e-12f)));
@@ -798,8 +817,12 @@ static void integrate_piece(const call_c* cc, const tangent_c* tc, const thread_
     if (cur->mode == CACHE_READ) {
       get_node(cur, &ns, cc->q);
     } else {
-      const v8 f = sel8(pinch_lo, C8(cc->frac[1][s]), sel8(pinch_hi, C8(cc->frac[2][s]), C8(cc->frac[0][s])));
-      node_static_of(cc, tc, p, w, s == n ? ph : fma8(sub8(ph, pl), f, pl), &ns);
+      const v8 width = sub8(ph, pl);
+      const v8 f = sel8(pinch_lo, C8(cc->frac[1][s]),
+                        sel8(pinch_hi, C8(cc->frac[2][s]), C8(cc->frac[0][s])));
+      const v8 end = mul8(width, sel8(pinch_lo, C8(cc->frac[1][s]), C8(cc->frac[3][s])));
+      node_static_of(cc, tc, p, w, s == n ? ph : fma8(width, f, pl),
+                     _mm256_or_ps(pinch_lo, pinch_hi), end, &ns);
       if (cur->mode == CACHE_FILL) put_node(cur, &ns, cc->q);
     }
     x[s] = ns.x;
@@ -837,8 +860,7 @@ static void integrate_piece(const call_c* cc, const tangent_c* tc, const thread_
 /* The parts of window w (integrate_window): clipped to the support, split at theta = 0 for a
  * tilted fibre, each piece graded towards a pinched end. `lanes`: the lanes that take it. */
 static void integrate_window(const call_c* cc, const tangent_c* tc, const thread_c* th,
-                             const pair_l* p, const window_l* w, v8 lanes, cursor* cur,
-                             v8 out[3]) {
+                             const pair_l* p, const window_l* w, v8 lanes, cursor* cur, v8 out[3]) {
   const v8 zero = _mm256_setzero_ps();
   v8 pl1 = zero, ph1 = zero, pl2 = zero, ph2 = zero, lo1 = zero, hi1 = zero, hi2 = zero;
   v8 live1 = zero, live2 = zero;
@@ -847,22 +869,23 @@ static void integrate_window(const call_c* cc, const tangent_c* tc, const thread
     run1 = get_flag(cur);
     live1 = bool8(run1);
   } else {
-    const v8 lo_mu = sub8(C8(tc->lo), w->mu), hi_mu = sub8(C8(tc->hi), w->mu);
-    const v8 reach = C8(WINDOW_SIGMAS * w->sd);
-    const v8 xlo = _mm256_max_ps(lo_mu, _mm256_xor_ps(reach, C8(-0.0f)));
-    const v8 xhi = _mm256_min_ps(hi_mu, reach);
+    /* decided in theta, as the scalar code: the support's ends may lie closer to theta = 0 than
+     * an ulp of mu, which x = theta - mu would lose */
+    const v8 lo_s = C8(tc->lo), hi_s = C8(tc->hi), reach = C8(WINDOW_SIGMAS * w->sd);
+    const v8 lo = _mm256_max_ps(lo_s, sub8(w->mu, reach));
+    const v8 hi = _mm256_min_ps(hi_s, add8(w->mu, reach));
     const v8 neg_mu = _mm256_xor_ps(w->mu, C8(-0.0f));
-    const v8 clip_lo = ge8(lo_mu, _mm256_xor_ps(reach, C8(-0.0f)));
-    const v8 clip_hi = le8(hi_mu, reach);
-    const v8 nonempty = gt8(xhi, xlo);
-    const v8 split = tc->tilted ? and8(nonempty, and8(lt8(xlo, neg_mu), gt8(xhi, neg_mu))) : zero;
-    pl1 = xlo;
-    ph1 = sel8(split, neg_mu, xhi);
+    const v8 nonempty = gt8(hi, lo);
+    const v8 split =
+        tc->tilted ? and8(lt8(lo, zero), gt8(hi, zero)) : zero; /* nonempty with them */
+    const v8 clip_lo = le8(lo, lo_s), clip_hi = ge8(hi, hi_s);
+    pl1 = sub8(lo, w->mu);
+    ph1 = sel8(split, neg_mu, sub8(hi, w->mu));
     lo1 = tc->sign > 0 ? clip_lo : zero;
     hi1 = tc->sign < 0 ? andnot8(split, clip_hi) : zero;
     live1 = nonempty;
     pl2 = neg_mu;
-    ph2 = xhi;
+    ph2 = sub8(hi, w->mu);
     hi2 = tc->sign < 0 ? clip_hi : zero;
     live2 = split;
     run1 = any8(cur->mode == CACHE_FILL ? live1 : and8(live1, lanes));
@@ -928,9 +951,8 @@ static void pair_static(const tangent_c* tc, const lobe_c* lobe, const batch* b,
 
 /* T and T_c of each lane in `lanes` (0 elsewhere): the lobe rows read at each lane's canonical
  * lobe (mirrored in y with the view), or for both mirrors from the cache. */
-static void pair_tables(const call_c* cc, const tangent_c* tc, const lobe_c* lobe,
-                        const pair_l* p, const view_l* vw, unsigned lanes, cursor* cur, v8* t,
-                        v8* t_cone) {
+static void pair_tables(const call_c* cc, const tangent_c* tc, const lobe_c* lobe, const pair_l* p,
+                        const view_l* vw, unsigned lanes, cursor* cur, v8* t, v8* t_cone) {
   v8 prod_f[LANES], prod_c[LANES], rows[2][2][MAX_CHUNKS];
   const uint32_t cf = tc->full.chunks, ccn = tc->cone.chunks;
   uint32_t l, c, m;
@@ -954,12 +976,12 @@ static void pair_tables(const call_c* cc, const tangent_c* tc, const lobe_c* lob
     }
   } else {
     const v8 flip = mask_of_bits(vw->flip);
-    octahedral_cells(cc, p->cx, sel8(flip, _mm256_xor_ps(p->cy, C8(-0.0f)), p->cy), p->cz, ci,
-                     fi, cj, fj);
+    octahedral_cells(cc, p->cx, sel8(flip, _mm256_xor_ps(p->cy, C8(-0.0f)), p->cy), p->cz, ci, fi,
+                     cj, fj);
   }
   for (l = 0; l < LANES; ++l) {
     v8 own[2][MAX_CHUNKS];
-    v8 (*r)[MAX_CHUNKS] = own;
+    v8(*r)[MAX_CHUNKS] = own;
     v8 pf = _mm256_setzero_ps(), pc = _mm256_setzero_ps();
     if (lanes >> l & 1u) {
       if (cur->mode == CACHE_NONE) {
@@ -978,15 +1000,15 @@ static void pair_tables(const call_c* cc, const tangent_c* tc, const lobe_c* lob
   }
   /* a weight: quantisation must not push it outside [0, 1] */
   *t = _mm256_min_ps(C8(1.0f), _mm256_max_ps(_mm256_setzero_ps(), sum_each(prod_f)));
-  *t_cone = cc->cone ? _mm256_min_ps(C8(1.0f), _mm256_max_ps(_mm256_setzero_ps(), sum_each(prod_c)))
-                     : *t;
+  *t_cone =
+      cc->cone ? _mm256_min_ps(C8(1.0f), _mm256_max_ps(_mm256_setzero_ps(), sum_each(prod_c))) : *t;
 }
 
 /* The frame cache's state for one call. */
 typedef struct frame_cache {
   float* floats;
-  size_t pairs;  /* pairs with a record */
-  int valid;     /* records belong to key */
+  size_t pairs; /* pairs with a record */
+  int valid;    /* records belong to key */
   float key[6];
   uint8_t filled[MAX_TANGENTS * PRT_CLOTH_MAX_LOBES / 8u];
 } frame_cache;
@@ -1019,7 +1041,8 @@ static void shade_tangent(const call_c* cc, uint32_t ti, const batch* b, frame_c
       p.theta_k = get8(&cur), p.phi_k = get8(&cur), p.cos_k = get8(&cur), p.sin_k = get8(&cur);
     } else {
       pair_static(tc, lobe, b, &p);
-      if (cur.mode == CACHE_FILL) put8(&cur, p.theta_k), put8(&cur, p.phi_k), put8(&cur, p.cos_k), put8(&cur, p.sin_k);
+      if (cur.mode == CACHE_FILL)
+        put8(&cur, p.theta_k), put8(&cur, p.phi_k), put8(&cur, p.cos_k), put8(&cur, p.sin_k);
     }
     pair_tables(cc, tc, lobe, &p, &vw, lanes, &cur, &t, &t_cone);
     p.sum_ko = add8(p.theta_k, vw.theta_o);
@@ -1043,7 +1066,8 @@ static void shade_tangent(const call_c* cc, uint32_t ti, const batch* b, frame_c
   }
 }
 
-/* ---- Batches ----------------------------------------------------------------------------------- */
+/* ---- Batches -----------------------------------------------------------------------------------
+ */
 
 /* The lanes of samples [at, at + n) (n <= 8; the others repeat the last sample, inactive): each
  * frame, view and the lobes it sees, in double as the scalar reference decides them. */
@@ -1065,8 +1089,8 @@ static void load_batch(const call_c* cc, const prt_cloth_lobe_prep* lobes,
     const float* view = pixels->views + 3u * s;
     double wo[3], len;
     int ok;
-    const int same = l > 0 && memcmp(nrm, n0, 3 * sizeof(float)) == 0 &&
-                     memcmp(wrp, w0, 3 * sizeof(float)) == 0;
+    const int same =
+        l > 0 && memcmp(nrm, n0, 3 * sizeof(float)) == 0 && memcmp(wrp, w0, 3 * sizeof(float)) == 0;
     if (!same) {
       if (l > 0) b->uniform = 0;
       frame_ok = prt_cloth_make_frame(nrm, wrp, &frame);

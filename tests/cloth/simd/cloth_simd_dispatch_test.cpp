@@ -4,8 +4,8 @@
 // runs in every build, the one without SIMD included.
 #include <gtest/gtest.h>
 
-#include <prt/prt.hpp>
 #include <prt/prt_cloth_asset.h>
+#include <prt/prt.hpp>
 
 #include <vector>
 

@@ -5,9 +5,9 @@
 // one table, read mirrored for a negative offset, as a bake shares them.
 #pragma once
 
+#include <prt/prt_cloth.h>
 #include <prt/baker/cloth/cloth_blob.hpp>
 #include <prt/baker/cloth/fabrics.hpp>
-#include <prt/prt_cloth.h>
 
 #include <cmath>
 #include <cstdint>
