@@ -620,75 +620,87 @@ static inline v8 phi_half_width(const tangent_c* tc, v8 theta, v8 ct, v8 st, v8 
   }
 }
 
-/* The phi nodes of the lobe's von Mises profile at theta (phi_integrals' placement): weights with
- * the profile folded in, and the half-angle trigonometry of each node's offset from phi_k. */
-static void phi_static(const call_c* cc, const tangent_c* tc, const pair_l* p, v8 theta, v8 ct,
-                       v8 st, v8 pinched, v8 end_cos, node_static* ns) {
+/* The static parts of nodes x[0..count) of window w (node_static): the phi nodes of the lobe's
+ * von Mises profile at each theta (phi_integrals' placement), their weights with the profile
+ * folded in and the half-angle trigonometry of each node's offset from phi_k. `end[s]` is node
+ * s's distance from the pinched end of its piece in lanes `pinched`. Each step runs over all the
+ * nodes before the next, so that the nodes' independent chains of transcendental functions
+ * overlap instead of each waiting on the last. */
+#define STAGE_NODES 9u
+static void nodes_static(const call_c* cc, const tangent_c* tc, const pair_l* p,
+                         const window_l* w, uint32_t count, const v8* x, v8 pinched,
+                         const v8* end, node_static* ns) {
   const v8 zero = _mm256_setzero_ps();
-  const v8 kappa = _mm256_max_ps(mul8(mul8(C8(p->lambda), ct), p->cos_k), zero);
-  const v8 half = phi_half_width(tc, theta, ct, st, pinched, end_cos);
-  const v8 sdp = div8(C8(1.0f), _mm256_sqrt_ps(kappa)); /* +inf for kappa = 0 */
-  const v8 rk = _mm256_sqrt_ps(kappa);
-  const v8 wide = ge8(mul8(C8(4.0f), sdp), C8(HALF_PI));
-  const v8 za =
-      _mm256_max_ps(mul8(sub8(_mm256_xor_ps(half, C8(-0.0f)), p->phi_k), rk), C8(-PHI_SIGMAS));
-  const v8 zb = _mm256_min_ps(mul8(sub8(half, p->phi_k), rk), C8(PHI_SIGMAS));
-  const v8 open = gt8(half, zero);
-  const v8 live = and8(open, _mm256_or_ps(wide, gt8(zb, za)));
-  const v8 neg_kappa2 = mul8(kappa, C8(-2.0f));
-  v8 sharp = andnot8(wide, live), flip = zero, ua = zero, mass = zero;
-  uint32_t i;
-  if (any8(sharp)) {
-    const v8 f = gt8(add8(za, zb), zero);
-    const v8 zl = sel8(f, _mm256_xor_ps(zb, C8(-0.0f)), za);
-    const v8 zh = sel8(f, _mm256_xor_ps(za, C8(-0.0f)), zb);
-    flip = f;
-    ua = prt_v8_normal_cdf(zl);
-    mass = sub8(prt_v8_normal_cdf(zh), ua);
-    sharp = and8(sharp, gt8(mass, zero)); /* else plain nodes over [a, b] */
-  }
-  for (i = 0; i < cc->q; ++i) {
-    const v8 xq = C8(cc->gl_x[i]), hw = C8(cc->gl_hw[i]);
-    /* wide: plain nodes over [-half, half]; a sharp profile whose mass rounds to 0: over [a, b] */
-    const v8 d_wide = _mm256_fmsub_ps(half, xq, p->phi_k);
-    const v8 d_narrow = mul8(sdp, mul8(C8(0.5f), fma8(sub8(zb, za), xq, add8(za, zb))));
-    v8 d = sel8(wide, d_wide, d_narrow);
-    v8 pre = sel8(wide, mul8(mul8(half, C8(2.0f)), hw), mul8(mul8(sdp, sub8(zb, za)), hw));
-    v8 e = zero, s, c;
-    if (any8(sharp)) {
-      const v8 zq = prt_v8_normal_quantile(fma8(mass, C8(cc->gl_g[i]), ua));
-      const v8 z = sel8(flip, _mm256_xor_ps(zq, C8(-0.0f)), zq);
-      d = sel8(sharp, mul8(sdp, z), d);
-      pre = sel8(sharp, mul8(mul8(mass, hw), mul8(sdp, C8(SQRT_2PI))), pre);
-      e = and8(sharp, mul8(mul8(C8(0.5f), z), z));
-    }
-    prt_v8_sincos(mul8(C8(0.5f), d), &s, &c);
-    ns->dc[i] = c;
-    ns->ds[i] = s;
-    ns->w[i] = and8(live, mul8(pre, prt_v8_exp(fma8(mul8(neg_kappa2, s), s, e))));
-  }
-}
-
-/* The static part of theta node x of window w; `end` is the node's distance from the pinched end
- * of its piece in lanes `pinched`. */
-static void node_static_of(const call_c* cc, const tangent_c* tc, const pair_l* p,
-                           const window_l* w, v8 x, v8 pinched, v8 end, node_static* ns) {
-  const v8 z = mul8(x, C8(w->inv_sd));
-  const v8 theta = add8(w->mu, x);
-  v8 s1, c1, st, ct, end_sin = _mm256_setzero_ps(), end_c;
-  prt_v8_sincos(mul8(C8(0.5f), add8(x, w->y0)), &s1, &c1);
-  prt_v8_sincos(theta, &st, &ct);
-  if (tc->tilted && !tc->vertical && any8(pinched)) prt_v8_sincos(end, &end_sin, &end_c);
-  {
+  v8 theta[STAGE_NODES], st[STAGE_NODES], half[STAGE_NODES], kappa[STAGE_NODES];
+  v8 sdp[STAGE_NODES], wide[STAGE_NODES], za[STAGE_NODES], zb[STAGE_NODES], live[STAGE_NODES];
+  v8 sharp[STAGE_NODES], flip[STAGE_NODES], ua[STAGE_NODES], mass[STAGE_NODES];
+  const int ends = tc->tilted && !tc->vertical && any8(pinched);
+  v8 any_sharp = zero;
+  uint32_t s, i;
+  for (s = 0; s < count; ++s) {
+    const v8 z = mul8(x[s], C8(w->inv_sd));
+    v8 s1, c1, ct, end_sin = zero, end_c;
+    theta[s] = add8(w->mu, x[s]);
+    prt_v8_sincos(mul8(C8(0.5f), add8(x[s], w->y0)), &s1, &c1);
+    prt_v8_sincos(theta[s], &st[s], &ct);
+    if (ends) prt_v8_sincos(end[s], &end_sin, &end_c);
+    ns[s].x = x[s];
+    ns[s].ct = ct;
+    ns[s].c1 = c1;
+    ns[s].s1 = s1;
     /* lambda (cos(theta - theta_k) - 1) - log N(theta; mu, sd) */
-    const v8 e =
-        fma8(mul8(C8(-2.0f * p->lambda), s1), s1, fma8(mul8(C8(0.5f), z), z, C8(w->log_root)));
-    ns->x = x;
-    ns->ct = ct;
-    ns->c1 = c1;
-    ns->s1 = s1;
-    ns->lobe = prt_v8_exp(e);
-    phi_static(cc, tc, p, theta, ct, st, pinched, end_sin, ns);
+    ns[s].lobe = prt_v8_exp(
+        fma8(mul8(C8(-2.0f * p->lambda), s1), s1, fma8(mul8(C8(0.5f), z), z, C8(w->log_root))));
+    half[s] = phi_half_width(tc, theta[s], ct, st[s], pinched, end_sin);
+  }
+  for (s = 0; s < count; ++s) {
+    const v8 k = _mm256_max_ps(mul8(mul8(C8(p->lambda), ns[s].ct), p->cos_k), zero);
+    const v8 rk = _mm256_sqrt_ps(k);
+    kappa[s] = k;
+    sdp[s] = div8(C8(1.0f), rk); /* +inf for kappa = 0 */
+    wide[s] = ge8(mul8(C8(4.0f), sdp[s]), C8(HALF_PI));
+    za[s] = _mm256_max_ps(mul8(sub8(_mm256_xor_ps(half[s], C8(-0.0f)), p->phi_k), rk),
+                          C8(-PHI_SIGMAS));
+    zb[s] = _mm256_min_ps(mul8(sub8(half[s], p->phi_k), rk), C8(PHI_SIGMAS));
+    live[s] = and8(gt8(half[s], zero), _mm256_or_ps(wide[s], gt8(zb[s], za[s])));
+    sharp[s] = andnot8(wide[s], live[s]);
+    flip[s] = ua[s] = mass[s] = zero;
+    any_sharp = _mm256_or_ps(any_sharp, sharp[s]);
+  }
+  if (any8(any_sharp))
+    for (s = 0; s < count; ++s) {
+      const v8 f = gt8(add8(za[s], zb[s]), zero);
+      const v8 zl = sel8(f, _mm256_xor_ps(zb[s], C8(-0.0f)), za[s]);
+      const v8 zh = sel8(f, _mm256_xor_ps(za[s], C8(-0.0f)), zb[s]);
+      flip[s] = f;
+      ua[s] = prt_v8_normal_cdf(zl);
+      mass[s] = sub8(prt_v8_normal_cdf(zh), ua[s]);
+      sharp[s] = and8(sharp[s], gt8(mass[s], zero)); /* else plain nodes over [a, b] */
+    }
+  for (i = 0; i < cc->q; ++i) {
+    const v8 xq = C8(cc->gl_x[i]), hw = C8(cc->gl_hw[i]), g = C8(cc->gl_g[i]);
+    for (s = 0; s < count; ++s) {
+      /* wide: plain nodes over [-half, half]; a sharp profile whose mass rounds to 0: over [a, b] */
+      const v8 d_wide = _mm256_fmsub_ps(half[s], xq, p->phi_k);
+      const v8 d_narrow =
+          mul8(sdp[s], mul8(C8(0.5f), fma8(sub8(zb[s], za[s]), xq, add8(za[s], zb[s]))));
+      v8 d = sel8(wide[s], d_wide, d_narrow);
+      v8 pre = sel8(wide[s], mul8(mul8(half[s], C8(2.0f)), hw),
+                    mul8(mul8(sdp[s], sub8(zb[s], za[s])), hw));
+      v8 e = zero, sn, cs;
+      if (any8(any_sharp)) {
+        const v8 zq = prt_v8_normal_quantile(fma8(mass[s], g, ua[s]));
+        const v8 z = sel8(flip[s], _mm256_xor_ps(zq, C8(-0.0f)), zq);
+        d = sel8(sharp[s], mul8(sdp[s], z), d);
+        pre = sel8(sharp[s], mul8(mul8(mass[s], hw), mul8(sdp[s], C8(SQRT_2PI))), pre);
+        e = and8(sharp[s], mul8(mul8(C8(0.5f), z), z));
+      }
+      prt_v8_sincos(mul8(C8(0.5f), d), &sn, &cs);
+      ns[s].dc[i] = cs;
+      ns[s].ds[i] = sn;
+      ns[s].w[i] =
+          and8(live[s], mul8(pre, prt_v8_exp(fma8(mul8(mul8(kappa[s], C8(-2.0f)), sn), sn, e))));
+    }
   }
 }
 
@@ -809,24 +821,32 @@ static void integrate_piece(const call_c* cc, const tangent_c* tc, const thread_
                             const pair_l* p, const window_l* w, v8 pl, v8 ph, v8 pinch_lo,
                             v8 pinch_hi, v8 live, cursor* cur, v8 out[3]) {
   const uint32_t n = cc->nodes;
+  const v8 pinched = _mm256_or_ps(pinch_lo, pinch_hi);
   v8 x[MAX_NODES], h[MAX_NODES][3], acc[3];
-  node_static ns;
-  uint32_t s;
+  uint32_t s, first;
   int part;
-  for (s = 0; s <= n; ++s) {
+  for (first = 0; first <= n; first += STAGE_NODES) {
+    const uint32_t count = n + 1u - first < STAGE_NODES ? n + 1u - first : STAGE_NODES;
+    node_static ns[STAGE_NODES];
+    v8 end[STAGE_NODES];
     if (cur->mode == CACHE_READ) {
-      get_node(cur, &ns, cc->q);
+      for (s = 0; s < count; ++s) get_node(cur, &ns[s], cc->q);
     } else {
       const v8 width = sub8(ph, pl);
-      const v8 f = sel8(pinch_lo, C8(cc->frac[1][s]),
-                        sel8(pinch_hi, C8(cc->frac[2][s]), C8(cc->frac[0][s])));
-      const v8 end = mul8(width, sel8(pinch_lo, C8(cc->frac[1][s]), C8(cc->frac[3][s])));
-      node_static_of(cc, tc, p, w, s == n ? ph : fma8(width, f, pl),
-                     _mm256_or_ps(pinch_lo, pinch_hi), end, &ns);
-      if (cur->mode == CACHE_FILL) put_node(cur, &ns, cc->q);
+      for (s = first; s < first + count; ++s) {
+        const v8 f = sel8(pinch_lo, C8(cc->frac[1][s]),
+                          sel8(pinch_hi, C8(cc->frac[2][s]), C8(cc->frac[0][s])));
+        x[s] = s == n ? ph : fma8(width, f, pl);
+        end[s - first] = mul8(width, sel8(pinch_lo, C8(cc->frac[1][s]), C8(cc->frac[3][s])));
+      }
+      nodes_static(cc, tc, p, w, count, x + first, pinched, end, ns);
+      if (cur->mode == CACHE_FILL)
+        for (s = 0; s < count; ++s) put_node(cur, &ns[s], cc->q);
     }
-    x[s] = ns.x;
-    node_dynamic(cc, th, p, w, &ns, h[s]);
+    for (s = 0; s < count; ++s) {
+      x[first + s] = ns[s].x;
+      node_dynamic(cc, th, p, w, &ns[s], h[first + s]);
+    }
   }
   acc[0] = acc[1] = acc[2] = _mm256_setzero_ps();
   for (s = 0; s < n; s += 2) {
