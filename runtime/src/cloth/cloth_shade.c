@@ -15,7 +15,7 @@
 
 #define PRT_CLOTH_KNOWN_FLAGS                                                          \
   (PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_CONE_TABLE | \
-   PRT_CLOTH_NO_FRAME_CACHE)
+   PRT_CLOTH_NO_FRAME_CACHE | PRT_CLOTH_TANGENT_COPIES | PRT_CLOTH_NO_LOBE_SHARING)
 
 prt_result prt_cloth_method_of(const prt_cloth_settings* settings, prt_cloth_method* out) {
   prt_cloth_settings s;

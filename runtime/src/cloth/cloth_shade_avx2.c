@@ -37,7 +37,9 @@ typedef __m256 v8;
 #define MAX_Q PRT_CLOTH_MAX_PHI_NODES
 #define MAX_NODES (2u * PRT_CLOTH_MAX_THETA_SEGMENTS + 1u)
 #define MAX_CHUNKS (PRT_BLOB_CLTH_MAX_RANK / 8u)
-#define MAX_TANGENTS (2u * PRT_CLOTH_MAX_THREAD_TANGENTS)
+/* Tangents shaded per sample: the distinct ones, or with PRT_CLOTH_TANGENT_COPIES up to this many
+ * copies (past it a tangent gets fewer copies, each weighing its share). */
+#define MAX_TANGENTS 64u
 /* The frame cache's floats (on the stack): pairs past it are computed every batch. */
 #define CACHE_FLOATS 16384u
 
@@ -281,6 +283,14 @@ static void prepare_tangent(const call_c* cc, const prt_cloth_tangent_prep* tp, 
   factor_of(cc, &tp->cone, &out->cone);
 }
 
+/* A tangent's multiplicity: its weight is the thread's coverage times it, exactly in double. */
+static uint32_t multiplicity_of(const prt_cloth_fabric_prep* fabric,
+                                const prt_cloth_tangent_prep* tp) {
+  const double coverage = fabric->params.threads[tp->thread].coverage;
+  const double m = coverage > 0.0 ? floor(tp->weight / coverage + 0.5) : 1.0;
+  return m >= 1.0 ? (uint32_t)m : 1u;
+}
+
 static void prepare_call(const prt_cloth_view* view, const prt_cloth_fabric_prep* fabric,
                          const prt_cloth_light_prep* light, const prt_cloth_method* method,
                          call_c* cc) {
@@ -288,7 +298,6 @@ static void prepare_call(const prt_cloth_view* view, const prt_cloth_fabric_prep
   uint32_t max_chunks = 1;
   cc->view = view;
   cc->lobes = light->count;
-  cc->tangents = fabric->tangent_count;
   cc->nodes = 2u * method->theta_segments;
   cc->q = method->phi_nodes;
   cc->levels = view->header.levels;
@@ -324,10 +333,20 @@ static void prepare_call(const prt_cloth_view* view, const prt_cloth_fabric_prep
       th->log_g[part] = (float)log(gamma * SQRT_2PI);
     }
   }
-  for (i = 0; i < cc->tangents; ++i) {
-    prepare_tangent(cc, &fabric->tangents[i], &cc->tan[i]);
-    if (cc->tan[i].full.chunks > max_chunks) max_chunks = cc->tan[i].full.chunks;
-    if (cc->tan[i].cone.chunks > max_chunks) max_chunks = cc->tan[i].cone.chunks;
+  cc->tangents = 0;
+  for (i = 0; i < fabric->tangent_count; ++i) {
+    const prt_cloth_tangent_prep* tp = &fabric->tangents[i];
+    const uint32_t left = MAX_TANGENTS - cc->tangents - (fabric->tangent_count - 1u - i);
+    uint32_t copies = 1, c;
+    if (method->flags & PRT_CLOTH_TANGENT_COPIES) copies = multiplicity_of(fabric, tp);
+    if (copies > left) copies = left;
+    for (c = 0; c < copies; ++c) {
+      tangent_c* tc = &cc->tan[cc->tangents++];
+      prepare_tangent(cc, tp, tc);
+      tc->weight = (float)(tp->weight / copies);
+      if (tc->full.chunks > max_chunks) max_chunks = tc->full.chunks;
+      if (tc->cone.chunks > max_chunks) max_chunks = tc->cone.chunks;
+    }
   }
   for (i = 0; i < cc->lobes; ++i)
     prepare_lobe(cc, &light->lobes[i], &fabric->params, method->flags, &cc->lobe[i]);
@@ -453,9 +472,14 @@ static void lobe_row(const call_c* cc, const factor_info* f, const lobe_c* lobe,
   }
 }
 
+/* Each lane's grid cells in two dimensions: lower nodes and fractions. */
+typedef struct cells_l {
+  int32_t i[LANES], j[LANES];
+  float fi[LANES], fj[LANES];
+} cells_l;
+
 /* The octahedral cells of canonical lobe directions (formats/SPEC.md §7.4). */
-static void octahedral_cells(const call_c* cc, v8 x, v8 y, v8 z, int32_t ci[LANES], float fi[LANES],
-                             int32_t cj[LANES], float fj[LANES]) {
+static void octahedral_cells(const call_c* cc, v8 x, v8 y, v8 z, cells_l* out) {
   const v8 l1 = add8(add8(prt_v8_abs(x), prt_v8_abs(y)), prt_v8_abs(z));
   v8 px = div8(x, l1), py = div8(y, l1);
   const v8 below = lt8(z, _mm256_setzero_ps());
@@ -465,8 +489,8 @@ static void octahedral_cells(const call_c* cc, v8 x, v8 y, v8 z, int32_t ci[LANE
   const v8 fx = mul8(sub8(one, prt_v8_abs(py)), sx), fy = mul8(sub8(one, prt_v8_abs(px)), sy);
   px = sel8(below, fx, px);
   py = sel8(below, fy, py);
-  grid_cells(mul8(C8(0.5f), add8(px, one)), cc->xi, ci, fi);
-  grid_cells(mul8(C8(0.5f), add8(py, one)), cc->xi, cj, fj);
+  grid_cells(mul8(C8(0.5f), add8(px, one)), cc->xi, out->i, out->fi);
+  grid_cells(mul8(C8(0.5f), add8(py, one)), cc->xi, out->j, out->fj);
 }
 
 /* ---- Lanes of one batch ------------------------------------------------------------------------
@@ -488,6 +512,46 @@ typedef struct view_l {
   float vf[LANES][PRT_BLOB_CLTH_MAX_RANK] __attribute__((aligned(32))); /* T's view rows */
   float vc[LANES][PRT_BLOB_CLTH_MAX_RANK] __attribute__((aligned(32))); /* T_c's */
 } view_l;
+
+/* What a batch's lobes and view share across its tangents: the lobe axes in the lanes' frames,
+ * and per thread and mirror (index 2 thread + mirror) the table cells of each lobe and of the
+ * view. Filled lazily; lobes past SHARED_LOBES are computed per tangent. Off
+ * (PRT_CLOTH_NO_LOBE_SHARING), every tangent computes its own: the same values either way. */
+#define SHARED_LOBES 32u
+typedef struct lobe_share {
+  int on;
+  uint8_t have_axis[SHARED_LOBES];
+  uint8_t have_cells[4][SHARED_LOBES];
+  uint8_t have_view[4];
+  v8 axis[SHARED_LOBES][3];
+  cells_l cells[4][SHARED_LOBES];
+  cells_l view[4];
+} lobe_share;
+
+static void reset_share(lobe_share* sh) {
+  memset(sh->have_axis, 0, sizeof sh->have_axis);
+  memset(sh->have_cells, 0, sizeof sh->have_cells);
+  memset(sh->have_view, 0, sizeof sh->have_view);
+}
+
+/* The lobe's axis along each lane's u, v, n. */
+static void lobe_axis_of(const lobe_c* lobe, const batch* b, v8 d[3]) {
+  const v8 ax = C8(lobe->axis[0]), ay = C8(lobe->axis[1]), az = C8(lobe->axis[2]);
+  d[0] = fma8(ax, b->u[0], fma8(ay, b->u[1], mul8(az, b->u[2])));
+  d[1] = fma8(ax, b->v[0], fma8(ay, b->v[1], mul8(az, b->v[2])));
+  d[2] = fma8(ax, b->n[0], fma8(ay, b->n[1], mul8(az, b->n[2])));
+}
+
+static const v8* lobe_axis(lobe_share* sh, const lobe_c* lobe, uint32_t k, const batch* b,
+                           v8 own[3]) {
+  if (!sh->on || k >= SHARED_LOBES) {
+    lobe_axis_of(lobe, b, own);
+    return own;
+  }
+  if (!sh->have_axis[k]) lobe_axis_of(lobe, b, sh->axis[k]);
+  sh->have_axis[k] = 1;
+  return sh->axis[k];
+}
 
 /* A direction's components along the tangent's canonical x_j, y_j and n from those along u, v, n.
  */
@@ -516,28 +580,40 @@ static inline void fibre_angles(const tangent_c* tc, v8 x, v8 y, v8 z, v8* theta
   if (sin_theta) *sin_theta = div8(wt, norm);
 }
 
+/* The view's cells in the tables of a thread's canonical frame (after the mirror). */
+static void view_cells(const call_c* cc, v8 x, v8 y, v8 dn, int mirror, cells_l* out) {
+  const v8 cx = mirror ? _mm256_xor_ps(x, C8(-0.0f)) : x;
+  const v8 cy = prt_v8_abs(y);
+  const v8 cz = _mm256_max_ps(dn, _mm256_setzero_ps());
+  /* theta = acos(z) and phi = atan2(|y|, x), as angles of the components */
+  const v8 theta = prt_v8_atan2(_mm256_sqrt_ps(fma8(cx, cx, mul8(cy, cy))), cz);
+  const v8 phi = prt_v8_atan2(cy, cx);
+  grid_cells(mul8(theta, C8(1.0 / HALF_PI)), cc->nt, out->i, out->fi);
+  grid_cells(mul8(phi, C8(1.0 / PI)), cc->np, out->j, out->fj);
+}
+
 static void tangent_view(const call_c* cc, const tangent_c* tc, const batch* b, unsigned lanes,
-                         view_l* out) {
-  v8 x, y, cx, cy, cz, theta, phi;
-  int32_t ia[LANES], ib[LANES];
-  float fa[LANES], fb[LANES];
+                         lobe_share* sh, view_l* out) {
+  const int group = 2 * tc->thread + tc->mirror;
+  cells_l own;
+  const cells_l* vc = &own;
+  v8 x, y;
   uint32_t l;
   thread_axes(tc, b->du, b->dv, &x, &y);
   fibre_angles(tc, x, y, b->dn, &out->theta_o, &out->phi_o, &out->cos_o, NULL);
-  cx = tc->mirror ? _mm256_xor_ps(x, C8(-0.0f)) : x;
   out->flip = (unsigned)_mm256_movemask_ps(lt8(y, _mm256_setzero_ps()));
-  cy = prt_v8_abs(y);
-  cz = _mm256_max_ps(b->dn, _mm256_setzero_ps());
-  /* theta = acos(z) and phi = atan2(|y|, x), as angles of the components */
-  theta = prt_v8_atan2(_mm256_sqrt_ps(fma8(cx, cx, mul8(cy, cy))), cz);
-  phi = prt_v8_atan2(cy, cx);
-  grid_cells(mul8(theta, C8(1.0 / HALF_PI)), cc->nt, ia, fa);
-  grid_cells(mul8(phi, C8(1.0 / PI)), cc->np, ib, fb);
+  if (sh->on) {
+    if (!sh->have_view[group]) view_cells(cc, x, y, b->dn, tc->mirror, &sh->view[group]);
+    sh->have_view[group] = 1;
+    vc = &sh->view[group];
+  } else {
+    view_cells(cc, x, y, b->dn, tc->mirror, &own);
+  }
   for (l = 0; l < LANES; ++l) {
+    const uint32_t a = (uint32_t)vc->i[l], c = (uint32_t)vc->j[l];
     if (!(lanes >> l & 1u)) continue;
-    view_row(cc, &tc->full, (uint32_t)ia[l], (uint32_t)ib[l], fa[l], fb[l], out->vf[l]);
-    if (cc->cone)
-      view_row(cc, &tc->cone, (uint32_t)ia[l], (uint32_t)ib[l], fa[l], fb[l], out->vc[l]);
+    view_row(cc, &tc->full, a, c, vc->fi[l], vc->fj[l], out->vf[l]);
+    if (cc->cone) view_row(cc, &tc->cone, a, c, vc->fi[l], vc->fj[l], out->vc[l]);
   }
 }
 
@@ -627,9 +703,8 @@ static inline v8 phi_half_width(const tangent_c* tc, v8 theta, v8 ct, v8 st, v8 
  * nodes before the next, so that the nodes' independent chains of transcendental functions
  * overlap instead of each waiting on the last. */
 #define STAGE_NODES 9u
-static void nodes_static(const call_c* cc, const tangent_c* tc, const pair_l* p,
-                         const window_l* w, uint32_t count, const v8* x, v8 pinched,
-                         const v8* end, node_static* ns) {
+static void nodes_static(const call_c* cc, const tangent_c* tc, const pair_l* p, const window_l* w,
+                         uint32_t count, const v8* x, v8 pinched, const v8* end, node_static* ns) {
   const v8 zero = _mm256_setzero_ps();
   v8 theta[STAGE_NODES], st[STAGE_NODES], half[STAGE_NODES], kappa[STAGE_NODES];
   v8 sdp[STAGE_NODES], wide[STAGE_NODES], za[STAGE_NODES], zb[STAGE_NODES], live[STAGE_NODES];
@@ -659,8 +734,8 @@ static void nodes_static(const call_c* cc, const tangent_c* tc, const pair_l* p,
     kappa[s] = k;
     sdp[s] = div8(C8(1.0f), rk); /* +inf for kappa = 0 */
     wide[s] = ge8(mul8(C8(4.0f), sdp[s]), C8(HALF_PI));
-    za[s] = _mm256_max_ps(mul8(sub8(_mm256_xor_ps(half[s], C8(-0.0f)), p->phi_k), rk),
-                          C8(-PHI_SIGMAS));
+    za[s] =
+        _mm256_max_ps(mul8(sub8(_mm256_xor_ps(half[s], C8(-0.0f)), p->phi_k), rk), C8(-PHI_SIGMAS));
     zb[s] = _mm256_min_ps(mul8(sub8(half[s], p->phi_k), rk), C8(PHI_SIGMAS));
     live[s] = and8(gt8(half[s], zero), _mm256_or_ps(wide[s], gt8(zb[s], za[s])));
     sharp[s] = andnot8(wide[s], live[s]);
@@ -680,7 +755,8 @@ static void nodes_static(const call_c* cc, const tangent_c* tc, const pair_l* p,
   for (i = 0; i < cc->q; ++i) {
     const v8 xq = C8(cc->gl_x[i]), hw = C8(cc->gl_hw[i]), g = C8(cc->gl_g[i]);
     for (s = 0; s < count; ++s) {
-      /* wide: plain nodes over [-half, half]; a sharp profile whose mass rounds to 0: over [a, b] */
+      /* wide: plain nodes over [-half, half]; a sharp profile whose mass rounds to 0: over [a, b]
+       */
       const v8 d_wide = _mm256_fmsub_ps(half[s], xq, p->phi_k);
       const v8 d_narrow =
           mul8(sdp[s], mul8(C8(0.5f), fma8(sub8(zb[s], za[s]), xq, add8(za[s], zb[s]))));
@@ -955,29 +1031,28 @@ static void lobe_integrals(const call_c* cc, const tangent_c* tc, const lobe_c* 
   integrate_window(cc, tc, th, p, &w, lanes, cur, out);
 }
 
-/* The lobe in the fibre's angles and the thread's canonical frame, for every lane. */
-static void pair_static(const tangent_c* tc, const lobe_c* lobe, const batch* b, pair_l* p) {
-  const v8 ax = C8(lobe->axis[0]), ay = C8(lobe->axis[1]), az = C8(lobe->axis[2]);
-  const v8 du = fma8(ax, b->u[0], fma8(ay, b->u[1], mul8(az, b->u[2])));
-  const v8 dv = fma8(ax, b->v[0], fma8(ay, b->v[1], mul8(az, b->v[2])));
-  const v8 dn = fma8(ax, b->n[0], fma8(ay, b->n[1], mul8(az, b->n[2])));
+/* The lobe (its axis d along u, v, n) in the fibre's angles and the thread's canonical frame,
+ * for every lane. */
+static void pair_static(const tangent_c* tc, const v8 d[3], pair_l* p) {
   v8 x, y;
-  thread_axes(tc, du, dv, &x, &y);
-  fibre_angles(tc, x, y, dn, &p->theta_k, &p->phi_k, &p->cos_k, &p->sin_k);
+  thread_axes(tc, d[0], d[1], &x, &y);
+  fibre_angles(tc, x, y, d[2], &p->theta_k, &p->phi_k, &p->cos_k, &p->sin_k);
   p->cx = tc->mirror ? _mm256_xor_ps(x, C8(-0.0f)) : x;
   p->cy = y;
-  p->cz = dn;
+  p->cz = d[2];
 }
 
 /* T and T_c of each lane in `lanes` (0 elsewhere): the lobe rows read at each lane's canonical
- * lobe (mirrored in y with the view), or for both mirrors from the cache. */
+ * lobe (mirrored in y with the view), or for both mirrors from the cache. `shared`, when not
+ * NULL, holds the lanes' cells if *have, else receives them. */
 static void pair_tables(const call_c* cc, const tangent_c* tc, const lobe_c* lobe, const pair_l* p,
-                        const view_l* vw, unsigned lanes, cursor* cur, v8* t, v8* t_cone) {
+                        const view_l* vw, unsigned lanes, cursor* cur, cells_l* shared,
+                        uint8_t* have, v8* t, v8* t_cone) {
   v8 prod_f[LANES], prod_c[LANES], rows[2][2][MAX_CHUNKS];
   const uint32_t cf = tc->full.chunks, ccn = tc->cone.chunks;
   uint32_t l, c, m;
-  int32_t ci[LANES], cj[LANES];
-  float fi[LANES], fj[LANES];
+  cells_l own;
+  const cells_l* cl = &own;
   if (cur->mode == CACHE_READ) {
     for (m = 0; m < 2; ++m) {
       for (c = 0; c < cf; ++c) rows[m][0][c] = _mm256_loadu_ps(cur->at), cur->at += 8;
@@ -986,28 +1061,32 @@ static void pair_tables(const call_c* cc, const tangent_c* tc, const lobe_c* lob
   } else if (cur->mode == CACHE_FILL) {
     /* both mirrors of lane 0's lobe: lanes 0 and 1 of the cells */
     const v8 two = _mm256_setr_ps(1, -1, 1, 1, 1, 1, 1, 1);
-    octahedral_cells(cc, p->cx, mul8(p->cy, two), p->cz, ci, fi, cj, fj);
+    octahedral_cells(cc, p->cx, mul8(p->cy, two), p->cz, &own);
     for (m = 0; m < 2; ++m) {
-      lobe_row(cc, &tc->full, lobe, (uint32_t)ci[m], (uint32_t)cj[m], fi[m], fj[m], rows[m][0]);
-      if (cc->cone)
-        lobe_row(cc, &tc->cone, lobe, (uint32_t)ci[m], (uint32_t)cj[m], fi[m], fj[m], rows[m][1]);
+      const uint32_t i = (uint32_t)own.i[m], j = (uint32_t)own.j[m];
+      lobe_row(cc, &tc->full, lobe, i, j, own.fi[m], own.fj[m], rows[m][0]);
+      if (cc->cone) lobe_row(cc, &tc->cone, lobe, i, j, own.fi[m], own.fj[m], rows[m][1]);
       for (c = 0; c < cf; ++c) _mm256_storeu_ps(cur->at, rows[m][0][c]), cur->at += 8;
       for (c = 0; c < ccn; ++c) _mm256_storeu_ps(cur->at, rows[m][1][c]), cur->at += 8;
     }
+  } else if (shared && *have) {
+    cl = shared;
   } else {
     const v8 flip = mask_of_bits(vw->flip);
-    octahedral_cells(cc, p->cx, sel8(flip, _mm256_xor_ps(p->cy, C8(-0.0f)), p->cy), p->cz, ci, fi,
-                     cj, fj);
+    cells_l* fill = shared ? shared : &own;
+    octahedral_cells(cc, p->cx, sel8(flip, _mm256_xor_ps(p->cy, C8(-0.0f)), p->cy), p->cz, fill);
+    if (shared) *have = 1;
+    cl = fill;
   }
   for (l = 0; l < LANES; ++l) {
-    v8 own[2][MAX_CHUNKS];
-    v8(*r)[MAX_CHUNKS] = own;
+    v8 lane_rows[2][MAX_CHUNKS];
+    v8(*r)[MAX_CHUNKS] = lane_rows;
     v8 pf = _mm256_setzero_ps(), pc = _mm256_setzero_ps();
     if (lanes >> l & 1u) {
       if (cur->mode == CACHE_NONE) {
-        lobe_row(cc, &tc->full, lobe, (uint32_t)ci[l], (uint32_t)cj[l], fi[l], fj[l], own[0]);
-        if (cc->cone)
-          lobe_row(cc, &tc->cone, lobe, (uint32_t)ci[l], (uint32_t)cj[l], fi[l], fj[l], own[1]);
+        const uint32_t i = (uint32_t)cl->i[l], j = (uint32_t)cl->j[l];
+        lobe_row(cc, &tc->full, lobe, i, j, cl->fi[l], cl->fj[l], lane_rows[0]);
+        if (cc->cone) lobe_row(cc, &tc->cone, lobe, i, j, cl->fi[l], cl->fj[l], lane_rows[1]);
       } else {
         r = rows[vw->flip >> l & 1u];
       }
@@ -1034,20 +1113,22 @@ typedef struct frame_cache {
 } frame_cache;
 
 static void shade_tangent(const call_c* cc, uint32_t ti, const batch* b, frame_cache* fc,
-                          v8 rgb[3]) {
+                          lobe_share* sh, v8 rgb[3]) {
   const tangent_c* tc = &cc->tan[ti];
   const thread_c* th = &cc->threads[tc->thread];
   const unsigned active = (unsigned)_mm256_movemask_ps(b->active);
+  const int group = 2 * tc->thread + tc->mirror;
   view_l vw;
   uint32_t k;
-  tangent_view(cc, tc, b, active, &vw);
+  tangent_view(cc, tc, b, active, sh, &vw);
   for (k = 0; k < cc->lobes; ++k) {
     const lobe_c* lobe = &cc->lobe[k];
     const unsigned lanes = b->vis[k] & active;
     const size_t pair = (size_t)ti * cc->lobes + k;
     cursor cur = {NULL, CACHE_NONE};
+    const int shared = sh->on && k < SHARED_LOBES;
     pair_l p;
-    v8 t, t_cone, in[3], mask, ws, wv, sin_b, cos_b;
+    v8 t, t_cone, in[3], mask, ws, wv, sin_b, cos_b, own_axis[3];
     int c;
     if (!lanes) continue;
     mask = mask_of_bits(lanes);
@@ -1060,11 +1141,12 @@ static void shade_tangent(const call_c* cc, uint32_t ti, const batch* b, frame_c
     if (cur.mode == CACHE_READ) {
       p.theta_k = get8(&cur), p.phi_k = get8(&cur), p.cos_k = get8(&cur), p.sin_k = get8(&cur);
     } else {
-      pair_static(tc, lobe, b, &p);
+      pair_static(tc, lobe_axis(sh, lobe, k, b, own_axis), &p);
       if (cur.mode == CACHE_FILL)
         put8(&cur, p.theta_k), put8(&cur, p.phi_k), put8(&cur, p.cos_k), put8(&cur, p.sin_k);
     }
-    pair_tables(cc, tc, lobe, &p, &vw, lanes, &cur, &t, &t_cone);
+    pair_tables(cc, tc, lobe, &p, &vw, lanes, &cur, shared ? &sh->cells[group][k] : NULL,
+                shared ? &sh->have_cells[group][k] : NULL, &t, &t_cone);
     p.sum_ko = add8(p.theta_k, vw.theta_o);
     p.cos_o = vw.cos_o;
     prt_v8_sincos(mul8(C8(0.5f), sub8(p.theta_k, vw.theta_o)), &sin_b, &cos_b);
@@ -1163,12 +1245,14 @@ void prt_cloth_shade_avx2(const prt_cloth_view* view, const prt_cloth_fabric_pre
   float cache_floats[CACHE_FLOATS];
   call_c cc;
   frame_cache fc;
+  lobe_share share;
   batch b;
   uint32_t done;
   prepare_call(view, fabric, light, method, &cc);
   fc.floats = cache_floats;
   fc.pairs = (method->flags & PRT_CLOTH_NO_FRAME_CACHE) ? 0u : CACHE_FLOATS / cc.record;
   fc.valid = 0;
+  share.on = !(method->flags & PRT_CLOTH_NO_LOBE_SHARING);
   for (done = 0; done < count; done += LANES) {
     const uint32_t n = count - done < LANES ? count - done : LANES;
     float lanes_rgb[3][LANES];
@@ -1182,7 +1266,8 @@ void prt_cloth_shade_avx2(const prt_cloth_view* view, const prt_cloth_fabric_pre
         memset(fc.filled, 0, sizeof fc.filled);
         fc.valid = 1;
       }
-      for (i = 0; i < cc.tangents; ++i) shade_tangent(&cc, i, &b, &fc, rgb);
+      reset_share(&share);
+      for (i = 0; i < cc.tangents; ++i) shade_tangent(&cc, i, &b, &fc, &share, rgb);
     }
     for (i = 0; i < 3; ++i) _mm256_storeu_ps(lanes_rgb[i], and8(b.active, rgb[i]));
     for (l = 0; l < n; ++l)

@@ -64,6 +64,11 @@ PRT_API prt_result prt_cloth_find_fabric(const prt_asset* asset, const char* nam
 /* SIMD: compute what a pixel's frame alone decides for every batch of pixels, instead of reusing
  * it while batches share one frame (the same result either way; for measuring the reuse). */
 #define PRT_CLOTH_NO_FRAME_CACHE 8u
+/* SIMD: shade each copy of a tangent of multiplicity m apart (weight 1/m each) instead of once; and
+ * recompute per tangent the terms a pixel's lobe shares across its tangents (the lobe in the
+ * pixel's frame, table cells). For measuring what deduplication and sharing save. */
+#define PRT_CLOTH_TANGENT_COPIES 16u
+#define PRT_CLOTH_NO_LOBE_SHARING 32u
 
 typedef struct prt_cloth_settings {
   size_t struct_size;     /* set by the caller: sizeof(prt_cloth_settings) */

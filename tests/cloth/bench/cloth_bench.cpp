@@ -13,9 +13,9 @@
 // process's CPU time (threads x frame / CPU seconds: what the threads would give on cores of
 // their own).
 //   prt_bench_cloth [--threads N] [--repeat N] [--only SCENE/FABRIC/BACKEND/STEP] (a substring)
-#include <prt/prt.hpp>
 #include <prt/prt_cloth_asset.h>
 #include <prt/prt_workers.h>
+#include <prt/prt.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -95,7 +95,8 @@ struct Step {
 };
 
 const Step kSteps[] = {
-    {"no culling", PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_FRAME_CACHE},
+    {"no culling",
+     PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_FRAME_CACHE},
     {"culling", PRT_CLOTH_NO_FRAME_CACHE},
     {"+ frame cache", 0u},
 };
@@ -172,10 +173,11 @@ int main(int argc, char** argv) {
   light.lobe_count = std::uint32_t(lobes.size());
   light.lobes = lobes.data();
   const bool simd = prt_context_backend(context.get()) == PRT_BACKEND_SIMD;
-  std::printf("cloth shading at %ux%u on %u threads, K = %zu lobes, tables N_xi %u L %u views "
-              "%ux%u rank %u (scalar: every 16th row, extrapolated)\n",
-              kWidth, kHeight, threads, lobes.size(), grid.xi_size, grid.levels, grid.view_theta,
-              grid.view_phi, grid.rank);
+  std::printf(
+      "cloth shading at %ux%u on %u threads, K = %zu lobes, tables N_xi %u L %u views "
+      "%ux%u rank %u (scalar: every 16th row, extrapolated)\n",
+      kWidth, kHeight, threads, lobes.size(), grid.xi_size, grid.levels, grid.view_theta,
+      grid.view_phi, grid.rank);
   std::printf("%-7s %-26s %-7s %-14s %9s %9s %6s\n", "scene", "fabric", "backend", "step",
               "fps wall", "fps cpu", "ratio");
   for (bool draped : {false, true}) {

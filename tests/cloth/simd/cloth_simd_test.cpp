@@ -138,7 +138,8 @@ TEST_F(ClothSimd, AgreesUnderEverySettingAndCount) {
   double worst = 0.0;
   for (std::uint32_t flags :
        {PRT_CLOTH_KEEP_HIDDEN_LOBES, PRT_CLOTH_KEEP_WEAK_LOBES, PRT_CLOTH_NO_CONE_TABLE,
-        PRT_CLOTH_NO_FRAME_CACHE, PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES}) {
+        PRT_CLOTH_NO_FRAME_CACHE, PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES,
+        PRT_CLOTH_TANGENT_COPIES, PRT_CLOTH_NO_LOBE_SHARING}) {
     const prt_cloth_settings s = settings_of(flags);
     for (std::uint32_t fabric : {0u, 2u, 5u})
       worst = worse(worst, compare(a.asset.asset, fabric, lobes, &s, samples).worst);
@@ -172,24 +173,30 @@ TEST_F(ClothSimd, AgreesOnEveryRankAndBothWidths) {
     }
 }
 
-// The cache of what a frame alone decides changes no bit: runs of one frame, at every alignment,
-// with and without it, and over ranges that start anywhere.
-TEST_F(ClothSimd, FrameCacheChangesNoBit) {
+// The cache of what a frame alone decides and the terms a lobe shares across tangents change no
+// bit: runs of one frame, at every alignment, with and without each, over ranges that start
+// anywhere, with more lobes than are shared.
+TEST_F(ClothSimd, FrameCacheAndLobeSharingChangeNoBit) {
   const Loaded a(six_presets());
   ClothSamples samples = prt_test::random_samples(300, 15, 37);
   // a flat patch: one frame, every view different
   std::mt19937 rng(16);
   float n[3] = {0.0f, 0.0f, 1.0f}, w[3] = {1.0f, 0.2f, 0.0f}, v[3];
   for (int i = 0; i < 90; ++i) prt_test::random_view(rng, n, v), samples.add(n, w, v);
-  const prt_cloth_settings with = settings_of(0), without = settings_of(PRT_CLOTH_NO_FRAME_CACHE);
-  for (std::uint32_t fabric = 0; fabric < 6; ++fabric) {
-    const auto lobes = prt_test::random_lobes(9, 0.25f, 1e4f, 17 + fabric);
-    for (std::uint32_t first : {0u, 3u, 290u}) {
-      const auto cached =
-          shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, &with, samples, first);
-      const auto direct =
-          shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, &without, samples, first);
-      EXPECT_TRUE(prt_test::same_bits(cached, direct)) << "fabric " << fabric << " first " << first;
+  const prt_cloth_settings with = settings_of(0);
+  for (std::uint32_t flags : {PRT_CLOTH_NO_FRAME_CACHE, PRT_CLOTH_NO_LOBE_SHARING,
+                              PRT_CLOTH_NO_FRAME_CACHE | PRT_CLOTH_NO_LOBE_SHARING}) {
+    const prt_cloth_settings without = settings_of(flags);
+    for (std::uint32_t fabric = 0; fabric < 6; ++fabric) {
+      const auto lobes = prt_test::random_lobes(fabric == 2 ? 40 : 9, 0.25f, 1e4f, 17 + fabric);
+      for (std::uint32_t first : {0u, 3u, 290u}) {
+        const auto saved =
+            shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, &with, samples, first);
+        const auto direct =
+            shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, &without, samples, first);
+        EXPECT_TRUE(prt_test::same_bits(saved, direct))
+            << "flags " << flags << " fabric " << fabric << " first " << first;
+      }
     }
   }
 }
