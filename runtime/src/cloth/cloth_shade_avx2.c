@@ -17,7 +17,13 @@
  * window (its pieces, nodes, profile, Gaussian moments, phi nodes and weights) -- is the same in
  * every lane of a batch whose eight samples share one frame. Such a batch keeps one float of each
  * (filled lazily, pair by pair) and the following batches of the same frame read them back. Both
- * paths run the same code on the same values, so the cache changes no bit. */
+ * paths run the same code on the same values, so the cache changes no bit.
+ *
+ * Within a batch, what a lobe's terms owe to the frame and not to the tangent's offset -- the
+ * lobe's axis along u, v, n, and per thread and mirror the table cells of the lobe and the view --
+ * is computed once and shared by the tangents (lobe_share); also bit for bit. The switches
+ * PRT_CLOTH_NO_FRAME_CACHE, PRT_CLOTH_NO_LOBE_SHARING and PRT_CLOTH_TANGENT_COPIES (each copy of
+ * a tangent shaded apart) undo the savings, for measuring them. */
 #include <math.h>
 #include <string.h>
 

@@ -11,8 +11,10 @@
 
 #if defined(PRT_HAS_X86_SIMD)
 /* Samples [first, first + count) into out_rgb (3 count floats), as the scalar shade_scalar. The
- * light and fabric are prepared (prt_cloth_prepare_light / _fabric); the method's flags include
- * PRT_CLOTH_NO_FRAME_CACHE to compute what the frame alone decides for every batch. */
+ * light and fabric are prepared (prt_cloth_prepare_light / _fabric); the method's flags may undo
+ * the kernel's own savings for measuring them: PRT_CLOTH_NO_FRAME_CACHE (what the frame alone
+ * decides, computed for every batch), PRT_CLOTH_NO_LOBE_SHARING (per-lobe terms computed per
+ * tangent) and PRT_CLOTH_TANGENT_COPIES (each copy of a tangent shaded apart). */
 void prt_cloth_shade_avx2(const prt_cloth_view* view, const prt_cloth_fabric_prep* fabric,
                           const prt_cloth_light_prep* light, const prt_cloth_method* method,
                           const prt_cloth_pixels* pixels, uint32_t first, uint32_t count,

@@ -201,6 +201,27 @@ TEST_F(ClothSimd, FrameCacheAndLobeSharingChangeNoBit) {
   }
 }
 
+// Two calls over [0, k) and [k, n) give the one call's bits, wherever k cuts a batch of eight or
+// a run of one frame (the frame cache starts afresh in each call).
+TEST_F(ClothSimd, SplitRangesAreBitwiseTheOneCall) {
+  const Loaded a(six_presets());
+  ClothSamples samples = prt_test::random_samples(120, 21, 37);
+  std::mt19937 rng(22);
+  float n[3] = {0.3f, -0.2f, 0.93273791f}, w[3] = {1.0f, 0.0f, 0.0f}, v[3];
+  for (int i = 0; i < 70; ++i) prt_test::random_view(rng, n, v), samples.add(n, w, v);
+  const std::uint32_t total = std::uint32_t(samples.size());
+  for (std::uint32_t fabric : {1u, 2u, 5u}) {
+    const auto lobes = prt_test::random_lobes(6, 0.25f, 1e4f, 23 + fabric);
+    const auto one = shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, nullptr, samples);
+    for (std::uint32_t k : {1u, 7u, 8u, 13u, 125u, 150u, total - 1u}) {
+      auto split = shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, nullptr, samples, 0, k);
+      const auto rest = shade(a.asset.asset, PRT_BACKEND_SIMD, fabric, lobes, nullptr, samples, k);
+      split.insert(split.end(), rest.begin(), rest.end());
+      EXPECT_TRUE(prt_test::same_bits(one, split)) << "fabric " << fabric << " cut at " << k;
+    }
+  }
+}
+
 TEST_F(ClothSimd, WorkersAreBitwiseTheOneRangeCall) {
   const Loaded a(six_presets());
   const ClothSamples samples = prt_test::random_samples(501, 18);
