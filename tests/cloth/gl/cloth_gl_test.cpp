@@ -282,6 +282,12 @@ TEST(GlCloth, EverySettingShadesLikeTheScalarReference) {
     const bool is_default = s.flags == 0 && s.theta_segments == 0 && s.weak_lobe == 0.0f;
     EXPECT_EQ(target.read() == defaults, is_default) << what;
   }
+  // The SIMD backend's own switches (how it shares work, the same result either way) are accepted
+  // and change nothing here.
+  const prt_cloth_settings simd_only =
+      settings_of(PRT_CLOTH_NO_FRAME_CACHE | PRT_CLOTH_TANGENT_COPIES | PRT_CLOTH_NO_LOBE_SHARING);
+  ASSERT_EQ(prt_gl_cloth_shade(shader.get(), 0, nullptr, &light, &simd_only, &gbuffer), PRT_OK);
+  EXPECT_EQ(target.read(), defaults);
 }
 
 // The light's extremes: no lobe (cloth shades to 0), every lobe weak but kept, and the most
@@ -624,7 +630,7 @@ TEST(GlCloth, BadShadeArgumentsAreRefusedAndDrawNothing) {
   bad_params.struct_size = sizeof bad_params;
   ASSERT_EQ(prt_cloth_get_fabric(a.asset(), 0, nullptr, &bad_params, nullptr, nullptr), PRT_OK);
   bad_params.threads[0].coverage = 0.9f;  // a_1 + a_2 > 1
-  prt_cloth_settings bad[4] = {settings_of(8u), settings_of(0, 17), settings_of(0, 0, 9),
+  prt_cloth_settings bad[4] = {settings_of(64u), settings_of(0, 17), settings_of(0, 0, 9),
                                settings_of(0)};
   bad[3].struct_size = 4;  // below 1.0's
 

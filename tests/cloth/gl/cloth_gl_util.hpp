@@ -93,16 +93,9 @@ struct FabricSpec {
   prt_cloth_weave weave{};
 };
 
-// A preset, with its weft's coverage lowered by an ulp where the two floats add up to more than 1
-// in double (0.67 + 0.33, 0.86 + 0.14): the CLTH checkers refuse that, while
-// prt_cloth_params_validate allows a slack. The shading under test does not depend on it.
 inline FabricSpec preset(const std::string& name) {
   const prt::bake::ClothPreset& p = prt::bake::cloth_fabric(name);
-  FabricSpec f{p.name, p.params, p.weave};
-  prt_cloth_thread* t = f.params.threads;
-  while (double(t[0].coverage) + double(t[1].coverage) > 1.0)
-    t[1].coverage = std::nextafter(t[1].coverage, 0.0f);
-  return f;
+  return {p.name, p.params, p.weave};
 }
 
 inline std::vector<FabricSpec> presets(const std::vector<std::string>& names) {
