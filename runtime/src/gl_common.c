@@ -22,15 +22,21 @@ typedef struct gl_function_slot {
 #define SLOT(fn) \
   { "gl" #fn, offsetof(prt_gl_functions, fn) }
 static const gl_function_slot kGlFunctions[] = {
-    SLOT(GetError),         SLOT(GetIntegerv),      SLOT(GetInteger64v),
-    SLOT(CreateShader),     SLOT(ShaderSource),     SLOT(CompileShader),
-    SLOT(GetShaderiv),      SLOT(GetShaderInfoLog), SLOT(DeleteShader),
-    SLOT(CreateProgram),    SLOT(AttachShader),     SLOT(DetachShader),
-    SLOT(LinkProgram),      SLOT(GetProgramiv),     SLOT(GetProgramInfoLog),
-    SLOT(DeleteProgram),    SLOT(UseProgram),       SLOT(ProgramUniform1ui),
-    SLOT(GenBuffers),       SLOT(DeleteBuffers),    SLOT(BindBuffer),
-    SLOT(BindBufferBase),   SLOT(BufferData),       SLOT(BufferSubData),
-    SLOT(GetBufferSubData), SLOT(DispatchCompute),  SLOT(MemoryBarrier)};
+    SLOT(GetError),         SLOT(GetIntegerv),        SLOT(GetInteger64v),
+    SLOT(CreateShader),     SLOT(ShaderSource),       SLOT(CompileShader),
+    SLOT(GetShaderiv),      SLOT(GetShaderInfoLog),   SLOT(DeleteShader),
+    SLOT(CreateProgram),    SLOT(AttachShader),       SLOT(DetachShader),
+    SLOT(LinkProgram),      SLOT(GetProgramiv),       SLOT(GetProgramInfoLog),
+    SLOT(DeleteProgram),    SLOT(UseProgram),         SLOT(ProgramUniform1ui),
+    SLOT(GenBuffers),       SLOT(DeleteBuffers),      SLOT(BindBuffer),
+    SLOT(BindBufferBase),   SLOT(BufferData),         SLOT(BufferSubData),
+    SLOT(GetBufferSubData), SLOT(DispatchCompute),    SLOT(MemoryBarrier),
+    SLOT(DeleteTextures),   SLOT(DeleteVertexArrays), SLOT(BlendFuncSeparate),
+    SLOT(PixelStorei),      SLOT(GenTextures),        SLOT(ActiveTexture),
+    SLOT(DrawArrays),       SLOT(TexParameteri),      SLOT(GenVertexArrays),
+    SLOT(Enable),           SLOT(TexStorage2D),       SLOT(TexSubImage2D),
+    SLOT(Disable),          SLOT(BindTexture),        SLOT(BlendEquationSeparate),
+    SLOT(BindSampler),      SLOT(BindVertexArray)};
 #undef SLOT
 
 const char* prt_gl_load_functions(prt_gl_loader_fn loader, void* user, prt_gl_functions* gl) {
@@ -117,37 +123,82 @@ prt_result prt_gl_check_block_sizes(prt_context* context, const prt_gl_functions
   return PRT_OK;
 }
 
-prt_result prt_gl_compile_compute(prt_context* context, const prt_gl_functions* gl,
-                                  const char* function, const prt_GLchar* const* sources,
-                                  int source_count, prt_GLuint* out_program) {
+/* Compiles one stage; 0 with the failure recorded when it does not compile. */
+static prt_GLuint compile_stage(prt_context* context, const prt_gl_functions* gl,
+                                const char* function, prt_GLenum type, const char* stage,
+                                const prt_GLchar* const* sources, int source_count) {
   prt_GLint ok = 0;
   char log[LOG_EXCERPT + 1] = "";
-  prt_GLuint shader = gl->CreateShader(PRT_GL_COMPUTE_SHADER);
-  *out_program = 0;
-  if (!shader)
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "%s: glCreateShader(GL_COMPUTE_SHADER) failed", function);
+  prt_GLuint shader = gl->CreateShader(type);
+  if (!shader) {
+    prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND, "%s: glCreateShader(%s) failed",
+                      function, stage);
+    return 0;
+  }
   gl->ShaderSource(shader, source_count, sources, NULL);
   gl->CompileShader(shader);
   gl->GetShaderiv(shader, PRT_GL_COMPILE_STATUS, &ok);
   if (!ok) {
     gl->GetShaderInfoLog(shader, (prt_GLsizei)sizeof log, NULL, log);
     gl->DeleteShader(shader);
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "%s: the compute shader does not compile: %s", function, log);
+    prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                      "%s: the %s shader does not compile: %s", function, stage, log);
+    return 0;
   }
+  return shader;
+}
+
+/* Links the compiled stages into *out_program (set even when linking fails, for the caller to
+ * delete); the stages are detached and deleted. */
+static prt_result link_program(prt_context* context, const prt_gl_functions* gl,
+                               const char* function, const char* what, const prt_GLuint* shaders,
+                               int shader_count, prt_GLuint* out_program) {
+  prt_GLint ok = 0;
+  char log[LOG_EXCERPT + 1] = "";
+  int i;
   *out_program = gl->CreateProgram();
-  gl->AttachShader(*out_program, shader);
+  for (i = 0; i < shader_count; ++i) gl->AttachShader(*out_program, shaders[i]);
   gl->LinkProgram(*out_program);
-  gl->DetachShader(*out_program, shader);
-  gl->DeleteShader(shader);
+  for (i = 0; i < shader_count; ++i) {
+    gl->DetachShader(*out_program, shaders[i]);
+    gl->DeleteShader(shaders[i]);
+  }
   gl->GetProgramiv(*out_program, PRT_GL_LINK_STATUS, &ok);
   if (!ok) {
     gl->GetProgramInfoLog(*out_program, (prt_GLsizei)sizeof log, NULL, log);
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "%s: the compute shader does not link: %s", function, log);
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND, "%s: the %s does not link: %s",
+                             function, what, log);
   }
   return PRT_OK;
+}
+
+prt_result prt_gl_compile_compute(prt_context* context, const prt_gl_functions* gl,
+                                  const char* function, const prt_GLchar* const* sources,
+                                  int source_count, prt_GLuint* out_program) {
+  prt_GLuint shader;
+  *out_program = 0;
+  shader =
+      compile_stage(context, gl, function, PRT_GL_COMPUTE_SHADER, "compute", sources, source_count);
+  if (!shader) return PRT_ERROR_UNSUPPORTED_BACKEND;
+  return link_program(context, gl, function, "compute shader", &shader, 1, out_program);
+}
+
+prt_result prt_gl_compile_draw(prt_context* context, const prt_gl_functions* gl,
+                               const char* function, const prt_GLchar* const* vertex_sources,
+                               int vertex_count, const prt_GLchar* const* fragment_sources,
+                               int fragment_count, prt_GLuint* out_program) {
+  prt_GLuint shaders[2];
+  *out_program = 0;
+  shaders[0] = compile_stage(context, gl, function, PRT_GL_VERTEX_SHADER, "vertex", vertex_sources,
+                             vertex_count);
+  if (!shaders[0]) return PRT_ERROR_UNSUPPORTED_BACKEND;
+  shaders[1] = compile_stage(context, gl, function, PRT_GL_FRAGMENT_SHADER, "fragment",
+                             fragment_sources, fragment_count);
+  if (!shaders[1]) {
+    gl->DeleteShader(shaders[0]);
+    return PRT_ERROR_UNSUPPORTED_BACKEND;
+  }
+  return link_program(context, gl, function, "program", shaders, 2, out_program);
 }
 
 void prt_gl_drain_errors(const prt_gl_functions* gl) {

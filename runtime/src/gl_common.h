@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* Private to the runtime: what every GL compute backend (sh, wavelet and pose's <t>_gl.c) does the
- * same way — checking the create call's arguments, loading the entry points, checking the context,
- * compiling the program, uploading little-endian words and checking the upload. Only compiled with
- * PRT_HAS_GL. Every function that can fail records the failure in `context` with `function` (the
- * public entry point, e.g. "prt_gl_sh_create") at the start of the message. */
+/* Private to the runtime: what every GL backend (<t>_gl.c: sh, wavelet and pose's compute shaders,
+ * cloth's full-screen draw) does the same way — checking the create call's arguments, loading the
+ * entry points, checking the context, compiling the program, uploading little-endian words and
+ * checking the upload. Only compiled with PRT_HAS_GL. Every function that can fail records the
+ * failure in `context` with `function` (the public entry point, e.g. "prt_gl_sh_create") at the
+ * start of the message. */
 #ifndef PRT_RUNTIME_GL_COMMON_H
 #define PRT_RUNTIME_GL_COMMON_H
 
@@ -46,6 +47,14 @@ prt_result prt_gl_check_block_sizes(prt_context* context, const prt_gl_functions
 prt_result prt_gl_compile_compute(prt_context* context, const prt_gl_functions* gl,
                                   const char* function, const prt_GLchar* const* sources,
                                   int source_count, prt_GLuint* out_program);
+
+/* Compiles a vertex and a fragment stage (each from its sources, the #version line first) into
+ * a program, as prt_gl_compile_compute does: UNSUPPORTED_BACKEND quoting the log of the stage
+ * that does not compile, or of the link. */
+prt_result prt_gl_compile_draw(prt_context* context, const prt_gl_functions* gl,
+                               const char* function, const prt_GLchar* const* vertex_sources,
+                               int vertex_count, const prt_GLchar* const* fragment_sources,
+                               int fragment_count, prt_GLuint* out_program);
 
 /* Discards GL errors the application left pending, so that the next check is about our calls. */
 void prt_gl_drain_errors(const prt_gl_functions* gl);
