@@ -115,12 +115,16 @@ PRT_API prt_result prt_cloth_shade_workers(prt_workers* workers, const prt_asset
  * and view direction (unit vectors) into three float textures, and prt_gl_cloth_shade draws one
  * full-screen triangle over the viewport that writes each pixel's radiance (RGB, alpha 1) to the
  * bound draw framebuffer's colour attachment 0; pixels whose normal texel is (0, 0, 0) are
- * discarded (not cloth). The tables are uploaded once as textures; the light, parameters and
- * per-lobe terms are uniforms. The shader evaluates the same method as the CPU backends in float
- * (tests/cloth/gl: the bound GL is held to). GL state touched: the current program, the vertex
- * array binding, texture units 0..(3 + 2 tables) and their 2D/2D-array bindings, the uniform
- * buffer binding 0, depth test and blending (disabled for the draw), all restored to 0 / off
- * afterwards; the viewport and framebuffer are the caller's. */
+ * discarded (not cloth). The tables are uploaded once as one integer texture; the light,
+ * parameters and per-lobe terms are a uniform block, so live parameters never re-upload them.
+ * The shader evaluates the same method as the CPU backends in float (tests/cloth/gl: the bound
+ * GL is held to); a light with many lobes is drawn in several passes added by blending (some
+ * drivers cap a pixel's loop iterations). GL state touched by shade: the current program, the
+ * vertex array binding, texture units 0..3 (2D bindings and sampler bindings, the active unit
+ * left at 0), the uniform buffer binding 0 and the generic binding, depth test and face culling
+ * (disabled), blending (on for passes after the first; its functions restored, left off); all
+ * restored to 0 / off afterwards. create also touches texture unit 3's binding and saves and
+ * restores the pixel-unpack state. The viewport and framebuffer are the caller's. */
 
 typedef struct prt_gl_cloth_shader prt_gl_cloth_shader;
 

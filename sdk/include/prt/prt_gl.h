@@ -4,9 +4,9 @@
  * The runtime neither links an OpenGL library nor creates a GL context: the game hands over a
  * loader (e.g. a wrapper of eglGetProcAddress, glfwGetProcAddress or SDL_GL_GetProcAddress) and
  * calls a technique's GL functions (prt_gl_<t>_*, declared in prt_<t>_asset.h) on a thread where
- * its GL 4.3+ core context (compute shaders + SSBOs) is current. Every such function issues GL
- * calls and must be called with that context current; none is thread-safe with respect to the
- * same GL context. The GL state a call changes is listed by its technique and left unbound (0)
+ * its GL 4.3+ core context is current (sh, wavelet and pose use compute shaders + SSBOs, cloth a
+ * fragment shader). Every such function issues GL calls and must be called with that context
+ * current; none is thread-safe with respect to the same GL context. The GL state a call changes is listed by its technique and left unbound (0)
  * afterwards; nothing else is touched.
  *
  * Contexts: prt_gl_<t>_create takes the prt_context of the calling thread (one thread at a time
