@@ -5,7 +5,7 @@
 #include "prt/baker/cloth/fabrics.hpp"
 
 #include <cmath>
-#include <initializer_list>
+#include <vector>
 
 #include "prt/baker/context.hpp"
 
@@ -22,7 +22,8 @@ struct ThreadRow {
   double kd;
   double gamma_s_deg, gamma_v_deg;
   double coverage;
-  std::initializer_list<double> offsets_deg;
+  // Owned, since rows are copied out of the helpers that build them.
+  std::vector<double> offsets_deg;
 };
 
 struct FabricRow {
