@@ -25,11 +25,37 @@ bool same(const std::vector<T>& a, const std::vector<T>& b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
+// Unit vectors that agree to well within what a pixel's step changes them by.
+bool nearly_equal(const float* u, const float* v) {
+  const float d0 = u[0] - v[0], d1 = u[1] - v[1], d2 = u[2] - v[2];
+  return d0 * d0 + d1 * d1 + d2 * d2 < 1e-8f;
+}
+
 }  // namespace
 
 bool same_samples(const prt::sample::PixelSamples& a, const prt::sample::PixelSamples& b) {
   return a.width == b.width && a.height == b.height && same(a.pixel, b.pixel) &&
          same(a.normals, b.normals) && same(a.tangents, b.tangents) && same(a.views, b.views);
+}
+
+PairedValues paired_values(const ProgressivePixels& a, const ProgressivePixels& b) {
+  PairedValues pairs;
+  const prt::sample::PixelSamples &sa = a.samples(), &sb = b.samples();
+  if (sa.width != sb.width || sa.height != sb.height) return pairs;
+  for (std::size_t s = 0; s < sb.size(); ++s) {
+    const std::int32_t r = a.sample_at(sb.pixel[s]);
+    if (r < 0 || !a.is_computed(std::size_t(r)) || !b.is_computed(s)) continue;
+    const std::size_t t = std::size_t(r);
+    if (!nearly_equal(&sa.normals[3 * t], &sb.normals[3 * s]) ||
+        !nearly_equal(&sa.views[3 * t], &sb.views[3 * s]) ||
+        !nearly_equal(&sa.tangents[3 * t], &sb.tangents[3 * s]))
+      continue;
+    const float *x = a.value(t), *y = b.value(s);
+    pairs.a.emplace_back(x[0], x[1], x[2]);
+    pairs.b.emplace_back(y[0], y[1], y[2]);
+    pairs.b_sample.push_back(s);
+  }
+  return pairs;
 }
 
 bool ProgressivePixels::track(const prt::sample::PixelSamples& samples, std::uint64_t version) {

@@ -11,6 +11,8 @@
 #include <functional>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "scene_renderer.hpp"
 
 namespace prt::cloth_app {
@@ -45,6 +47,10 @@ class ProgressivePixels {
   // Whether sample s (in the samples' own order) is computed, and its value (3 floats).
   bool is_computed(std::size_t s) const { return rank_[s] < done_; }
   const float* value(std::size_t s) const { return &values_[3 * std::size_t(rank_[s])]; }
+  // The sample at viewport pixel y * width + x, or -1.
+  std::int32_t sample_at(std::uint32_t pixel) const {
+    return pixel < at_pixel_.size() ? at_pixel_[pixel] : -1;
+  }
   // Every sample's value, those not computed yet filled from their block's corner; NaN where
   // no corner is computed either.
   void fill(std::vector<float>& rgb) const;
@@ -67,5 +73,15 @@ class ProgressivePixels {
 
 // Whether two sample sets are the same pixels with the same vectors.
 bool same_samples(const prt::sample::PixelSamples& a, const prt::sample::PixelSamples& b);
+
+// The values of two pictures at the samples both have computed: pixels at the same place of
+// viewports of one size whose vectors agree (two viewports side by side rasterise the mesh a
+// rounding apart; a stale picture of another camera does not pair). Per pair: a's value, b's,
+// and b's sample index.
+struct PairedValues {
+  std::vector<glm::vec3> a, b;
+  std::vector<std::size_t> b_sample;
+};
+PairedValues paired_values(const ProgressivePixels& a, const ProgressivePixels& b);
 
 }  // namespace prt::cloth_app

@@ -110,8 +110,8 @@ class ClothApp : public prt::sample::SampleApp {
                    : mesh_text_ == "patch" ? MeshChoice::Patch
                                            : MeshChoice::Auto;
     char x = 0, tail = 0;
-    if (std::sscanf(reference_size_.c_str(), "%d%c%d%c", &reference_settings_.width, &x, &reference_settings_.height,
-                    &tail) != 3 ||
+    if (std::sscanf(reference_size_.c_str(), "%d%c%d%c", &reference_settings_.width, &x,
+                    &reference_settings_.height, &tail) != 3 ||
         (x != 'x' && x != 'X') || reference_settings_.width < 4 || reference_settings_.height < 2 ||
         reference_settings_.width > 4096 || reference_settings_.height > 2048)
       throw CLI::ValidationError(
@@ -159,7 +159,8 @@ class ClothApp : public prt::sample::SampleApp {
   std::vector<View> frame(Sample& sample) override {
     if (gallery_active() && fabric_ != gallery_index_) select_fabric(gallery_index_, true);
     if (light_.update(blob_->context(), sample.environments(), lobe_count_)) ++shade_version_;
-    if (comparing() && texels_.update(sample.environments(), reference_settings_)) ++reference_version_;
+    if (comparing() && texels_.update(sample.environments(), reference_settings_))
+      ++reference_version_;
     if (sample.backend() != backend_) ++shade_version_, backend_ = sample.backend();
     budget_left_ = budget_ms_;
     gl_drawn_ = false;
@@ -508,44 +509,26 @@ class ClothApp : public prt::sample::SampleApp {
 
   // The relative RMSE of the runtime against the reference over the pixels both have.
   void measure_error() {
-    if (!same_samples(runtime_.samples(), reference_.samples()) ||
-        runtime_.version() != shade_version_)
-      return;
-    std::vector<glm::vec3> x, ref;
-    for (std::size_t s = 0; s < reference_.samples().size(); ++s) {
-      if (!runtime_.is_computed(s) || !reference_.is_computed(s)) continue;
-      const float* a = runtime_.value(s);
-      const float* b = reference_.value(s);
-      x.emplace_back(a[0], a[1], a[2]);
-      ref.emplace_back(b[0], b[1], b[2]);
-    }
+    if (runtime_.version() != shade_version_) return;
+    const PairedValues pairs = paired_values(runtime_, reference_);
     double norm = 0.0;
-    for (const glm::vec3& r : ref) norm += glm::dot(r, r);
+    for (const glm::vec3& r : pairs.b) norm += glm::dot(r, r);
     if (!(norm > 0.0)) return;
-    rmse_ = prt::io::relative_rmse(x, ref);
-    compared_ = x.size();
+    rmse_ = prt::io::relative_rmse(pairs.a, pairs.b);
+    compared_ = pairs.a.size();
   }
 
   // Heat colours of |runtime - reference| over the mean |reference|; NaN (not drawn) where
-  // the reference is not computed yet.
+  // either is not computed yet.
   void heat_map(std::vector<float>& rgb) const {
-    const std::size_t n = reference_.samples().size();
-    rgb.assign(3 * n, std::nanf(""));
-    if (!same_samples(runtime_.samples(), reference_.samples())) return;
-    std::vector<glm::vec3> x, ref;
-    std::vector<std::size_t> at;
-    for (std::size_t s = 0; s < n; ++s) {
-      if (!runtime_.is_computed(s) || !reference_.is_computed(s)) continue;
-      const float* a = runtime_.value(s);
-      const float* b = reference_.value(s);
-      x.emplace_back(a[0], a[1], a[2]);
-      ref.emplace_back(b[0], b[1], b[2]);
-      at.push_back(s);
-    }
-    const std::vector<float> error = prt::view::relative_vertex_error(x, ref);
-    for (std::size_t i = 0; i < at.size(); ++i) {
+    rgb.assign(3 * reference_.samples().size(), std::nanf(""));
+    if (runtime_.version() != shade_version_) return;
+    const PairedValues pairs = paired_values(runtime_, reference_);
+    const std::vector<float> error = prt::view::relative_vertex_error(pairs.a, pairs.b);
+    for (std::size_t i = 0; i < error.size(); ++i) {
       const glm::vec3 c = prt::view::heat_colour(error[i], error_scale_);
-      rgb[3 * at[i]] = c.r, rgb[3 * at[i] + 1] = c.g, rgb[3 * at[i] + 2] = c.b;
+      float* out = &rgb[3 * pairs.b_sample[i]];
+      out[0] = c.r, out[1] = c.g, out[2] = c.b;
     }
   }
 
