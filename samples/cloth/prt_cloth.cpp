@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ enum class MeshChoice { Auto, Blob, Patch };
 // A window refines the CPU-side pictures for about this long per frame, so that it stays
 // responsive; runs with --frames (and headless ones) compute them whole.
 constexpr double kWindowBudgetMs = 60.0;
+
+std::string file_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
 
 struct WorkersDeleter {
   void operator()(prt_workers* workers) const { prt_workers_destroy(workers); }
@@ -563,8 +568,8 @@ class ClothApp : public prt::sample::SampleApp {
     const prt::sample::Environments& envs = sample.environments();
     char caption[512];
     std::snprintf(caption, sizeof caption, "%s under %s turned %.0f deg, %s backend, %u lobes",
-                  blob_path_.c_str(), envs.current_path().c_str(), envs.rotation_degrees(),
-                  prt::sample::backend_name(backend_), lobe_count_);
+                  file_name(blob_path_).c_str(), file_name(envs.current_path()).c_str(),
+                  envs.rotation_degrees(), prt::sample::backend_name(backend_), lobe_count_);
     write_gallery(gallery_path_, gallery_pictures_, names, caption);
     std::printf("wrote %s (%zu fabrics)\n", gallery_path_.c_str(), gallery_pictures_.size());
   }
