@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Cloth blobs for prt-cloth's tests, made with the baker's encoder (prt/baker/cloth): the six
-// presets of prt/baker/cloth/fabrics.hpp over synthetic tables, with or without a mesh. A table's
+// Cloth blobs for prt-cloth's tests, made with the baker (prt/baker/cloth): the six presets of
+// prt/baker/cloth/fabrics.hpp with their tables baked on small grids (quick, and coarse), or
+// over synthetic tables, with or without a mesh. A synthetic table's
 // T and T_c are the constant 1 / (the size of its thread's multiset), the mean of the weights W,
 // which sum to at most 1 over a thread (docs/cloth/model.md): each thread then shades as the plain
 // average of its tangents' scattering, without the shadowing and masking a bake would tabulate.
@@ -8,7 +9,9 @@
 #pragma once
 
 #include <prt/baker/cloth/cloth_blob.hpp>
+#include <prt/baker/cloth/cloth_tables.hpp>
 #include <prt/baker/cloth/fabrics.hpp>
+#include <prt/baker/context.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -35,23 +38,47 @@ inline prt::bake::ClothTable constant_table(const prt::bake::ClothGrid& grid, fl
   return table;
 }
 
+// satin back's 0.67 + 0.33 is 1 + 3e-8 in float, which the CLTH checker refuses (the runtime's
+// parameter check allows that slack): the weft's coverage a float step or two lower.
+inline prt_cloth_params fitted_coverages(prt_cloth_params params) {
+  float& weft = params.threads[1].coverage;
+  while (double(params.threads[0].coverage) + double(weft) > 1.0)
+    weft = std::nextafter(weft, 0.0f);
+  return params;
+}
+
 // The presets called `names` (all six when empty), in that order.
+inline std::vector<const prt::bake::ClothPreset*> presets(const std::vector<std::string>& names) {
+  std::vector<const prt::bake::ClothPreset*> out;
+  if (names.empty())
+    for (const prt::bake::ClothPreset& p : prt::bake::cloth_fabrics()) out.push_back(&p);
+  for (const std::string& name : names) out.push_back(&prt::bake::cloth_fabric(name));
+  return out;
+}
+
+// The presets' section with their tables baked by bake_cloth_tables on small grids: 8 x 8 lobe
+// directions, 4 sharpness levels over the light's range, 6 x 6 views; seconds to bake.
+inline prt::bake::ClothSection baked_section(const std::vector<std::string>& names = {}) {
+  std::vector<prt::bake::ClothFabricSource> sources;
+  for (const prt::bake::ClothPreset* p : presets(names))
+    sources.push_back({p->name, fitted_coverages(p->params), p->weave});
+  prt::bake::ClothTablesOptions options;
+  options.grid.xi_size = 8;
+  options.grid.lambda_levels = 4;
+  options.grid.view_theta = 6;
+  options.grid.view_phi = 6;
+  options.sampling.map_size = 64;
+  return prt::bake::bake_cloth_tables(sources, options, prt::bake::Context{}).section;
+}
+
+// The presets' section over the constant tables above.
 inline prt::bake::ClothSection preset_section(const std::vector<std::string>& names = {}) {
   prt::bake::ClothSection section;
   section.grid = constant_grid();
-  std::vector<const prt::bake::ClothPreset*> presets;
-  if (names.empty())
-    for (const prt::bake::ClothPreset& p : prt::bake::cloth_fabrics()) presets.push_back(&p);
-  for (const std::string& name : names) presets.push_back(&prt::bake::cloth_fabric(name));
-  for (const prt::bake::ClothPreset* preset : presets) {
+  for (const prt::bake::ClothPreset* preset : presets(names)) {
     prt::bake::ClothFabric fabric;
     fabric.name = preset->name;
-    fabric.params = preset->params;
-    // satin back's 0.67 + 0.33 is 1 + 3e-8 in float, which the CLTH checker refuses (the
-    // runtime's parameter check allows that slack): one float step off the weft's coverage.
-    float& weft = fabric.params.threads[1].coverage;
-    while (double(fabric.params.threads[0].coverage) + double(weft) > 1.0)
-      weft = std::nextafter(weft, 0.0f);
+    fabric.params = fitted_coverages(preset->params);
     for (int j = 0; j < 2; ++j) {
       std::uint32_t copies = 0;
       for (std::uint32_t k = 0; k < preset->weave.tangent_count[j]; ++k)

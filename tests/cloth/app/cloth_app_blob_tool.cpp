@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// prt_cloth_app_blob: writes a cloth blob of cloth_app_blob.hpp (the presets over constant
-// tables) for trying prt-cloth by hand until `prt-bake bake cloth` makes real ones:
-//   prt_cloth_app_blob OUT.prtk [--sheet | --scene SCENE.gltf] [FABRIC...]
+// prt_cloth_app_blob: writes a cloth blob of cloth_app_blob.hpp (the presets with tables baked
+// on small grids, or over constant tables with --constant) for prt-cloth's tests and for trying
+// it by hand:
+//   prt_cloth_app_blob OUT.prtk [--constant] [--sheet | --scene SCENE.gltf] [FABRIC...]
 // --sheet adds the bent sheet of the tests, --scene the scene's meshes (positions, normals and
 // glTF tangents, world space, as the baker imports them); neither: no mesh.
 #include <prt/baker/context.hpp>
@@ -39,15 +40,18 @@ prt::bake::ClothMesh scene_mesh(const std::string& path) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUT.prtk [--sheet | --scene SCENE] [FABRIC...]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s OUT.prtk [--constant] [--sheet | --scene SCENE] [FABRIC...]\n",
+                 argv[0]);
     return 2;
   }
   try {
     std::vector<std::string> fabrics;
     prt::bake::ClothMesh mesh;
-    bool with_mesh = false;
+    bool with_mesh = false, constant = false;
     for (int i = 2; i < argc; ++i) {
-      if (std::strcmp(argv[i], "--sheet") == 0) {
+      if (std::strcmp(argv[i], "--constant") == 0) {
+        constant = true;
+      } else if (std::strcmp(argv[i], "--sheet") == 0) {
         mesh = prt_cloth_app_test::bent_sheet(), with_mesh = true;
       } else if (std::strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
         mesh = scene_mesh(argv[++i]), with_mesh = true;
@@ -56,8 +60,11 @@ int main(int argc, char** argv) {
       }
     }
     const std::vector<std::uint8_t> bytes = prt::bake::write_cloth_blob(
-        prt_cloth_app_test::preset_section(fabrics), 16, with_mesh ? &mesh : nullptr,
-        "prt_cloth_app_blob: presets over constant tables");
+        constant ? prt_cloth_app_test::preset_section(fabrics)
+                 : prt_cloth_app_test::baked_section(fabrics),
+        16, with_mesh ? &mesh : nullptr,
+        constant ? "prt_cloth_app_blob: presets over constant tables"
+                 : "prt_cloth_app_blob: presets, tables baked on small grids");
     std::ofstream(argv[1], std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     std::printf("wrote %s (%zu bytes, %zu vertices)\n", argv[1], bytes.size(),
