@@ -42,8 +42,7 @@ inline prt::bake::ClothTable constant_table(const prt::bake::ClothGrid& grid, fl
 // parameter check allows that slack): the weft's coverage a float step or two lower.
 inline prt_cloth_params fitted_coverages(prt_cloth_params params) {
   float& weft = params.threads[1].coverage;
-  while (double(params.threads[0].coverage) + double(weft) > 1.0)
-    weft = std::nextafter(weft, 0.0f);
+  while (double(params.threads[0].coverage) + double(weft) > 1.0) weft = std::nextafter(weft, 0.0f);
   return params;
 }
 
