@@ -201,6 +201,22 @@ TEST(ClothApp, TheSplitShowsTheReferenceRightOfTheDividerAndItsError) {
   EXPECT_NEAR(printed_rmse(half.output), printed, 1e-5) << half.output;
 }
 
+// A window's frame budget computes the pictures a share per frame, coarse to fine: a run with
+// --frames goes on until they are whole, and ends on the picture and figure of one computed at
+// once (each sample's value does not depend on how the samples are split).
+TEST(ClothApp, TheProgressivePicturesEndAsTheWholeOnes) {
+  const prt_test::CommandResult whole = cloth("whole", "--compare split");
+  const prt_test::CommandResult progressive =
+      cloth("progressive", "--compare split --frame-budget 20 --frames 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  ASSERT_EQ(progressive.exit_code, 0) << progressive.output;
+  EXPECT_NE(whole.output.find("prt-cloth: 1 frame(s)"), std::string::npos) << whole.output;
+  EXPECT_EQ(progressive.output.find("prt-cloth: 1 frame(s)"), std::string::npos)
+      << progressive.output;
+  EXPECT_EQ(printed_rmse(progressive.output), printed_rmse(whole.output)) << progressive.output;
+  EXPECT_EQ(picture("progressive").rgb, picture("whole").rgb);
+}
+
 // The error view's right half is the heat ramp at |runtime - reference| / mean |reference|, which
 // the side-by-side picture gives (runtime left, reference right, the same viewports).
 TEST(ClothApp, TheHeatMapShowsTheErrorOfTheSideBySidePicture) {
