@@ -58,16 +58,22 @@ PairedValues paired_values(const ProgressivePixels& a, const ProgressivePixels& 
   return pairs;
 }
 
-bool ProgressivePixels::track(const prt::sample::PixelSamples& samples, std::uint64_t version) {
-  if (tracking_ && version == version_ && same_samples(samples, samples_)) {
+bool ProgressivePixels::track(const prt::sample::PixelSamples& samples, std::uint64_t version,
+                              bool finish_first) {
+  if (tracking_ && same_samples(samples, samples_)) {
     samples_.clip = samples.clip;  // the same pixels, another side of the screen
-    return false;
+    if (version == version_ || (finish_first && !complete())) return false;
   }
   start(samples, version);
   return true;
 }
 
 void ProgressivePixels::start(const prt::sample::PixelSamples& samples, std::uint64_t version) {
+  // The same pixels computed anew (the light turned, say): what they showed stays until each
+  // is computed again, rather than blocks.
+  std::vector<float> shown;
+  if (tracking_ && same_samples(samples, samples_)) fill(shown);
+  previous_.swap(shown);
   samples_ = samples;
   version_ = version;
   tracking_ = true;
@@ -147,6 +153,10 @@ void ProgressivePixels::fill(std::vector<float>& rgb) const {
   for (std::size_t s = 0; s < n; ++s) {
     if (is_computed(s)) {
       std::memcpy(&rgb[3 * s], value(s), 12);
+      continue;
+    }
+    if (!previous_.empty() && !std::isnan(previous_[3 * s])) {
+      std::memcpy(&rgb[3 * s], &previous_[3 * s], 12);
       continue;
     }
     rgb[3 * s] = rgb[3 * s + 1] = rgb[3 * s + 2] = std::nanf("");

@@ -4,7 +4,8 @@
 // coarse to fine (every 16th pixel of every 16th row first, then every 8th, ... then the rest),
 // and shown meanwhile with each pixel not yet computed taking the value of the pixel at the
 // corner of its block at the finest step completed. Starts over when the samples (the view) or
-// what they are computed from (a version the caller keeps) change.
+// what they are computed from (a version the caller keeps) change; when only the version does,
+// each pixel shows its former value until it is computed again.
 #pragma once
 
 #include <cstdint>
@@ -23,8 +24,11 @@ class ProgressivePixels {
   // (ordered_normals() ...), 3 floats each, into out.
   using Compute = std::function<void(std::uint32_t first, std::uint32_t count, float* out)>;
 
-  // Starts over unless these are the samples it holds, with the same version; true when it did.
-  bool track(const prt::sample::PixelSamples& samples, std::uint64_t version);
+  // Starts over unless these are the samples it holds, with the same version (or another one
+  // while the picture is not finished, when finish_first: a light turning faster than the
+  // picture is computed then shows whole pictures that lag it, not blocks); true when it did.
+  bool track(const prt::sample::PixelSamples& samples, std::uint64_t version,
+             bool finish_first = false);
   // Takes every sample's value at once (3 floats each, in the samples' order): computed elsewhere.
   void set_all(const prt::sample::PixelSamples& samples, std::uint64_t version,
                const std::vector<float>& rgb);
@@ -51,8 +55,8 @@ class ProgressivePixels {
   std::int32_t sample_at(std::uint32_t pixel) const {
     return pixel < at_pixel_.size() ? at_pixel_[pixel] : -1;
   }
-  // Every sample's value, those not computed yet filled from their block's corner; NaN where
-  // no corner is computed either.
+  // Every sample's value, those not computed yet showing their former value or else filled from
+  // their block's corner; NaN where neither is there.
   void fill(std::vector<float>& rgb) const;
 
  private:
@@ -64,6 +68,7 @@ class ProgressivePixels {
   std::vector<std::uint32_t> level_end_;  // order_ index where each step's pixels end (16 .. 1)
   std::vector<std::int32_t> at_pixel_;    // per viewport pixel: its sample, or -1
   std::vector<float> normals_, tangents_, views_, values_;  // in order_
+  std::vector<float> previous_;  // per sample: what it showed before the version changed
   std::size_t done_ = 0;
   double ms_per_sample_ = 0.0;
 

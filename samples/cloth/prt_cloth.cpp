@@ -163,9 +163,12 @@ class ClothApp : public prt::sample::SampleApp {
 
   std::vector<View> frame(Sample& sample) override {
     if (gallery_active() && fabric_ != gallery_index_) select_fabric(gallery_index_, true);
-    if (light_.update(blob_->context(), sample.environments(), lobe_count_)) ++shade_version_;
-    if (comparing() && texels_.update(sample.environments(), reference_settings_))
-      ++reference_version_;
+    const bool lobes_moved = light_.update(blob_->context(), sample.environments(), lobe_count_);
+    const bool texels_moved =
+        comparing() && texels_.update(sample.environments(), reference_settings_);
+    shade_version_ += lobes_moved;
+    reference_version_ += texels_moved;
+    light_turning_ = frames_++ > 0 && (lobes_moved || texels_moved);
     if (sample.backend() != backend_) ++shade_version_, backend_ = sample.backend();
     budget_left_ = budget_ms_;
     gl_drawn_ = false;
@@ -209,7 +212,10 @@ class ClothApp : public prt::sample::SampleApp {
     if (++gallery_index_ == blob_->fabrics().size()) write_gallery_file(sample);
   }
 
-  bool busy() const override { return gallery_active() || (budget_ms_ > 0.0 && !settled_); }
+  // A light that turns every frame (--spin) never lets a picture computed over frames finish.
+  bool busy() const override {
+    return gallery_active() || (budget_ms_ > 0.0 && !settled_ && !light_turning_);
+  }
 
   int default_supersample() const override { return 1; }
 
@@ -340,8 +346,10 @@ class ClothApp : public prt::sample::SampleApp {
   // What the pictures are computed from: bumped when it changes.
   std::uint64_t shade_version_ = 1, reference_version_ = 1;
   ProgressivePixels runtime_, reference_;
-  double reference_ms_ = 0.0;  // spent on the current reference
-  bool settled_ = false;       // the last frame showed finished pictures
+  double reference_ms_ = 0.0;   // spent on the current reference
+  bool settled_ = false;        // the last frame showed finished pictures
+  bool light_turning_ = false;  // the light changed since the frame before
+  std::uint64_t frames_ = 0;
   double rmse_ = 0.0;
   std::size_t compared_ = 0;  // pixels the last figure is over
 
@@ -470,7 +478,7 @@ class ClothApp : public prt::sample::SampleApp {
   // The runtime's radiance of the samples on a CPU backend, a share per frame in a window.
   void shade_runtime(const PixelSamples& samples, std::vector<float>& rgb) {
     const Backend backend = sample_->backend() == Backend::Gl ? Backend::Cpu : sample_->backend();
-    runtime_.track(samples, shade_version_);
+    runtime_.track(samples, shade_version_, budget_ms_ > 0.0);
     const prt_cloth_pixels pixels = ordered(runtime_);
     auto compute = [&](std::uint32_t first, std::uint32_t count, float* out) {
       const prt_result r = sample_->time_shading([&] {
