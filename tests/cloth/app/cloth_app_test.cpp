@@ -297,4 +297,23 @@ TEST(ClothApp, TheGalleryHoldsEveryFabricsPicture) {
   }
 }
 
+// What the blob lacks, and parameters it cannot take, are bad arguments that say why.
+TEST(ClothApp, ArgumentsTheBlobCannotTakeFailNamingWhy) {
+  const prt_test::CommandResult mesh = cloth("no_mesh", "--mesh blob");
+  EXPECT_EQ(mesh.exit_code, 2) << mesh.output;
+  EXPECT_NE(mesh.output.find("the blob has no mesh (VPOS, TRIS)"), std::string::npos)
+      << mesh.output;
+  const prt_test::CommandResult fabric = cloth("no_fabric", "--fabric wool");
+  EXPECT_EQ(fabric.exit_code, 2) << fabric.output;
+  EXPECT_NE(fabric.output.find("has no fabric 'wool'; it has: linen_plain, silk_crepe_de_chine,"),
+            std::string::npos)
+      << fabric.output;
+  const prt_test::CommandResult coverage = cloth("coverage", "--warp-coverage 0.9");
+  EXPECT_EQ(coverage.exit_code, 2) << coverage.output;
+  EXPECT_NE(coverage.output.find("fabric linen_plain: coverages 0.9 (warp) and 0.33 (weft) add up "
+                                 "to more than 1"),
+            std::string::npos)
+      << coverage.output;
+}
+
 }  // namespace
