@@ -52,16 +52,28 @@ inline CommandResult run_command(const std::string& executable, const std::strin
   return result;
 }
 
-// A CSV file with a header line, as rows of (column name -> field); fields hold no commas.
+// A CSV file with a header line, as rows of (column name -> field); quoted fields (RFC 4180)
+// may hold commas.
 using CsvTable = std::vector<std::map<std::string, std::string>>;
 
 inline CsvTable read_csv(const std::filesystem::path& path) {
+  // RFC 4180 within a line: a quoted field may hold commas and doubled quotes.
   auto split = [](const std::string& line) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    std::string field;
-    while (std::getline(in, field, ',')) fields.push_back(field);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        fields.emplace_back();
+      } else {
+        fields.back() += c;
+      }
+    }
     return fields;
   };
   std::ifstream in(path);

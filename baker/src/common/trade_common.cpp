@@ -275,8 +275,19 @@ std::string machine_description(unsigned bake_threads) {
 
 // --- tables -------------------------------------------------------------------------------------
 
+// A cell with a comma, quote or line break is quoted, its quotes doubled (RFC 4180).
 void write_csv_row(std::ostream& out, const std::vector<std::string>& cells) {
-  for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i];
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::string& cell = cells[i];
+    out << (i ? "," : "");
+    if (cell.find_first_of(",\"\n\r") == std::string::npos) {
+      out << cell;
+      continue;
+    }
+    out << '"';
+    for (const char c : cell) out << (c == '"' ? "\"\"" : std::string(1, c));
+    out << '"';
+  }
   out << '\n';
 }
 

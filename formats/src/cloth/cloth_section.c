@@ -152,7 +152,8 @@ static prt_blob_status check_fabric(const uint8_t* p, const prt_blob_clth_header
   }
   a1 = prt_blob_load_f32(threads + PRT_BLOB_CLTH_THREAD_OFF_COVERAGE);
   a2 = prt_blob_load_f32(threads + PRT_BLOB_CLTH_THREAD_SIZE + PRT_BLOB_CLTH_THREAD_OFF_COVERAGE);
-  if ((double)a1 + (double)a2 > 1.0)
+  /* The slack admits float pairs whose decimal sum is 1 (0.86f + 0.14f > 1). */
+  if ((double)a1 + (double)a2 > 1.0 + PRT_BLOB_CLTH_COVERAGE_SLACK)
     return FAIL_CORRUPT("fabric %" PRIu32 ": coverages %g and %g add up to more than 1", f,
                         (double)a1, (double)a2);
   return PRT_BLOB_OK;

@@ -9,7 +9,6 @@
 #define CLOTH_PI_F 3.14159265358979323846f
 #define CLOTH_HALF_PI_F 1.57079632679489661923f
 /* Coverages are decimal fractions rounded to float: their sum may pass 1 by a rounding. */
-#define CLOTH_COVERAGE_SLACK 1e-6
 #define CLOTH_AXIS_LENGTH_SLACK 1e-3
 
 static int within(float value, float low, float high) {
@@ -32,7 +31,7 @@ prt_result prt_cloth_params_validate(const prt_cloth_params* params) {
   if (!thread_ok(&params->threads[0]) || !thread_ok(&params->threads[1]))
     return PRT_ERROR_INVALID_ARGUMENT;
   if ((double)params->threads[0].coverage + (double)params->threads[1].coverage >
-      1.0 + CLOTH_COVERAGE_SLACK)
+      1.0 + PRT_BLOB_CLTH_COVERAGE_SLACK)
     return PRT_ERROR_INVALID_ARGUMENT;
   return PRT_OK;
 }

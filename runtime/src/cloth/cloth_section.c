@@ -161,7 +161,7 @@ static int fabric_ok(prt_cloth_view* view, const prt_blob_clth_header* h, uint32
   a1 = prt_blob_clth_load_f32(threads + PRT_BLOB_CLTH_THREAD_OFF_COVERAGE);
   a2 = prt_blob_clth_load_f32(threads + PRT_BLOB_CLTH_THREAD_SIZE +
                               PRT_BLOB_CLTH_THREAD_OFF_COVERAGE);
-  if ((double)a1 + (double)a2 > 1.0) {
+  if ((double)a1 + (double)a2 > 1.0 + PRT_BLOB_CLTH_COVERAGE_SLACK) {
     snprintf(what, size, "fabric %" PRIu32 ": coverages %g and %g add up to more than 1", f,
              (double)a1, (double)a2);
     return 0;

@@ -11,9 +11,11 @@
 
 #include "../techniques.h"
 #include "cloth_shade_internal.h"
+#include "cloth_shade_simd.h"
 
-#define PRT_CLOTH_KNOWN_FLAGS \
-  (PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_CONE_TABLE)
+#define PRT_CLOTH_KNOWN_FLAGS                                                          \
+  (PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_CONE_TABLE | \
+   PRT_CLOTH_NO_FRAME_CACHE | PRT_CLOTH_TANGENT_COPIES | PRT_CLOTH_NO_LOBE_SHARING)
 
 prt_result prt_cloth_method_of(const prt_cloth_settings* settings, prt_cloth_method* out) {
   prt_cloth_settings s;
@@ -195,16 +197,38 @@ static void shade_scalar(const prt_cloth_view* view, const prt_cloth_fabric_prep
   }
 }
 
-/* The backend a call runs on (CPU only until the SIMD kernels land; AUTO picks it). */
-static prt_result resolve_backend(prt_backend backend, prt_backend* out) {
+#if defined(PRT_HAS_X86_SIMD)
+static int simd_usable(const prt_asset* asset) {
+  return prt_internal_simd_isa(asset->context) >= PRT_SIMD_ISA_AVX2;
+}
+#else
+static int simd_usable(const prt_asset* asset) {
+  (void)asset;
+  return 0; /* compiled out, or not an x86 build */
+}
+#endif
+
+/* The backend a call runs on: PRT_BACKEND_CPU or PRT_BACKEND_SIMD in *out, or the error. AUTO
+ * takes the context's backend, and the scalar reference where the SIMD ISA lacks AVX2 (there is
+ * no SSE4.1 kernel); SIMD asked for explicitly without AVX2 is unsupported. */
+static prt_result resolve_backend(const prt_asset* asset, prt_backend backend, prt_backend* out) {
+  const int automatic = backend == PRT_BACKEND_AUTO;
+  if (automatic) backend = prt_context_backend(asset->context);
   switch (backend) {
-    case PRT_BACKEND_AUTO:
     case PRT_BACKEND_CPU:
       *out = PRT_BACKEND_CPU;
       return PRT_OK;
     case PRT_BACKEND_SIMD:
-    case PRT_BACKEND_GL:
+      if (simd_usable(asset)) {
+        *out = PRT_BACKEND_SIMD;
+        return PRT_OK;
+      }
+      *out = PRT_BACKEND_CPU;
+      return automatic ? PRT_OK : PRT_ERROR_UNSUPPORTED_BACKEND;
+    case PRT_BACKEND_GL: /* a prt_gl_cloth_shader shades on GL */
       return PRT_ERROR_UNSUPPORTED_BACKEND;
+    case PRT_BACKEND_AUTO:
+      break;
   }
   return PRT_ERROR_INVALID_ARGUMENT;
 }
@@ -231,10 +255,16 @@ prt_result prt_cloth_shade(const prt_asset* asset, prt_backend backend, uint32_t
   if (prt_cloth_light_validate(light) != PRT_OK) return PRT_ERROR_INVALID_ARGUMENT;
   r = prt_cloth_method_of(settings, &method);
   if (r != PRT_OK) return r;
-  r = resolve_backend(backend, &run);
+  r = resolve_backend(asset, backend, &run);
   if (r != PRT_OK) return r;
   prt_cloth_prepare_light(view, light, &method, &light_prep);
   prt_cloth_prepare_fabric(view, fabric, params, &fabric_prep);
+#if defined(PRT_HAS_X86_SIMD)
+  if (run == PRT_BACKEND_SIMD) {
+    prt_cloth_shade_avx2(view, &fabric_prep, &light_prep, &method, pixels, first, count, out_rgb);
+    return PRT_OK;
+  }
+#endif
   shade_scalar(view, &fabric_prep, &light_prep, &method, pixels, first, count, out_rgb);
   return PRT_OK;
 }

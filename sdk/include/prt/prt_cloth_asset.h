@@ -61,6 +61,14 @@ PRT_API prt_result prt_cloth_find_fabric(const prt_asset* asset, const char* nam
 #define PRT_CLOTH_KEEP_HIDDEN_LOBES 1u /* do not skip lobes that lie wholly below a pixel's horizon */
 #define PRT_CLOTH_KEEP_WEAK_LOBES 2u   /* do not skip lobes below weak_lobe of the light's power */
 #define PRT_CLOTH_NO_CONE_TABLE 4u     /* weight every part by T alone (paper 003's factorisation) */
+/* SIMD: compute what a pixel's frame alone decides for every batch of pixels, instead of reusing
+ * it while batches share one frame (the same result either way; for measuring the reuse). */
+#define PRT_CLOTH_NO_FRAME_CACHE 8u
+/* SIMD: shade each copy of a tangent of multiplicity m apart (weight 1/m each) instead of once; and
+ * recompute per tangent the terms a pixel's lobe shares across its tangents (the lobe in the
+ * pixel's frame, table cells). For measuring what deduplication and sharing save. */
+#define PRT_CLOTH_TANGENT_COPIES 16u
+#define PRT_CLOTH_NO_LOBE_SHARING 32u
 
 typedef struct prt_cloth_settings {
   size_t struct_size;     /* set by the caller: sizeof(prt_cloth_settings) */

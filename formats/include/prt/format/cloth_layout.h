@@ -26,6 +26,8 @@ extern "C" {
 #define PRT_BLOB_CLTH_MAX_GRID 256u             /* xi_size, view_theta, view_phi */
 #define PRT_BLOB_CLTH_MAX_LEVELS 64u            /* lambda_levels */
 #define PRT_BLOB_CLTH_MAX_RANK 64u              /* rank of one factorisation */
+/* a_1 + a_2 <= 1 + this, in double: float pairs whose decimal sum is 1 (0.86f + 0.14f) pass. */
+#define PRT_BLOB_CLTH_COVERAGE_SLACK 1e-6
 
 /* pi and pi/2 as the f32 nearest them (each just above the real number), the bounds the ranges
  * below are checked against: a stored f32 x is in (0, pi] when 0 < x <= PRT_BLOB_CLTH_PI_F32. */

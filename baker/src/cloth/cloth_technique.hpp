@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// Technique `cloth`'s parts that prt-bake's steps call (private to baker/src/cloth/).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "prt/baker/cloth/cloth_blob.hpp"
+#include "prt/baker/cloth/cloth_tables.hpp"
+#include "prt/baker/scene.hpp"
+#include "prt/baker/technique.hpp"
+
+namespace prt::bake {
+
+// The fabrics a bake names: presets by name, "all" for every preset; throws Error naming the
+// presets for an unknown one or a name given twice.
+std::vector<ClothFabricSource> cloth_fabric_sources(const std::vector<std::string>& names);
+
+// The scene's meshes as one cloth mesh: positions, normals and per-vertex warps (the mesh's
+// tangents, or, where it has none, the world axis least aligned with the normal made orthogonal
+// to it), the triangles. Throws Error for a scene without triangles.
+ClothMesh cloth_mesh_of(const Scene& scene);
+
+// The quantisation's effect: the largest |T - T_stored| over every entry of every factorisation.
+struct ClothQuantization {
+  int bits = 16;
+  double max_abs_error = 0.0;
+};
+ClothQuantization measure_cloth_quantization(const ClothSection& section,
+                                             const DecodedClothSection& stored);
+
+// The baker's self-check: the blob loaded through the runtime at full validation, every fabric's
+// name, parameters and weave against the bake's, and the scalar shading of a grid of views of a
+// flat patch under a light of sharp and wide lobes finite and non-negative on every fabric.
+struct ClothBlobCheck {
+  bool passed = false;
+  std::string message;
+  std::size_t samples_shaded = 0;
+};
+ClothBlobCheck check_cloth_blob(const std::vector<std::uint8_t>& blob, const ClothSection& section);
+
+void write_cloth_bake_report(const std::string& path, const BakeInput& input,
+                             const BakeFacts& facts, const ClothTablesBake& bake,
+                             const ClothTablesOptions& options, const ClothQuantization& q,
+                             const ClothBlobCheck& check);
+
+std::unique_ptr<TechniqueTrade> make_cloth_trade();
+
+}  // namespace prt::bake
