@@ -21,6 +21,8 @@ void backends(const OverlayState& s) {
     ImGui::SameLine();
     if (!s.backend_usable[int(b)]) {
       ImGui::TextDisabled("%s", backend_name(b));
+      if (!s.backend_notes[int(b)].empty() && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", s.backend_notes[int(b)].c_str());
       continue;
     }
     if (ImGui::RadioButton(backend_name(b), *s.backend == b)) *s.backend = b;

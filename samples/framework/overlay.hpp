@@ -21,6 +21,7 @@ struct OverlayState {
   RenderSettings* settings = nullptr;
   Backend* backend = nullptr;
   bool backend_usable[3] = {true, false, false};
+  std::string backend_notes[3];   // why one is not usable, when the app said
   bool* auto_exposure = nullptr;  // set to meter again on the next frame
   bool exposure_given = false;
   double shading_ms = 0.0, fps = 0.0;

@@ -42,6 +42,10 @@ class Sample {
   virtual void* gl_loader_user() const = 0;
   // Goes back to a CPU backend (after the GL backend failed, say), reporting `why`.
   virtual void fall_back_to_cpu(const std::string& why) = 0;
+  // The app's technique cannot use `backend` (`why`): the overlay greys it out, and when it is
+  // the current one the best remaining CPU backend takes over. Reported (a run with --frames then
+  // exits 1) when --backend asked for it; otherwise printed as a note.
+  virtual void backend_unusable(Backend backend, const std::string& why) = 0;
 
   // The scene's bounds, which `F` frames; reframes now when `frame_now`.
   virtual void set_scene_bounds(const glm::vec3& lo, const glm::vec3& hi, bool frame_now) = 0;
@@ -57,6 +61,10 @@ class Sample {
   virtual void report(const std::string& message) = 0;
   // A line shown in this frame's overlay.
   virtual void overlay_line(const std::string& text) = 0;
+
+  // The frame just drawn, tone mapped, without the overlay: RGB, top row first. For
+  // SampleApp::drawn.
+  virtual std::vector<std::uint8_t> read_picture(int* width, int* height) const = 0;
 
   // The frame in pixels (the window's framebuffer, or --size headless).
   virtual int width() const = 0;
@@ -80,6 +88,13 @@ class SampleApp {
   // One frame: the runtime calls (each shading call through Sample::time_shading), then the
   // views to draw.
   virtual std::vector<View> frame(Sample& sample) = 0;
+  // The frame is drawn and tone mapped (Sample::read_picture returns it).
+  virtual void drawn(Sample&) {}
+  // True while more frames are needed to finish what the app shows (a picture computed over
+  // several frames, a gallery of pictures): a run with --frames draws past N until it is false.
+  virtual bool busy() const { return false; }
+  // The default of --supersample: per-pixel shading costs grow with its square.
+  virtual int default_supersample() const { return 2; }
   // The app's controls, inside the framework's ImGui window.
   virtual void panel(Sample&) {}
   // A mouse button or cursor move the app takes (a divider, say): return true to keep it from

@@ -142,6 +142,9 @@ void check_host_options(HostOptions& o) {
 
 // ---------------------------------------------------------------------------------------------
 
+// Frames a run with --frames draws past N while the app says it is busy, at most.
+constexpr long kMostBusyFrames = 100000;
+
 class Host : public Sample, public InputSink {
  public:
   Host(const char* name, SampleApp& app, const HostOptions& options)
@@ -159,6 +162,7 @@ class Host : public Sample, public InputSink {
     report(why);
     backend_ = usable(Backend::Simd) ? Backend::Simd : Backend::Cpu;
   }
+  void backend_unusable(Backend backend, const std::string& why) override;
   void set_scene_bounds(const glm::vec3& lo, const glm::vec3& hi, bool frame_now) override {
     lo_ = lo, hi_ = hi;
     if (frame_now) camera_.frame(lo, hi);
@@ -180,6 +184,9 @@ class Host : public Sample, public InputSink {
     reported_ = true;
   }
   void overlay_line(const std::string& text) override { overlay_lines_.push_back(text); }
+  std::vector<std::uint8_t> read_picture(int* width, int* height) const override {
+    return renderer_->read_display(width, height);
+  }
   int width() const override { return width_; }
   int height() const override { return height_; }
   glm::vec2 to_frame(double x, double y) const override {
@@ -205,6 +212,7 @@ class Host : public Sample, public InputSink {
   OrbitCamera camera_;
   Backend backend_ = Backend::Cpu;
   bool backend_usable_[3] = {true, false, false};
+  std::string backend_notes_[3];  // why a backend is not usable
   glm::vec3 lo_{-1.0f}, hi_{1.0f};
   RenderSettings settings_;
   bool meter_ = true, overlay_ = true, reported_ = false;
@@ -248,6 +256,18 @@ void Host::query_backends() {
   if (!usable(backend_))
     throw std::runtime_error(std::string("backend ") + backend_name(backend_) +
                              " is not usable in this build or on this machine");
+}
+
+void Host::backend_unusable(Backend backend, const std::string& why) {
+  if (!usable(backend)) return;
+  backend_usable_[int(backend)] = false;
+  backend_notes_[int(backend)] = why;
+  const bool asked = options_.backend == backend_name(backend);
+  if (backend_ == backend) backend_ = usable(Backend::Simd) ? Backend::Simd : Backend::Cpu;
+  if (asked)
+    report(why);
+  else
+    std::printf("%s: note: %s\n", name_, why.c_str());
 }
 
 void Host::cursor(double x, double y) {
@@ -308,7 +328,10 @@ OverlayState Host::overlay_state() {
   s.camera = &camera_;
   s.settings = &settings_;
   s.backend = &backend_;
-  for (int i = 0; i < 3; ++i) s.backend_usable[i] = backend_usable_[i];
+  for (int i = 0; i < 3; ++i) {
+    s.backend_usable[i] = backend_usable_[i];
+    s.backend_notes[i] = backend_notes_[i];
+  }
   s.auto_exposure = &meter_;
   s.exposure_given = options_.exposure_given;
   s.shading_ms = last_shading_ms_;
@@ -331,23 +354,25 @@ void Host::draw_frame(bool last_frame) {
   if (overlay_) draw_overlay(overlay_state(), [this] { app_.panel(*this); });
   overlay_lines_.clear();
 
+  // Shading calls are made in the app's frame() and, for per-pixel views, while drawing.
   frame_shading_ms_ = 0.0;
   frame_shading_calls_ = 0;
   const std::vector<View> views = app_.frame(*this);
-  if (frame_shading_calls_ > 0) {
-    last_shading_ms_ = frame_shading_ms_;
-    shading_history_.push_back(frame_shading_ms_);
-  }
 
   Background background;
   background.latlong_texture = environments_.texture();
   background.rotation = prt::io::rotation_about_y(environments_.rotation_degrees());
   renderer_->render(width_, height_, options_.supersample, views, camera_, background);
+  if (frame_shading_calls_ > 0) {
+    last_shading_ms_ = frame_shading_ms_;
+    shading_history_.push_back(frame_shading_ms_);
+  }
   if (metering_wanted && meter_) {
     settings_.exposure_ev = prt::io::auto_exposure_ev(renderer_->read_hdr());
     meter_ = false;
   }
   renderer_->tone_map(settings_);
+  app_.drawn(*this);
   ImGui::Render();
 
   const GLuint output = presenter_->output_framebuffer();
@@ -427,7 +452,12 @@ int Host::run() {
       if (frame > 0) fps_ = fps_ == 0.0 ? 1.0 / seconds : 0.9 * fps_ + 0.1 / seconds;
       // Scripted runs step by 1/60 s a frame, so that they are reproducible.
       environments_.advance(scripted ? 1.0 / 60.0 : seconds);
-      const bool last = scripted && frame + 1 >= options_.frames;
+      // Past --frames while the app is busy, up to a bound that a picture which never settles
+      // (a progressive one under a spinning light) cannot pass.
+      const bool busy = app_.busy() && frame < options_.frames + kMostBusyFrames;
+      const bool last = scripted && frame + 1 >= options_.frames && !busy;
+      if (scripted && frame + 1 == options_.frames + kMostBusyFrames && app_.busy())
+        report("still busy after " + std::to_string(kMostBusyFrames) + " more frames: giving up");
       draw_frame(last);
       if (last) break;
     }
@@ -457,6 +487,7 @@ int run_sample(const char* name, const std::string& description, SampleApp& app,
                char** argv) {
   CLI::App cli{description};
   HostOptions options;
+  options.supersample = app.default_supersample();
   add_host_options(cli, options);
   app.add_options(cli);
   try {

@@ -31,6 +31,61 @@ out vec4 frag;
 void main() { frag = vec4(v_colour, tag); }
 )";
 
+// The G-buffer of a per-pixel view: world normal (turned towards the eye on back faces), the
+// tangent made orthogonal to it, the direction to the eye; (0, 0, 0) is left where nothing is
+// drawn, and a vertex normal of length 0 draws nothing.
+const char* const kGBufferVertex = R"(#version 430 core
+layout(location = 0) in vec3 position;
+layout(location = 2) in vec3 normal;
+layout(location = 3) in vec3 tangent;
+uniform mat4 view_projection;
+out vec3 v_position, v_normal, v_tangent;
+void main() {
+  v_position = position;
+  v_normal = normal;
+  v_tangent = tangent;
+  gl_Position = view_projection * vec4(position, 1.0);
+}
+)";
+
+const char* const kGBufferFragment = R"(#version 430 core
+in vec3 v_position, v_normal, v_tangent;
+uniform vec3 eye;
+layout(location = 0) out vec4 g_normal;
+layout(location = 1) out vec4 g_tangent;
+layout(location = 2) out vec4 g_view;
+void main() {
+  float length_n = length(v_normal);
+  if (!(length_n > 0.0)) discard;
+  vec3 n = v_normal / length_n;
+  if (!gl_FrontFacing) n = -n;
+  vec3 t = v_tangent - dot(v_tangent, n) * n;
+  float length_t = length(t);
+  t = length_t > 1e-6 * length(v_tangent) ? t / length_t : vec3(0.0);
+  g_normal = vec4(n, 0.0);
+  g_tangent = vec4(t, 0.0);
+  g_view = vec4(normalize(eye - v_position), 0.0);
+}
+)";
+
+// A per-pixel view's radiance (or only its depth, with colour writes off) put into the HDR
+// target where its G-buffer has a normal and the radiance is a number: texel for pixel, the
+// depth the G-buffer pass found.
+const char* const kCompositeFragment = R"(#version 430 core
+uniform sampler2D normals;
+uniform sampler2D radiance;
+uniform sampler2D depth;
+uniform float tag;
+out vec4 frag;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec3 c = texelFetch(radiance, p, 0).rgb;
+  if (texelFetch(normals, p, 0).xyz == vec3(0.0) || isnan(c.r)) discard;
+  gl_FragDepth = texelFetch(depth, p, 0).r;
+  frag = vec4(c, tag);
+}
+)";
+
 // A triangle that covers the viewport.
 const char* const kFullscreenVertex = R"(#version 430 core
 void main() {
@@ -123,6 +178,27 @@ const char* tone_map_name(ToneMap tone_map) {
   return tone_map == ToneMap::Filmic ? "filmic" : "linear";
 }
 
+GpuMesh::GpuMesh(const float* positions, const float* normals, const float* tangents,
+                 std::uint32_t vertex_count, const std::uint32_t* indices,
+                 std::uint32_t triangle_count)
+    : GpuMesh(positions, vertex_count, indices, triangle_count) {
+  normals_ = make_buffer();
+  tangents_ = make_buffer();
+  glBindVertexArray(array_.get());
+  const GlBuffer* buffers[2] = {&normals_, &tangents_};
+  const float* data[2] = {normals, tangents};
+  for (GLuint k = 0; k < 2; ++k) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffers[k]->get());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertex_count) * 12, data[k], GL_STATIC_DRAW);
+    glVertexAttribFormat(2 + k, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexAttribBinding(2 + k, 2 + k);
+    glBindVertexBuffer(2 + k, buffers[k]->get(), 0, 12);
+    glEnableVertexAttribArray(2 + k);
+  }
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 GpuMesh::GpuMesh(const float* positions, std::uint32_t vertex_count, const std::uint32_t* indices,
                  std::uint32_t triangle_count)
     : array_(make_vertex_array()),
@@ -176,16 +252,25 @@ void GpuMesh::draw(GLuint colour_buffer) const {
   glBindVertexArray(0);
 }
 
+void GpuMesh::draw_frames() const {
+  glBindVertexArray(array_.get());
+  glDrawElements(GL_TRIANGLES, GLsizei(index_count_), GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+}
+
 SceneRenderer::SceneRenderer()
     : mesh_program_(link_program("mesh", kMeshVertex, kMeshFragment)),
       background_program_(link_program("background", kFullscreenVertex, kBackgroundFragment)),
       tone_program_(link_program("tone map", kFullscreenVertex, kToneFragment)),
+      gbuffer_program_(link_program("G-buffer", kGBufferVertex, kGBufferFragment)),
+      composite_program_(link_program("composite", kFullscreenVertex, kCompositeFragment)),
       empty_array_(make_vertex_array()) {}
 
 void SceneRenderer::resize(int width, int height, int supersample) {
   if (width == width_ && height == height_ && supersample == supersample_ && hdr_fbo_.get()) return;
   width_ = width, height_ = height, supersample_ = supersample;
   const int w = width * supersample, h = height * supersample;
+  gbuffer_fbo_.reset();  // made again at the new size by the next per-pixel view
   hdr_colour_ = make_texture();
   glBindTexture(GL_TEXTURE_2D, hdr_colour_.get());
   glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
@@ -208,6 +293,37 @@ void SceneRenderer::resize(int width, int height, int supersample) {
                          0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("the display framebuffer is incomplete");
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void SceneRenderer::make_gbuffer() {
+  if (gbuffer_fbo_.get()) return;
+  const int w = width_ * supersample_, h = height_ * supersample_;
+  const GLenum formats[4] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F, GL_DEPTH_COMPONENT32F};
+  for (int i = 0; i < 4; ++i) {
+    gbuffer_[i] = make_texture();
+    glBindTexture(GL_TEXTURE_2D, gbuffer_[i].get());
+    glTexStorage2D(GL_TEXTURE_2D, 1, formats[i], w, h);
+  }
+  radiance_ = make_texture();
+  glBindTexture(GL_TEXTURE_2D, radiance_.get());
+  glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  gbuffer_fbo_ = make_framebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
+  for (int i = 0; i < 3; ++i)
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D,
+                           gbuffer_[i].get(), 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, gbuffer_[3].get(), 0);
+  const GLenum draw[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  glDrawBuffers(3, draw);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("the G-buffer framebuffer is incomplete");
+  radiance_fbo_ = make_framebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.get());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, radiance_.get(), 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("the radiance framebuffer is incomplete");
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -262,6 +378,17 @@ void SceneRenderer::draw_view(const View& view, const OrbitCamera& camera,
   glBindTexture(GL_TEXTURE_2D, 0);
 
   if (!view.mesh) return;
+  if (view.pixel_shader) {
+    ViewPixels at{{port.x, port.y, port.width, port.height}, {}};
+    // The clip within the viewport (the G-buffer holds nothing else for this view).
+    const GLint x0 = std::max(clip.x, port.x), y0 = std::max(clip.y, port.y);
+    const GLint x1 = std::min(clip.x + clip.width, port.x + port.width);
+    const GLint y1 = std::min(clip.y + clip.height, port.y + port.height);
+    at.clip[0] = x0, at.clip[1] = y0, at.clip[2] = std::max(x1 - x0, 0);
+    at.clip[3] = std::max(y1 - y0, 0);
+    draw_pixels(view, camera, at);
+    return;
+  }
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -272,6 +399,170 @@ void SceneRenderer::draw_view(const View& view, const OrbitCamera& camera,
   glUniform1f(uniform(mesh_program_, "tag"), view.display_colours ? kTagDisplay : kTagSurface);
   view.mesh->draw(view.colour_buffer);
   glUseProgram(0);
+}
+
+// A per-pixel view: its mesh into the G-buffer, then the app's GL pass into the HDR target (and
+// the G-buffer's depth after it), or its CPU shading of the samples read back (or its GL pass
+// into the radiance target, read back) uploaded and put in with the depth.
+void SceneRenderer::draw_pixels(const View& view, const OrbitCamera& camera, const ViewPixels& at) {
+  if (!view.mesh->has_frames())
+    throw std::runtime_error("a per-pixel view needs a mesh made with normals and tangents");
+  make_gbuffer();
+  fill_gbuffer(*view.mesh, camera, at);
+  PixelShader& shader = *view.pixel_shader;
+  const float tag = view.display_colours ? kTagDisplay : kTagSurface;
+  const int w = width_ * supersample_, h = height_ * supersample_;
+  const GlGBuffer gbuffer{gbuffer_[0].get(), gbuffer_[1].get(), gbuffer_[2].get(), w, h};
+  glDisable(GL_DEPTH_TEST);
+  glViewport(0, 0, w, h);
+  if (shader.uses_gl() && !shader.reads_gl_radiance()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, hdr_fbo_.get());
+    glScissor(at.clip[0], at.clip[1], at.clip[2], at.clip[3]);
+    shader.shade_gl(gbuffer);
+    composite(at, tag, false);
+    return;
+  }
+  const PixelSamples samples = read_samples(at);
+  std::vector<float> rgb(3 * samples.size(), 0.0f);
+  if (shader.uses_gl()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.get());
+    glScissor(at.port[0], at.port[1], at.port[2], at.port[3]);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    shader.shade_gl(gbuffer);
+    rgb = read_radiance(samples, at);
+    shader.gl_radiance(samples, rgb);
+  } else {
+    shader.shade(samples, rgb);
+    upload_radiance(samples, rgb, at);
+  }
+  composite(at, tag, true);
+}
+
+void SceneRenderer::fill_gbuffer(const GpuMesh& mesh, const OrbitCamera& camera,
+                                 const ViewPixels& at) {
+  const float aspect = float(at.port[2]) / float(at.port[3]);
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(at.port[0], at.port[1], at.port[2], at.port[3]);
+  glDepthMask(GL_TRUE);
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far = 1.0f;
+  for (int i = 0; i < 3; ++i) glClearBufferfv(GL_COLOR, i, zero);
+  glClearBufferfv(GL_DEPTH, 0, &far);
+  // Inside the clip, what the earlier views drew hides the mesh; outside, it is drawn alone.
+  if (at.clip[2] > 0 && at.clip[3] > 0) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, hdr_fbo_.get());
+    glScissor(at.clip[0], at.clip[1], at.clip[2], at.clip[3]);
+    const GLint x1 = at.clip[0] + at.clip[2], y1 = at.clip[1] + at.clip[3];
+    glBlitFramebuffer(at.clip[0], at.clip[1], x1, y1, at.clip[0], at.clip[1], x1, y1,
+                      GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
+    glScissor(at.port[0], at.port[1], at.port[2], at.port[3]);
+  }
+  glViewport(at.port[0], at.port[1], at.port[2], at.port[3]);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glUseProgram(gbuffer_program_.get());
+  const glm::mat4 view_projection = camera.view_projection(aspect);
+  const prt::io::Camera pinhole = camera.camera(aspect);
+  glUniformMatrix4fv(uniform(gbuffer_program_, "view_projection"), 1, GL_FALSE,
+                     &view_projection[0][0]);
+  glUniform3fv(uniform(gbuffer_program_, "eye"), 1, &pinhole.eye[0]);
+  mesh.draw_frames();
+  glUseProgram(0);
+}
+
+PixelSamples SceneRenderer::read_samples(const ViewPixels& at) const {
+  const int w = at.port[2], h = at.port[3];
+  PixelSamples samples;
+  samples.width = w, samples.height = h;
+  const int top = at.port[1] + h;  // GL rows run up, the samples' rows down
+  samples.clip = {at.clip[0] - at.port[0], top - (at.clip[1] + at.clip[3]),
+                  at.clip[0] - at.port[0] + at.clip[2], top - at.clip[1]};
+  std::vector<float> texels[3];
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gbuffer_fbo_.get());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  for (int i = 0; i < 3; ++i) {
+    texels[i].resize(std::size_t(w) * h * 4);
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + i);
+    glReadPixels(at.port[0], at.port[1], w, h, GL_RGBA, GL_FLOAT, texels[i].data());
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  std::vector<float>* out[3] = {&samples.normals, &samples.tangents, &samples.views};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t at_gl = (std::size_t(h - 1 - y) * w + x) * 4;
+      const float* n = &texels[0][at_gl];
+      if (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) continue;
+      samples.pixel.push_back(std::uint32_t(y) * std::uint32_t(w) + std::uint32_t(x));
+      for (int i = 0; i < 3; ++i)
+        out[i]->insert(out[i]->end(), &texels[i][at_gl], &texels[i][at_gl] + 3);
+    }
+  return samples;
+}
+
+void SceneRenderer::upload_radiance(const PixelSamples& samples, const std::vector<float>& rgb,
+                                    const ViewPixels& at) {
+  const int w = at.port[2], h = at.port[3];
+  std::vector<float> texels(std::size_t(w) * h * 4, 0.0f);
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    const std::uint32_t x = samples.pixel[s] % std::uint32_t(w),
+                        y = samples.pixel[s] / std::uint32_t(w);
+    std::memcpy(&texels[(std::size_t(h - 1 - y) * w + x) * 4], &rgb[3 * s], 3 * sizeof(float));
+  }
+  glBindTexture(GL_TEXTURE_2D, radiance_.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, at.port[0], at.port[1], w, h, GL_RGBA, GL_FLOAT, texels.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+std::vector<float> SceneRenderer::read_radiance(const PixelSamples& samples,
+                                                const ViewPixels& at) const {
+  const int w = at.port[2], h = at.port[3];
+  std::vector<float> texels(std::size_t(w) * h * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, radiance_fbo_.get());
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(at.port[0], at.port[1], w, h, GL_RGBA, GL_FLOAT, texels.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  std::vector<float> rgb(3 * samples.size());
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    const std::uint32_t x = samples.pixel[s] % std::uint32_t(w),
+                        y = samples.pixel[s] / std::uint32_t(w);
+    std::memcpy(&rgb[3 * s], &texels[(std::size_t(h - 1 - y) * w + x) * 4], 3 * sizeof(float));
+  }
+  return rgb;
+}
+
+void SceneRenderer::composite(const ViewPixels& at, float tag, bool colour) {
+  const int w = width_ * supersample_, h = height_ * supersample_;
+  glBindFramebuffer(GL_FRAMEBUFFER, hdr_fbo_.get());
+  glViewport(0, 0, w, h);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(at.clip[0], at.clip[1], at.clip[2], at.clip[3]);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
+  if (!colour) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glUseProgram(composite_program_.get());
+  const GLuint textures[3] = {gbuffer_[0].get(), radiance_.get(), gbuffer_[3].get()};
+  const char* names[3] = {"normals", "radiance", "depth"};
+  for (int i = 0; i < 3; ++i) {
+    glActiveTexture(GL_TEXTURE0 + i);
+    glBindTexture(GL_TEXTURE_2D, textures[i]);
+    glUniform1i(uniform(composite_program_, names[i]), i);
+  }
+  glUniform1f(uniform(composite_program_, "tag"), tag);
+  glBindVertexArray(empty_array_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  for (int i = 2; i >= 0; --i) {
+    glActiveTexture(GL_TEXTURE0 + i);
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glUseProgram(0);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_LESS);
 }
 
 void SceneRenderer::tone_map(const RenderSettings& settings) {
