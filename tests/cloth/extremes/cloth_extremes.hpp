@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -32,7 +33,36 @@ inline double degrees(double d) {
   return d * kExtremesPi / 180.0;
 }
 
-// Linen and satin charmeuse baked on a small grid, written as a blob and loaded by the runtime.
+// The fabrics the tests shade, in fabric order: linen (wide lobes, tilted tangents only) and satin
+// charmeuse (narrow surface lobes, flat tangents in both threads).
+inline const std::vector<prt::bake::ClothPreset>& extremes_presets() {
+  static const std::vector<prt::bake::ClothPreset> presets = {
+      prt::bake::cloth_fabric("linen_plain"), prt::bake::cloth_fabric("polyester_satin_charmeuse")};
+  return presets;
+}
+
+// Their blob, baked on a small grid.
+inline Bytes bake_extremes_blob() {
+  std::vector<prt::bake::ClothFabricSource> fabrics;
+  for (const prt::bake::ClothPreset& p : extremes_presets())
+    fabrics.push_back({p.name, p.params, p.weave});
+  prt::bake::ClothTablesOptions options;
+  options.grid.xi_size = 12;
+  options.grid.lambda_levels = 6;
+  options.grid.view_theta = 6;
+  options.grid.view_phi = 6;
+  options.sampling.map_size = 64;
+  const prt::bake::ClothTablesBake bake =
+      prt::bake::bake_cloth_tables(fabrics, options, prt::bake::Context{});
+  return prt::bake::write_cloth_blob(bake.section, 16, nullptr, "");
+}
+
+// Under ctest every test is a process of its own: the blob is baked once by a fixture into the
+// file PRT_CLOTH_EXTREMES_BLOB names (tests/cloth/extremes/CMakeLists.txt), and each test loads
+// it. Run by hand without it, the binary bakes once for all its tests.
+constexpr const char* kExtremesBlobVariable = "PRT_CLOTH_EXTREMES_BLOB";
+
+// The blob loaded by the runtime, with its fabrics.
 struct BakedCloth {
   Context context;
   std::unique_ptr<LoadedAsset> asset;
@@ -44,22 +74,11 @@ struct BakedCloth {
 inline const BakedCloth& baked_cloth() {
   static const BakedCloth* baked = [] {
     auto* b = new BakedCloth;
-    std::vector<prt::bake::ClothFabricSource> fabrics;
-    for (const char* name : {"linen_plain", "polyester_satin_charmeuse"}) {
-      const prt::bake::ClothPreset& p = prt::bake::cloth_fabric(name);
-      b->presets.push_back(p);
-      fabrics.push_back({p.name, p.params, p.weave});
-    }
-    prt::bake::ClothTablesOptions options;
-    options.grid.xi_size = 12;
-    options.grid.lambda_levels = 6;
-    options.grid.view_theta = 6;
-    options.grid.view_phi = 6;
-    options.sampling.map_size = 64;
-    const prt::bake::ClothTablesBake bake =
-        prt::bake::bake_cloth_tables(fabrics, options, prt::bake::Context{});
-    b->asset = std::make_unique<LoadedAsset>(
-        b->context.ctx, prt::bake::write_cloth_blob(bake.section, 16, nullptr, ""));
+    b->presets = extremes_presets();
+    const char* path = std::getenv(kExtremesBlobVariable);
+    Bytes blob = path ? read_file(path) : Bytes{};
+    if (blob.empty()) blob = bake_extremes_blob();
+    b->asset = std::make_unique<LoadedAsset>(b->context.ctx, blob);
     return b;
   }();
   return *baked;
