@@ -264,8 +264,9 @@ constexpr double kSlack = 1.5;
 constexpr double kModerateErrorBound[2] = {0.065, 0.115};
 // The same for a view grazing the cloth (see GrazingViewAsCloseToTheReferenceAsAModerateView).
 constexpr double kGrazingSlack = 3.0;
-// How far the fitted light's power may be from the map's, relative: float sums over the map.
-constexpr double kPowerTolerance = 1e-6;
+// How far the fitted light's power may be from the map's, relative: a few roundings of the
+// lobes' float amplitudes.
+constexpr double kPowerTolerance = 2e-7;
 // How far the shading may move when eta goes from 1 to just above it.
 constexpr double kEtaContinuity = 1e-3;
 
