@@ -59,7 +59,7 @@ inline Bytes bake_extremes_blob() {
 
 // Under ctest every test is a process of its own: the blob is baked once by a fixture into the
 // file PRT_CLOTH_EXTREMES_BLOB names (tests/cloth/extremes/CMakeLists.txt), and each test loads
-// it. Run by hand without it, the binary bakes once for all its tests.
+// it. Run by hand without it (or with no blob there), the binary bakes once for all its tests.
 constexpr const char* kExtremesBlobVariable = "PRT_CLOTH_EXTREMES_BLOB";
 
 // The blob loaded by the runtime, with its fabrics.
@@ -76,9 +76,9 @@ inline const BakedCloth& baked_cloth() {
     auto* b = new BakedCloth;
     b->presets = extremes_presets();
     const char* path = std::getenv(kExtremesBlobVariable);
-    Bytes blob = path ? read_file(path) : Bytes{};
-    if (blob.empty()) blob = bake_extremes_blob();
-    b->asset = std::make_unique<LoadedAsset>(b->context.ctx, blob);
+    if (path) b->asset = std::make_unique<LoadedAsset>(b->context.ctx, read_file(path));
+    if (!b->asset || b->asset->result != PRT_OK)
+      b->asset = std::make_unique<LoadedAsset>(b->context.ctx, bake_extremes_blob());
     return b;
   }();
   return *baked;
