@@ -544,7 +544,7 @@ static const char kIntegrals[] =
     "    }\n"
     "    sum += integrate_window(f, th, segments, phi_nodes, mask, mu, sd);\n"
     "  }\n"
-    "  return sum;\n"
+    "  return max(sum, vec3(0.0)); /* as prt_cloth_lobe_integrals */\n"
     "}\n";
 
 /* Per pixel (cloth_shade.c's shade_scalar and shade_tangent). */

@@ -291,4 +291,7 @@ void prt_cloth_lobe_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_th
     }
   }
   integrate_window(lf, thread, method, merged, lf->theta_k, lobe_sd, out);
+  /* Every integrand is >= 0, but a panel's parabola can dip below 0 where the integrand falls
+   * steeply to the support's end (grazing views): no part may subtract light. */
+  for (part = 0; part < 3; ++part) out[part] = fmax(out[part], 0.0);
 }

@@ -1035,6 +1035,7 @@ static void lobe_integrals(const call_c* cc, const tangent_c* tc, const lobe_c* 
   w.log_root = lobe->log_root;
   w.parts = merged;
   integrate_window(cc, tc, th, p, &w, lanes, cur, out);
+  for (part = 0; part < 3; ++part) out[part] = _mm256_max_ps(out[part], _mm256_setzero_ps());
 }
 
 /* The lobe (its axis d along u, v, n) in the fibre's angles and the thread's canonical frame,

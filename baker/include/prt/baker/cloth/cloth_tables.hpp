@@ -118,7 +118,7 @@ class ClothTableProbe {
 struct ClothFactorOptions {
   // The rank is the smallest R <= max_rank (and <= 64) whose truncation leaves at most this share
   // of the table's squared Frobenius norm...
-  double energy = 1e-3;
+  double energy = 1e-4;
   std::uint32_t max_rank = 64;
   // ... or this rank when it is not 0 (capped by 64 and the table's size).
   std::uint32_t fixed_rank = 0;
