@@ -329,6 +329,7 @@ int run(const Options& options, const ViewTechniques& techniques, const CLI::App
     ViewTechnique& technique = techniques.choose(scene);
     techniques.warn_unused_options(app, technique);
     scene.check_shaded_vertices(technique.section_tag(), technique.open(scene));
+    technique.set_eye(&camera.eye.x);
     technique.describe(scene);
     if (options.turn_frames > 1) {
       write_turning(options, scene, technique, map, camera, mesh);

@@ -89,6 +89,10 @@ class ViewTechnique {
   // with the map's path) and keeps the light for shade() and the GL shader. Throws ViewerError.
   virtual void prepare_light(const BlobScene& scene, const LightRequest& request) = 0;
 
+  // Where the eye is (world x, y, z), given before shade() by viewers that know their camera;
+  // only a technique whose shading depends on the view keeps it (the others ignore it).
+  virtual void set_eye(const float /*eye*/[3]) {}
+
   // The runtime function shade() calls, for messages.
   virtual const char* shade_function() const = 0;
 

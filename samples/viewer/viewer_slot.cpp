@@ -46,6 +46,8 @@ GLuint ViewerSlot::shade(prt::sample::Sample& sample, bool keep_radiance) {
   }
   const std::uint32_t vertices = scene_->vertex_count();
   const prt_backend backend = prt::sample::runtime_backend(sample.backend());
+  const glm::vec3 eye = sample.camera().camera(1.0f).eye;  // the aspect does not move the eye
+  technique_->set_eye(&eye.x);
   const prt_result result = sample.time_shading(
       [&] { return technique_->shade(*scene_, backend, 0, vertices, radiance_.data()); });
   if (result != PRT_OK)

@@ -9,6 +9,7 @@
 
 #include <prt/prt.h>
 
+#include "../cloth/cloth_exercise.h"
 #include "../pose/pose_exercise.h"
 #include "../sh/sh_exercise.h"
 #include "../wavelet/wavelet_exercise.h"
@@ -26,6 +27,7 @@ static const prt_test_technique_exercise prt_test_technique_exercises[] = {
     {PRT_TECHNIQUE_SH, prt_test_exercise_sh},
     {PRT_TECHNIQUE_WAVELET, prt_test_exercise_wavelet},
     {PRT_TECHNIQUE_POSE, prt_test_exercise_pose},
+    {PRT_TECHNIQUE_CLOTH, prt_test_exercise_cloth},
 };
 
 #define PRT_TEST_TECHNIQUE_EXERCISE_COUNT \

@@ -86,7 +86,7 @@ TEST(PrtViewTechnique, NamedTechniqueTheBlobLacksFailsNamingWhatItHolds) {
 
 TEST(PrtViewTechnique, UnknownTechniqueNameIsABadArgument) {
   const prt_test::CommandResult run =
-      view_frames(golden("sh_quad.prtk"), "--technique cloth", "unknown_technique");
+      view_frames(golden("sh_quad.prtk"), "--technique marble", "unknown_technique");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("--technique"), std::string::npos) << run.output;
 }
