@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The techniques prt-view shades: one row per technique folder. A blob that holds several is
 // drawn with the first of them in this order unless --technique names another.
+#include "cloth/cloth_view.hpp"
 #include "pose/pose_view.hpp"
 #include "sh/sh_view.hpp"
 #include "view_techniques.hpp"
@@ -13,6 +14,7 @@ const std::vector<MakeViewTechnique>& view_technique_table() {
       make_sh_view,
       make_wavelet_view,
       make_pose_view,
+      make_cloth_view,
   };
   return kTable;
 }

@@ -10,6 +10,7 @@ namespace prt_conformance {
 std::vector<Case> sh_cases();
 std::vector<Case> wavelet_cases();
 std::vector<Case> pose_cases();
+std::vector<Case> cloth_cases();
 }  // namespace prt_conformance
 
 namespace {
@@ -23,6 +24,7 @@ const TechniqueCases kTechniques[] = {
     {"Sh", prt_conformance::sh_cases},
     {"Wavelet", prt_conformance::wavelet_cases},
     {"Pose", prt_conformance::pose_cases},
+    {"Cloth", prt_conformance::cloth_cases},
 };
 
 class ConformanceCase : public ::testing::Test {

@@ -64,7 +64,7 @@ TEST(PrtViewTechnique, MeshOnlyBlobFailsSayingItHoldsNoTechnique) {
   const prt_test::CommandResult run = view_frames(golden("tiny.prtk"), "", "mesh_only");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_NE(run.output.find("tiny.prtk: nothing prt-view can draw: the blob holds only a mesh, no "
-                            "technique section (prt-view draws sh, wavelet, pose)"),
+                            "technique section (prt-view draws sh, wavelet, pose, cloth)"),
             std::string::npos)
       << run.output;
 }
@@ -96,9 +96,26 @@ TEST(PrtViewTechnique, HelpListsTheTechniquesAndTheirOptions) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   for (const char* text :
        {"--technique", "wavelet options:", "--light-coefficients",
-        "Techniques: sh, wavelet, pose. A blob holding several is drawn with the "
+        "Techniques: sh, wavelet, pose, cloth. A blob holding several is drawn with the "
         "first of them unless --technique picks another"})
     EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
+}
+
+// The golden cloth blob (linen_plain, velvet) drawn per vertex with the fabric and lobe count
+// the command line gives; a fabric the blob lacks is refused.
+TEST(PrtViewTechnique, ClothDrawsTheFabricItIsGiven) {
+  const prt_test::CommandResult run = view_frames(
+      golden("cloth_quad.prtk"), "--fabric 1 --cloth-lobes 4 --backend cpu", "cloth_velvet");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("cloth_quad.prtk: 8 vertices, 4 triangles, cloth: 2 fabrics (drawn "
+                            "as 1, velvet)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("fitted with 4 lobes"), std::string::npos) << run.output;
+  const prt_test::CommandResult missing =
+      view_frames(golden("cloth_quad.prtk"), "--fabric 2", "cloth_no_fabric");
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find("has 2 fabrics, no fabric 2"), std::string::npos) << missing.output;
 }
 
 TEST(PrtViewTechnique, AnotherTechniquesOptionIsIgnoredWithAWarning) {

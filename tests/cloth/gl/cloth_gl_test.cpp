@@ -40,83 +40,7 @@ namespace {
 
 using namespace prt_test;
 
-constexpr double kU = 0x1p-24;
-constexpr double kPerturbation = 4 * kU;  // of the inputs, for D
-constexpr double kEvaluation = 32 * kU;   // of S
 const float kClear[4] = {-1.0f, -2.0f, -3.0f, -4.0f};
-
-prt_cloth_settings settings_of(uint32_t flags, uint32_t segments = 0, uint32_t nodes = 0,
-                               float weak = 0.0f) {
-  prt_cloth_settings s{};
-  s.struct_size = sizeof s;
-  s.flags = flags;
-  s.theta_segments = segments;
-  s.phi_nodes = nodes;
-  s.weak_lobe = weak;
-  return s;
-}
-
-// ---- the reference and its bound ------------------------------------------------------------
-
-struct Reference {
-  std::vector<float> value;       // 3 per sample
-  std::vector<double> tolerance;  // 3 per sample
-  std::vector<double> scale;      // S per sample
-};
-
-std::vector<float> cpu_shade(const ClothAsset& a, uint32_t fabric, const prt_cloth_params* params,
-                             const prt_cloth_light& light, const prt_cloth_settings* settings,
-                             const GBufferSamples& g) {
-  std::vector<float> rgb(3 * size_t(g.count()));
-  const prt_cloth_pixels pixels = g.pixels();
-  EXPECT_EQ(prt_cloth_shade(a.asset(), PRT_BACKEND_CPU, fabric, params, &light, settings, &pixels,
-                            0, g.count(), rgb.data()),
-            PRT_OK);
-  return rgb;
-}
-
-// Every nonzero component moved by `size` times a standard normal number.
-void perturb(std::vector<float>& values, double size, std::mt19937& rng) {
-  std::normal_distribution<double> gauss;
-  for (float& x : values)
-    if (x != 0.0f) x = float(x + size * gauss(rng));
-}
-
-Reference reference(const ClothAsset& a, uint32_t fabric, const prt_cloth_params* params,
-                    const std::vector<prt_cloth_lobe>& lobes, const prt_cloth_settings* settings,
-                    const GBufferSamples& g) {
-  Reference r;
-  r.value = cpu_shade(a, fabric, params, light_of(lobes), settings, g);
-  std::vector<double> moved(3 * size_t(g.count()), 0.0);
-  std::mt19937 rng(fabric + 17);
-  for (int trial = 0; trial < 4; ++trial) {
-    GBufferSamples p = g;
-    perturb(p.normals, kPerturbation, rng);
-    perturb(p.warps, kPerturbation, rng);
-    perturb(p.views, kPerturbation, rng);
-    std::vector<prt_cloth_lobe> l = lobes;
-    for (prt_cloth_lobe& lobe : l) {
-      std::vector<float> axis(lobe.axis, lobe.axis + 3);
-      perturb(axis, kPerturbation, rng);
-      std::copy(axis.begin(), axis.end(), lobe.axis);
-    }
-    const std::vector<float> v = cpu_shade(a, fabric, params, light_of(l), settings, p);
-    for (size_t i = 0; i < v.size(); ++i)
-      moved[i] = std::max(moved[i], std::fabs(double(v[i]) - r.value[i]));
-  }
-  r.scale.resize(g.count());
-  r.tolerance.resize(3 * size_t(g.count()));
-  for (uint32_t i = 0; i < g.count(); ++i) {
-    double s = 0, d = 0;
-    for (int c = 0; c < 3; ++c) {
-      s = std::max(s, std::fabs(double(r.value[3 * i + c])));
-      d = std::max(d, moved[3 * i + c]);
-    }
-    r.scale[i] = s;
-    for (int c = 0; c < 3; ++c) r.tolerance[3 * i + c] = 2 * d + kEvaluation * s;
-  }
-  return r;
-}
 
 struct Outcome {
   double worst_ratio = 0;  // largest |error| / tolerance
@@ -178,8 +102,8 @@ Outcome shade_and_compare(prt_gl_cloth_shader* shader, const ClothAsset& a, uint
   const prt_gl_cloth_gbuffer gbuffer = target.gbuffer();
   const prt_cloth_light light = light_of(lobes);
   EXPECT_EQ(prt_gl_cloth_shade(shader, fabric, params, &light, settings, &gbuffer), PRT_OK);
-  return expect_matches(reference(a, fabric, params, lobes, settings, g), g, target, target.read(),
-                        what);
+  return expect_matches(reference(a.asset(), fabric, params, lobes, settings, g), g, target,
+                        target.read(), what);
 }
 
 std::vector<FabricSpec> all_fabrics() {
@@ -420,7 +344,7 @@ TEST(GlCloth, StateIsSetForTheDrawAndLeftAsDocumented) {
 
   // The lower half is shaded as without the state above, the upper half is left.
   const std::vector<float> rgba = target.read();
-  const Reference r = reference(a, 0, nullptr, lobes, nullptr, g);
+  const Reference r = reference(a.asset(), 0, nullptr, lobes, nullptr, g);
   for (uint32_t i = 0; i < g.count(); ++i) {
     const float* px = &rgba[4 * target.texel_of(i)];
     const bool inside = i / g.width < g.height / 2 && g.cloth[i];
