@@ -16,23 +16,6 @@
 namespace prt::bake {
 namespace {
 
-// A mesh vertex's warp: its tangent, or where the mesh has none (no UVs), the world axis least
-// aligned with the normal, made orthogonal to it: any direction in the plane is a valid warp,
-// this one is stable and the same for every vertex of a flat face.
-glm::vec3 warp_of(const Mesh& mesh, std::size_t v) {
-  const glm::vec3 n = mesh.normals[v];
-  if (!mesh.tangents.empty()) {
-    const glm::vec3 t = glm::vec3(mesh.tangents[v]);
-    const glm::vec3 w = t - glm::dot(t, n) * n;
-    if (glm::dot(w, w) > 1e-12f) return glm::normalize(w);
-  }
-  const glm::vec3 a =
-      std::fabs(n.x) <= std::fabs(n.y) && std::fabs(n.x) <= std::fabs(n.z)
-          ? glm::vec3(1, 0, 0)
-          : (std::fabs(n.y) <= std::fabs(n.z) ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1));
-  return glm::normalize(a - glm::dot(a, n) * n);
-}
-
 // The rows x columns values of factor U V^T, in double.
 double reconstruct(const ClothFactor& f, std::uint64_t row, std::uint64_t column) {
   double s = 0.0;
@@ -99,12 +82,26 @@ CheckScene check_scene() {
 
 }  // namespace
 
+glm::vec3 cloth_warp(const glm::vec3& normal, const glm::vec4* tangent) {
+  if (tangent) {
+    const glm::vec3 t = glm::vec3(*tangent), w = t - glm::dot(t, normal) * normal;
+    if (glm::dot(w, w) > 1e-12f) return glm::normalize(w);
+  }
+  const glm::vec3 n = normal;
+  const glm::vec3 a =
+      std::fabs(n.x) <= std::fabs(n.y) && std::fabs(n.x) <= std::fabs(n.z)
+          ? glm::vec3(1, 0, 0)
+          : (std::fabs(n.y) <= std::fabs(n.z) ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1));
+  return glm::normalize(a - glm::dot(a, n) * n);
+}
+
 ClothMesh cloth_mesh_of(const Scene& scene) {
   ClothMesh out;
   std::uint32_t base = 0;
   for (const Mesh& mesh : scene.meshes) {
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const glm::vec3 p = mesh.positions[v], n = mesh.normals[v], w = warp_of(mesh, v);
+      const glm::vec3 p = mesh.positions[v], n = mesh.normals[v];
+      const glm::vec3 w = cloth_warp(n, mesh.tangents.empty() ? nullptr : &mesh.tangents[v]);
       out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
       out.normals.insert(out.normals.end(), {n.x, n.y, n.z});
       out.tangents.insert(out.tangents.end(), {w.x, w.y, w.z});

@@ -18,6 +18,11 @@ namespace prt::bake {
 // presets for an unknown one or a name given twice.
 std::vector<ClothFabricSource> cloth_fabric_sources(const std::vector<std::string>& names);
 
+// A vertex's warp: its tangent made orthogonal to the normal, or where there is none (no UVs),
+// the world axis least aligned with the normal, made orthogonal to it: any direction in the
+// plane is a valid warp, this one is stable and the same for every vertex of a flat face.
+glm::vec3 cloth_warp(const glm::vec3& normal, const glm::vec4* tangent);
+
 // The scene's meshes as one cloth mesh: positions, normals and per-vertex warps (the mesh's
 // tangents, or, where it has none, the world axis least aligned with the normal made orthogonal
 // to it), the triangles. Throws Error for a scene without triangles.

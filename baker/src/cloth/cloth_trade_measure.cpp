@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "../common/trade_common.hpp"
+#include "cloth_technique.hpp"
 #include "prt/baker/cloth/cloth_light.hpp"
 #include "prt/baker/cloth/cloth_tables.hpp"
 #include "prt/baker/text.hpp"
@@ -34,18 +35,6 @@ WorkersPtr make_workers(prt_context* context, const Context& ctx) {
   prt_workers* workers = nullptr;
   trade::check_runtime(prt_workers_create(context, &desc, &workers), "prt_workers_create");
   return WorkersPtr(workers);
-}
-
-glm::vec3 warp_of(const glm::vec3& n, const glm::vec4* tangent) {
-  if (tangent) {
-    const glm::vec3 t = glm::vec3(*tangent), w = t - glm::dot(t, n) * n;
-    if (glm::dot(w, w) > 1e-12f) return glm::normalize(w);
-  }
-  const glm::vec3 a =
-      std::fabs(n.x) <= std::fabs(n.y) && std::fabs(n.x) <= std::fabs(n.z)
-          ? glm::vec3(1, 0, 0)
-          : (std::fabs(n.y) <= std::fabs(n.z) ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1));
-  return glm::normalize(a - glm::dot(a, n) * n);
 }
 
 // FNV-1a over bytes: the reference cache's key.
@@ -107,7 +96,7 @@ std::vector<Frame> surface_frames(const Scene& scene, std::uint32_t limit) {
     for (std::size_t v = 0; v < mesh.vertex_count() && frames.size() < limit; ++v) {
       const glm::vec3 n = glm::normalize(mesh.normals[v]);
       if (!std::isfinite(n.x)) continue;
-      const Frame f{n, warp_of(n, mesh.tangents.empty() ? nullptr : &mesh.tangents[v])};
+      const Frame f{n, cloth_warp(n, mesh.tangents.empty() ? nullptr : &mesh.tangents[v])};
       const bool known = std::any_of(frames.begin(), frames.end(), [&](const Frame& g) {
         return glm::all(glm::equal(g.normal, f.normal)) && glm::all(glm::equal(g.warp, f.warp));
       });
