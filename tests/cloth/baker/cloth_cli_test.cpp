@@ -123,3 +123,22 @@ TEST(ClothBakeCommand, UnknownFabricFailsNamingThePresets) {
 }
 
 }  // namespace
+
+// formats/golden/README.md's command for the cloth golden still makes its bytes: a baker change
+// that moves them must re-freeze the golden (and restate its test) or say so in the README.
+TEST(ClothBakeCommand, GoldenCommandMakesTheGoldenBytes) {
+  // From the repository root, as the README says: the blob's info names the scene as given.
+  const fs::path blob = temp_dir() / "cloth_quad.prtk";
+  const prt_test::CommandResult r = prt_test::run_command(
+      PRT_BAKE_EXE,
+      "--quiet --threads 2 bake cloth formats/golden/scenes/quad_over_ground.obj"
+      " --fabric linen_plain,velvet --xi-size 5 --levels 3 --view-theta 3 --view-phi 4 --bits 8"
+      " --energy 1e-3 -o " +
+          prt_test::shell_quote(blob.string()),
+      temp_dir() / "command.log", "cd " + prt_test::shell_quote(PRT_SOURCE_DIR) + " &&");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<char> golden =
+      bytes_of(fs::path(PRT_SOURCE_DIR) / "formats/golden/1.0/cloth_quad.prtk");
+  ASSERT_FALSE(golden.empty());
+  EXPECT_TRUE(bytes_of(blob) == golden);
+}
