@@ -249,18 +249,6 @@ void prt_gl_cloth_destroy(prt_gl_cloth_shader* shader) {
 
 /* ---- the call's uniform block ------------------------------------------------------------- */
 
-/* cloth_tables.c's grid_cell: the lower of n nodes at x in [0, 1] and the weight of the upper. */
-static void grid_cell(double x, uint32_t n, uint32_t* lower, double* frac) {
-  double g = x * (double)(n - 1);
-  uint32_t i;
-  if (!(g > 0.0)) g = 0.0;
-  if (g > (double)(n - 1)) g = (double)(n - 1);
-  i = (uint32_t)g;
-  if (i >= n - 1) i = n - 2;
-  *lower = i;
-  *frac = g - (double)i;
-}
-
 /* Offset in words from the first table byte (the table texture's first texel). */
 static uint32_t word_offset(const prt_cloth_view* view, const void* at) {
   return (uint32_t)(((const uint8_t*)at - (view->data + view->layout.data)) / 4u);
@@ -310,7 +298,7 @@ static void fill_lobe(prt_gl_cloth_shader* s, uint32_t k) {
   prt_cloth_gl_block* b = &s->block;
   uint32_t level = 0, bits = 0, j, i;
   double frac = 0.0;
-  if (levels > 1) grid_cell(lobe->level / (double)(levels - 1), levels, &level, &frac);
+  if (levels > 1) prt_cloth_grid_cell(lobe->level / (double)(levels - 1), levels, &level, &frac);
   for (j = 0; j < 2; ++j) {
     const prt_cloth_thread* t = &s->fabric.params.threads[j];
     if (2.0 * (double)t->gamma_s >= MERGE_WIDTH * lobe_sd) bits |= 1u << (2u * j);

@@ -218,17 +218,6 @@ static void factor_of(const call_c* cc, const prt_cloth_factor* f, factor_info* 
   out->v_safe = safe_rows((uint64_t)h->view_theta * h->view_phi, f->rank, out->chunks);
 }
 
-static void grid_cell_d(double x, uint32_t n, uint32_t* lower, double* frac) {
-  double g = x * (double)(n - 1);
-  uint32_t i;
-  if (!(g > 0.0)) g = 0.0;
-  if (g > (double)(n - 1)) g = (double)(n - 1);
-  i = (uint32_t)g;
-  if (i >= n - 1) i = n - 2;
-  *lower = i;
-  *frac = g - (double)i;
-}
-
 static void prepare_lobe(const call_c* cc, const prt_cloth_lobe_prep* lp,
                          const prt_cloth_params* params, uint32_t flags, lobe_c* out) {
   const double lambda = lp->lambda, lobe_sd = 1.0 / sqrt(lambda);
@@ -245,7 +234,7 @@ static void prepare_lobe(const call_c* cc, const prt_cloth_lobe_prep* lp,
   out->level_frac = 0.0f;
   if (cc->levels > 1) {
     double fl;
-    grid_cell_d(lp->level / (double)(cc->levels - 1), cc->levels, &out->level, &fl);
+    prt_cloth_grid_cell(lp->level / (double)(cc->levels - 1), cc->levels, &out->level, &fl);
     out->level_frac = (float)fl;
   }
   out->sd = (float)lobe_sd;
@@ -420,7 +409,7 @@ static inline v8 load_scales(const uint8_t* scales, uint32_t rank, uint32_t c) {
   return _mm256_maskload_ps((const float*)(scales + 32u * c), mask);
 }
 
-/* The grid cells of x in [0, 1] over n nodes, as grid_cell in double. */
+/* The grid cells of x in [0, 1] over n nodes, as prt_cloth_grid_cell in double. */
 static inline void grid_cells(v8 x, uint32_t n, int32_t lower[LANES], float frac[LANES]) {
   const v8 last = C8((float)(n - 1));
   v8 g = mul8(x, last);

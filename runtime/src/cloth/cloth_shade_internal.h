@@ -81,6 +81,9 @@ void prt_cloth_view_factor(const prt_cloth_view* view, const prt_cloth_factor* f
 /* The lobe part at a canonical lobe direction (any) and sharpness level. */
 void prt_cloth_lobe_factor(const prt_cloth_view* view, const prt_cloth_factor* factor,
                            const double canonical_lobe[3], double level, double* out);
+/* A table grid's coordinate of x in [0, 1] over n >= 2 nodes: the lower node and the weight of
+ * the upper (x outside [0, 1] clamped). Every backend reads the tables' nodes by it. */
+void prt_cloth_grid_cell(double x, uint32_t n, uint32_t* lower, double* frac);
 
 /* ---- One lobe against one fibre (cloth_integrals.c) ------------------------------------------ */
 

@@ -36,8 +36,7 @@ static double scale_of(const uint8_t* scales, uint32_t r) {
   return (double)prt_blob_clth_load_f32(scales + 4u * r);
 }
 
-/* Grid coordinate of x in [0, 1] over n nodes: the lower node and the weight of the upper. */
-static void grid_cell(double x, uint32_t n, uint32_t* lower, double* frac) {
+void prt_cloth_grid_cell(double x, uint32_t n, uint32_t* lower, double* frac) {
   double g = x * (double)(n - 1);
   uint32_t i;
   if (!(g > 0.0)) g = 0.0;
@@ -64,8 +63,8 @@ void prt_cloth_view_factor(const prt_cloth_view* view, const prt_cloth_factor* f
   const double phi = atan2(fabs(canonical_view[1]), canonical_view[0]); /* y mirrored to >= 0 */
   uint32_t a, b, r;
   double fa, fb;
-  grid_cell(theta / HALF_PI, nt, &a, &fa);
-  grid_cell(phi / PI, np, &b, &fb);
+  prt_cloth_grid_cell(theta / HALF_PI, nt, &a, &fa);
+  prt_cloth_grid_cell(phi / PI, np, &b, &fb);
   memset(out, 0, sizeof(double) * factor->rank);
   add_row(factor, factor->v_values, (uint64_t)a * np + b, (1 - fa) * (1 - fb), out);
   add_row(factor, factor->v_values, (uint64_t)a * np + b + 1, (1 - fa) * fb, out);
@@ -95,9 +94,9 @@ void prt_cloth_lobe_factor(const prt_cloth_view* view, const prt_cloth_factor* f
   double p[2], fi, fj, fl = 0.0;
   uint32_t i, j, l = 0, r, k;
   octahedral(canonical_lobe, p);
-  grid_cell(0.5 * (p[0] + 1.0), n, &i, &fi);
-  grid_cell(0.5 * (p[1] + 1.0), n, &j, &fj);
-  if (levels > 1) grid_cell(level / (double)(levels - 1), levels, &l, &fl);
+  prt_cloth_grid_cell(0.5 * (p[0] + 1.0), n, &i, &fi);
+  prt_cloth_grid_cell(0.5 * (p[1] + 1.0), n, &j, &fj);
+  if (levels > 1) prt_cloth_grid_cell(level / (double)(levels - 1), levels, &l, &fl);
   memset(out, 0, sizeof(double) * factor->rank);
   for (k = 0; k < (levels > 1 ? 2u : 1u); ++k) {
     const double wl = levels > 1 ? (k ? fl : 1.0 - fl) : 1.0;
