@@ -145,8 +145,8 @@ TEST(ClothPaper, ThetaSegmentsAreSixStraightSegmentsTimesTheGaussian) {
     double lambda, theta_k, phi_k, theta_o, phi_o;
   };
   // lobes wide enough in phi (4 sd >= pi/2 at every theta) that the runtime's phi rule is plain
-  // Gauss-Legendre over the front, its 8 nodes within a part in 10^6 of the brute force; the lobed
-  // parts' narrow Gaussians (gamma 0.05) make narrow products in theta all the same
+  // Gauss-Legendre over the front, whose 8 nodes all but match the brute force; the lobed parts'
+  // narrow Gaussians (gamma 0.05) make narrow products in theta all the same
   const Case cases[] = {
       {0.5, 0.2, -0.3, 0.4, 0.3}, {2.0, -0.5, 0.4, 0.7, -0.2}, {1.0, 0.9, -0.2, -0.3, 0.6}};
   for (const prt_cloth_thread& th : threads)

@@ -366,7 +366,7 @@ TEST(ClothTableSampling, FullSphereDenominatorScalesTByTheLobesShareInD) {
       ++checked;
     }
   }
-  // both quadratures' error at D's edge (the bake's azimuths, measured within 2e-4)
+  // a small multiple of both quadratures' error at D's edge (the bake's azimuths)
   EXPECT_GT(checked, 100);
   EXPECT_LE(worst, 5e-4);
   // and the probe, the same way
