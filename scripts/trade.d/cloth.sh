@@ -2,7 +2,8 @@
 # satin on a flat patch (the golden quad's frame: normal +Y, warp +X), 32 views, under the two
 # maps of the issue, each turned four times about +Y.
 description="technique cloth: linen and satin on a flat patch, 32 views, under rnl_probe.hdr and \
-spiaggia_di_mondello_1k.hdr turned 4 times; K, rank, bits, grids, panels, phi nodes swept"
+spiaggia_di_mondello_1k.hdr turned 4 times; K, rank, bits, grids, panels, phi nodes swept; \
+paper 003's printed rules, each and all"
 assets_needed=(envmaps/rnl_probe.hdr envmaps/spiaggia_di_mondello_1k.hdr)
 settings=(turns frames)
 turns=4

@@ -550,6 +550,14 @@ void lobe_stencil(const TableMaps& maps, const Fibre& f, const ClothSampling& sa
   }
 }
 
+// The lobe's integral over D as a share of its integral over the sphere, from the stencil's total
+// (lambda times the integral over D of exp(-lambda (s - s_near))): what T over D becomes divided
+// by the whole sphere's integral instead (ClothSampling::full_sphere_denominator).
+double share_in_domain(const LobeStencil& stencil, const Azimuths& azimuths, double lambda) {
+  return stencil.total * std::exp(-lambda * azimuths.s_near) /
+         (2.0 * kPi * -std::expm1(-2.0 * lambda));
+}
+
 // ---- The cone of T_c --------------------------------------------------------------------------
 
 // The fibre's specular cone of a view: w = -s_o t + c_o (cos(phi) n' + sin(phi) b), and its arc
@@ -858,6 +866,10 @@ class Batch {
         const float* values = w.values.data() + stencil.values[k] * columns;
         for (std::size_t c = 0; c < columns; ++c) sum[c] += weight * values[c];
       }
+      if (sampling_.full_sphere_denominator) {
+        const float share = float(share_in_domain(stencil, azimuths, lambdas_[row / n2]));
+        for (std::size_t c = 0; c < columns; ++c) sum[c] *= share;
+      }
       for (std::size_t c = 0; c < columns; ++c)
         full[row * columns + c] = std::clamp(sum[c], 0.0f, 1.0f);
     }
@@ -979,6 +991,9 @@ double ClothTableProbe::full(const double xi[3], double lambda) const {
   double sum = 0.0;
   for (std::size_t k = 0; k < s.stencil.values.size(); ++k)
     sum += s.stencil.weights[k] * s.values[s.stencil.values[k]];
+  if (s.sampling.full_sphere_denominator)
+    return std::clamp(sum / s.stencil.total * share_in_domain(s.stencil, s.azimuths, lambda), 0.0,
+                      1.0);
   return std::clamp(sum / s.stencil.total, 0.0, 1.0);
 }
 

@@ -3,7 +3,8 @@
 // every texel of the map) on the scene's surface frames, each seen from 32 views, under each map
 // turned about +Y. One knob at a time moves from the defaults: the light's lobes K (and the
 // runtime's per-frame fit), the rank (energy left out), the stored bits, the table grids, the
-// theta panels and phi nodes of the integrals, the cone table and the lobe culling. The
+// theta panels and phi nodes of the integrals, the cone table and the lobe culling; and paper
+// 003's printed rules, each alone and all together (the `paper` sweep). The
 // reference's own error is stated from the same reference over texels merged 2 x 2, and the light's
 // alone from the reference under the fitted SG light. docs/cloth/trade.md reads the table.
 #include <prt/prt.hpp>
@@ -45,7 +46,8 @@ struct ClothTradeSettings {
 struct TableConfig {
   std::uint32_t xi = 0, levels = 0, views = 0;
   int bits = 16;
-  double energy = 0.0;  // 0: every computed rank (up to 64)
+  double energy = 0.0;       // 0: every computed rank (up to 64)
+  bool full_sphere = false;  // T over the lobe's integral over the sphere (paper 003)
 };
 
 struct Row {
@@ -207,15 +209,18 @@ class ClothTrade final : public TechniqueTrade {
       variant([&](TableConfig& c) { c.levels = o_.levels[i]; });
     for (std::size_t i = 1; i < o_.view_nodes.size(); ++i)
       variant([&](TableConfig& c) { c.views = o_.view_nodes[i]; });
+    variant([&](TableConfig& c) { c.full_sphere = true; });
     std::vector<BakedTables> baked;
     for (const TableConfig& c : configs) {
       ClothTablesOptions options;
       options.grid.xi_size = c.xi;
       options.grid.lambda_levels = c.levels;
       options.grid.view_theta = options.grid.view_phi = c.views;
+      options.sampling.full_sphere_denominator = c.full_sphere;
       options.factor.fixed_rank = 64;  // the format's largest rank
-      ctx.info(format("cloth trade: baking %s's tables on grid xi %u, %u levels, %u x %u views",
-                      fabric.name.c_str(), c.xi, c.levels, c.views, c.views));
+      ctx.info(format("cloth trade: baking %s's tables on grid xi %u, %u levels, %u x %u views%s",
+                      fabric.name.c_str(), c.xi, c.levels, c.views, c.views,
+                      c.full_sphere ? ", T over the full sphere" : ""));
       ClothTablesBake bake =
           bake_cloth_tables({{fabric.name, fabric.params, fabric.weave}}, options, ctx);
       BakedTables b{c, std::move(bake.section), {}, {}};
@@ -316,6 +321,7 @@ class ClothTrade final : public TechniqueTrade {
     eight.knob = "bits";
     run(eight, tables[0], static_light(0), 0u, false);
     for (std::size_t g = 1; g < tables.size(); ++g) {
+      if (tables[g].config.full_sphere) continue;  // the paper's rows
       Row r = base;
       r.table = tables[g].config;
       r.setting =
@@ -360,7 +366,36 @@ class ClothTrade final : public TechniqueTrade {
     keep.knob = "no_culling";
     run(keep, tables[0], static_light(0), PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES,
         false);
+    paper_rows(base, tables, run, static_light(0));
     reference_rows(fabric, map, reference, input, ctx);
+  }
+
+  // Paper 003's printed rules (docs/cloth/method.md, "What the paper gets wrong"), each alone at
+  // the defaults, then all of them with its factorisation (T alone): the paper as printed.
+  template <typename Run, typename LightOf>
+  void paper_rows(const Row& base, const std::vector<BakedTables>& tables, Run& run,
+                  LightOf light) {
+    const BakedTables& sphere = *std::find_if(tables.begin(), tables.end(),
+                                              [](const auto& t) { return t.config.full_sphere; });
+    const struct {
+      const char* setting;
+      bool full_sphere;
+      std::uint32_t flags;
+    } cases[] = {
+        {"paper: T over the full sphere", true, 0u},
+        {"paper: phi over the fibre's front", false, PRT_CLOTH_PAPER_PHI_DOMAIN},
+        {"paper: 6 straight theta segments", false, PRT_CLOTH_PAPER_THETA_SEGMENTS},
+        {"paper: Eq. 13's Fresnel as printed", false, PRT_CLOTH_PAPER_FRESNEL},
+        {"paper: g_u as printed", false, PRT_CLOTH_PAPER_NARROW_GU},
+        {"the paper as printed", true, PRT_CLOTH_PAPER_FLAGS | PRT_CLOTH_NO_CONE_TABLE},
+    };
+    for (const auto& c : cases) {
+      Row r = base;
+      r.setting = c.setting;
+      r.knob = "paper";
+      r.table.full_sphere = c.full_sphere;
+      run(r, c.full_sphere ? sphere : tables[0], light, c.flags, false);
+    }
   }
 
   // What the reference and the light alone contribute to every row's error.

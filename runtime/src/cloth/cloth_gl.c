@@ -362,13 +362,17 @@ static prt_result check_call(const prt_gl_cloth_shader* shader, uint32_t fabric,
                              const prt_cloth_params* params, const prt_cloth_light* light,
                              const prt_cloth_settings* settings,
                              const prt_gl_cloth_gbuffer* gbuffer, prt_cloth_method* method) {
+  prt_result r;
   if (!shader || !light || !gbuffer ||
       !prt_internal_struct_size_ok(gbuffer, PRT_GL_CLOTH_GBUFFER_SIZE_1_0))
     return PRT_ERROR_INVALID_ARGUMENT;
   if (fabric >= shader->view->header.fabrics) return PRT_ERROR_NOT_FOUND;
   if (params && prt_cloth_params_validate(params) != PRT_OK) return PRT_ERROR_INVALID_ARGUMENT;
   if (prt_cloth_light_validate(light) != PRT_OK) return PRT_ERROR_INVALID_ARGUMENT;
-  return prt_cloth_method_of(settings, method);
+  r = prt_cloth_method_of(settings, method);
+  if (r != PRT_OK) return r;
+  /* the paper's study switches are the scalar reference's alone */
+  return (method->flags & PRT_CLOTH_PAPER_FLAGS) ? PRT_ERROR_UNSUPPORTED_BACKEND : PRT_OK;
 }
 
 /* Upper bounds of the shader's loop iterations (cloth_gl_glsl.c: no early exit taken, no loop

@@ -13,7 +13,10 @@
  * Gaussian's moments over it are exact (erf). At each segment end the phi integral runs over the
  * part of the front above the horizon with Gauss-Legendre nodes placed through the Gaussian
  * approximation of the von Mises profile (its inverse CDF), so a sharp lobe gets its nodes where
- * it is, and a clipped one where it is left. */
+ * it is, and a clipped one where it is left.
+ *
+ * The PRT_CLOTH_PAPER_* study switches put back paper 003's printed rules (the phi domain, the
+ * theta segments, Eq. 13's Fresnel expansion) for measuring what each fix gains. */
 #include <math.h>
 
 #include "cloth_shade_internal.h"
@@ -23,6 +26,7 @@
 #define SQRT_2PI 2.50662827463100050242
 #define WINDOW_SIGMAS 4.0 /* theta windows: the product Gaussian's mean +- this many sd */
 #define PHI_SIGMAS 6.0    /* phi windows of a sharp von Mises profile */
+#define PAPER_SEGMENTS 6  /* paper 003's theta segments over [-pi/2, pi/2] */
 
 /* Gauss-Legendre nodes and weights on [-1, 1] for n = 1..8 (row n - 1). */
 static const double kNodes[PRT_CLOTH_MAX_PHI_NODES][PRT_CLOTH_MAX_PHI_NODES] = {
@@ -93,27 +97,40 @@ static double normal_quantile(double p) {
 
 /* The theta range where the domain is not empty, and the half-width of its phi range at theta:
  * the front |phi| < pi/2 intersected with the hemisphere
- * sin(tau) sin(theta) + cos(tau) cos(theta) cos(phi) > 0. */
-static void theta_support(const prt_cloth_lobe_fibre* lf, double* lo, double* hi) {
+ * sin(tau) sin(theta) + cos(tau) cos(theta) cos(phi) > 0 (the paper's domain: the front alone). */
+static void theta_support(const prt_cloth_lobe_fibre* lf, uint32_t flags, double* lo, double* hi) {
   const double tilt = asin(fmin(1.0, fabs(lf->sin_tau)));
+  if (flags & PRT_CLOTH_PAPER_PHI_DOMAIN) {
+    *lo = -HALF_PI, *hi = HALF_PI;
+    return;
+  }
   *lo = lf->sin_tau > 0.0 ? -(HALF_PI - tilt) : -HALF_PI;
   *hi = lf->sin_tau < 0.0 ? HALF_PI - tilt : HALF_PI;
 }
 
-static double phi_half_width(const prt_cloth_lobe_fibre* lf, double theta) {
+static double phi_half_width(const prt_cloth_lobe_fibre* lf, uint32_t flags, double theta) {
   double c;
+  if (flags & PRT_CLOTH_PAPER_PHI_DOMAIN) return HALF_PI;
   if (lf->cos_tau < 1e-9) return lf->sin_tau * sin(theta) > 0.0 ? HALF_PI : 0.0;
   c = -lf->sin_tau * tan(theta) / lf->cos_tau;
   if (c <= 0.0) return HALF_PI;
   return c >= 1.0 ? 0.0 : acos(c);
 }
 
+double prt_cloth_fresnel_paper(double eta, double cos_theta_d, double cos_phi_d) {
+  const double f0 = (1.0 - eta) * (1.0 - eta) / ((1.0 + eta) * (1.0 + eta));
+  const double x = cos_theta_d * cos_phi_d;
+  /* (1 - x)^5 = sum_l C(5, l) (-x)^l, printed to l = 3 */
+  return f0 + (1.0 - f0) * (1.0 - x * (5.0 - x * (10.0 - 10.0 * x)));
+}
+
 /* The phi integrals at theta of the lobe's von Mises profile times the surface part's
  * F_r(c) cos(phi_d/2) (out[0]) and the volume parts' (1 - F_r(c))^2 (out[1]). */
 static void phi_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread* thread,
-                          uint32_t nodes, double theta, double out[2]) {
+                          const prt_cloth_method* method, double theta, double out[2]) {
+  const uint32_t nodes = method->phi_nodes;
   const double kappa = lf->lambda * cos(theta) * cos(lf->theta_k);
-  const double half = phi_half_width(lf, theta);
+  const double half = phi_half_width(lf, method->flags, theta);
   const double cos_d = cos(0.5 * (theta - lf->theta_o));
   const double* x = kNodes[nodes - 1];
   const double* w = kWeights[nodes - 1];
@@ -143,7 +160,9 @@ static void phi_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread
     }
     weight *= exp(kappa * (cos(phi - lf->phi_k) - 1.0));
     y = sqrt(fmax(0.0, 0.5 * (1.0 + cos(phi - lf->phi_o)))); /* cos(phi_d / 2), |phi_d| <= pi */
-    f = prt_cloth_fresnel(thread->eta, cos_d * y);
+    f = (method->flags & PRT_CLOTH_PAPER_FRESNEL)
+            ? prt_cloth_fresnel_paper(thread->eta, cos_d, cos(phi - lf->phi_o))
+            : prt_cloth_fresnel(thread->eta, cos_d * y);
     out[0] += weight * f * y;
     out[1] += weight * (1.0 - f) * (1.0 - f);
   }
@@ -163,8 +182,8 @@ static double log_theta_profile(const prt_cloth_lobe_fibre* lf, double gamma, do
 /* The integrands of the parts in `mask` (bit p: part p) at theta, each divided by the Gaussian
  * N(mu, sd) the window integrates against, into h[p]. */
 static void integrands_over_gaussian(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread* thread,
-                                     unsigned mask, double mu, double sd, uint32_t nodes,
-                                     double theta, double h[3]) {
+                                     const prt_cloth_method* method, unsigned mask, double mu,
+                                     double sd, double theta, double h[3]) {
   const double z = (theta - mu) / sd;
   const double log_n = -0.5 * z * z - log(sd * SQRT_2PI);
   const double ct = cos(theta), cd = cos(0.5 * (theta - lf->theta_o));
@@ -172,7 +191,7 @@ static void integrands_over_gaussian(const prt_cloth_lobe_fibre* lf, const prt_c
   int part;
   h[0] = h[1] = h[2] = 0.0;
   if (ct <= 0.0 || cd <= 1e-12) return; /* grazing: the measure vanishes */
-  phi_integrals(lf, thread, nodes, theta, phi);
+  phi_integrals(lf, thread, method, theta, phi);
   base = ct * ct / (cd * cd);
   for (part = 0; part < 3; ++part) {
     const double gamma = part == 0 ? thread->gamma_s : part == 1 ? thread->gamma_v : 0.0;
@@ -227,7 +246,7 @@ static void integrate_piece(const prt_cloth_lobe_fibre* lf, const prt_cloth_thre
   int part;
   for (s = 0; s <= nodes; ++s) {
     theta[s] = s == 0 ? lo : s == nodes ? hi : boundary(lo, hi, s, nodes, pinch);
-    integrands_over_gaussian(lf, thread, mask, mu, sd, method->phi_nodes, theta[s], h[s]);
+    integrands_over_gaussian(lf, thread, method, mask, mu, sd, theta[s], h[s]);
     z[s] = (theta[s] - mu) / sd;
     cdf[s] = normal_cdf(z[s]);
     pdf[s] = exp(-0.5 * z[s] * z[s]) / SQRT_2PI;
@@ -253,7 +272,7 @@ static void integrate_window(const prt_cloth_lobe_fibre* lf, const prt_cloth_thr
                              const prt_cloth_method* method, unsigned mask, double mu, double sd,
                              double out[3]) {
   double support_lo, support_hi, lo, hi;
-  theta_support(lf, &support_lo, &support_hi);
+  theta_support(lf, method->flags, &support_lo, &support_hi);
   lo = fmax(support_lo, mu - WINDOW_SIGMAS * sd);
   hi = fmin(support_hi, mu + WINDOW_SIGMAS * sd);
   if (hi <= lo) return;
@@ -273,12 +292,63 @@ static void integrate_window(const prt_cloth_lobe_fibre* lf, const prt_cloth_thr
  * isotropic part and on the same nodes, instead of on a window of its own. */
 #define MERGE_WIDTH 1.5
 
+/* Paper 003's theta rule (its Eqs. 15-16): the light's lobe in theta, exp(lambda (cos(theta -
+ * theta_k) - 1)), taken as the Gaussian exp(-lambda (theta - theta_k)^2 / 2), and its product
+ * with a lobed part's Gaussian in theta_h as one Gaussian, alpha N(mu, sd); the rest of each
+ * part's integrand, linear on each of PAPER_SEGMENTS equal segments of [-pi/2, pi/2] through its
+ * values at their ends, integrated against that Gaussian in closed form. */
+static void integrate_paper_segments(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread* thread,
+                                     const prt_cloth_method* method, double out[3]) {
+  double theta[PAPER_SEGMENTS + 1], smooth[PAPER_SEGMENTS + 1][3];
+  uint32_t s;
+  int part;
+  for (s = 0; s <= PAPER_SEGMENTS; ++s) {
+    const double t = -HALF_PI + PI * s / PAPER_SEGMENTS;
+    const double ct = cos(t), cd = cos(0.5 * (t - lf->theta_o));
+    double phi[2];
+    theta[s] = t;
+    smooth[s][0] = smooth[s][1] = smooth[s][2] = 0.0;
+    if (ct <= 0.0 || cd <= 1e-12) continue; /* grazing: the measure vanishes */
+    phi_integrals(lf, thread, method, t, phi);
+    smooth[s][0] = ct * ct / (cd * cd) * phi[0];
+    smooth[s][1] = ct * ct / (cd * cd) * phi[1] / (ct + cos(lf->theta_o));
+    smooth[s][2] = smooth[s][1];
+  }
+  for (part = 0; part < 3; ++part) {
+    const double gamma = part == 0 ? thread->gamma_s : part == 1 ? thread->gamma_v : 0.0;
+    double precision = lf->lambda, mu = lf->theta_k, log_alpha, sd;
+    if (gamma > 0.0) {
+      const double band = 1.0 / (4.0 * gamma * gamma), d = lf->theta_k + lf->theta_o;
+      precision = lf->lambda + band;
+      mu = (lf->lambda * lf->theta_k - band * lf->theta_o) / precision;
+      log_alpha = -0.5 * lf->lambda * band * d * d / precision - log(gamma * SQRT_2PI);
+    } else {
+      log_alpha = 0.0;
+    }
+    log_alpha += 0.5 * log(2.0 * PI / precision);
+    sd = 1.0 / sqrt(precision);
+    for (s = 0; s < PAPER_SEGMENTS; ++s) {
+      const double za = (theta[s] - mu) / sd, zb = (theta[s + 1] - mu) / sd;
+      const double slope = (smooth[s + 1][part] - smooth[s][part]) / (theta[s + 1] - theta[s]);
+      double m[3];
+      gaussian_moments(mu, sd, theta[s], normal_cdf(za), normal_cdf(zb), za,
+                       exp(-0.5 * za * za) / SQRT_2PI, zb, exp(-0.5 * zb * zb) / SQRT_2PI, m);
+      out[part] += exp(log_alpha) * (smooth[s][part] * m[0] + slope * m[1]);
+    }
+  }
+}
+
 void prt_cloth_lobe_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread* thread,
                               const prt_cloth_method* method, double out[3]) {
   const double lobe_sd = 1.0 / sqrt(lf->lambda);
   unsigned merged = 4u; /* the isotropic part always */
   int part;
   out[0] = out[1] = out[2] = 0.0;
+  if (method->flags & PRT_CLOTH_PAPER_THETA_SEGMENTS) {
+    integrate_paper_segments(lf, thread, method, out);
+    for (part = 0; part < 3; ++part) out[part] = fmax(out[part], 0.0);
+    return;
+  }
   for (part = 0; part < 2; ++part) {
     const double gamma = part == 0 ? thread->gamma_s : thread->gamma_v;
     const double band = 1.0 / (4.0 * gamma * gamma);

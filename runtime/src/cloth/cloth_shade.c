@@ -15,7 +15,8 @@
 
 #define PRT_CLOTH_KNOWN_FLAGS                                                          \
   (PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES | PRT_CLOTH_NO_CONE_TABLE | \
-   PRT_CLOTH_NO_FRAME_CACHE | PRT_CLOTH_TANGENT_COPIES | PRT_CLOTH_NO_LOBE_SHARING)
+   PRT_CLOTH_NO_FRAME_CACHE | PRT_CLOTH_TANGENT_COPIES | PRT_CLOTH_NO_LOBE_SHARING |   \
+   PRT_CLOTH_PAPER_FLAGS)
 
 prt_result prt_cloth_method_of(const prt_cloth_settings* settings, prt_cloth_method* out) {
   prt_cloth_settings s;
@@ -108,10 +109,11 @@ static double dot_rank(const double* a, const double* b, uint32_t rank) {
   return fmin(1.0, fmax(0.0, s)); /* a weight: quantisation must not push it outside [0, 1] */
 }
 
-/* Whether lobe k contributes to a sample of this normal at all. */
+/* Whether lobe k contributes to a sample of this normal at all (with the paper's phi domain, a
+ * lobe below the horizon does). */
 static int lobe_visible(const prt_cloth_lobe_prep* lobe, const double n[3], uint32_t flags) {
   const double d = dot3(lobe->axis, n);
-  if ((flags & PRT_CLOTH_KEEP_HIDDEN_LOBES) || d >= 0.0) return 1;
+  if ((flags & (PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_PAPER_PHI_DOMAIN)) || d >= 0.0) return 1;
   return exp(lobe->lambda * (sqrt(1.0 - d * d) - 1.0)) >= PRT_CLOTH_HIDDEN_LOBE;
 }
 
@@ -197,6 +199,16 @@ static void shade_scalar(const prt_cloth_view* view, const prt_cloth_fabric_prep
   }
 }
 
+/* Eq. 4's g_u as printed, exp(-x^2 / gamma^2) / (sqrt(pi) gamma), is a Gaussian of standard
+ * deviation gamma / sqrt 2: the fabric's lobed parts with their gammas so narrowed. */
+static void narrow_gu(prt_cloth_params* params) {
+  int j;
+  for (j = 0; j < 2; ++j) {
+    params->threads[j].gamma_s = (float)(params->threads[j].gamma_s / sqrt(2.0));
+    params->threads[j].gamma_v = (float)(params->threads[j].gamma_v / sqrt(2.0));
+  }
+}
+
 #if defined(PRT_HAS_X86_SIMD)
 static int simd_usable(const prt_asset* asset) {
   return prt_internal_simd_isa(asset->context) >= PRT_SIMD_ISA_AVX2;
@@ -210,8 +222,10 @@ static int simd_usable(const prt_asset* asset) {
 
 /* The backend a call runs on: PRT_BACKEND_CPU or PRT_BACKEND_SIMD in *out, or the error. AUTO
  * takes the context's backend, and the scalar reference where the SIMD ISA lacks AVX2 (there is
- * no SSE4.1 kernel); SIMD asked for explicitly without AVX2 is unsupported. */
-static prt_result resolve_backend(const prt_asset* asset, prt_backend backend, prt_backend* out) {
+ * no SSE4.1 kernel) or the settings ask for the paper's study switches (scalar only); SIMD asked
+ * for explicitly in either case is unsupported. */
+static prt_result resolve_backend(const prt_asset* asset, prt_backend backend, uint32_t flags,
+                                  prt_backend* out) {
   const int automatic = backend == PRT_BACKEND_AUTO;
   if (automatic) backend = prt_context_backend(asset->context);
   switch (backend) {
@@ -219,7 +233,7 @@ static prt_result resolve_backend(const prt_asset* asset, prt_backend backend, p
       *out = PRT_BACKEND_CPU;
       return PRT_OK;
     case PRT_BACKEND_SIMD:
-      if (simd_usable(asset)) {
+      if (simd_usable(asset) && !(flags & PRT_CLOTH_PAPER_FLAGS)) {
         *out = PRT_BACKEND_SIMD;
         return PRT_OK;
       }
@@ -255,7 +269,7 @@ prt_result prt_cloth_shade(const prt_asset* asset, prt_backend backend, uint32_t
   if (prt_cloth_light_validate(light) != PRT_OK) return PRT_ERROR_INVALID_ARGUMENT;
   r = prt_cloth_method_of(settings, &method);
   if (r != PRT_OK) return r;
-  r = resolve_backend(asset, backend, &run);
+  r = resolve_backend(asset, backend, method.flags, &run);
   if (r != PRT_OK) return r;
   prt_cloth_prepare_light(view, light, &method, &light_prep);
   prt_cloth_prepare_fabric(view, fabric, params, &fabric_prep);
@@ -265,6 +279,7 @@ prt_result prt_cloth_shade(const prt_asset* asset, prt_backend backend, uint32_t
     return PRT_OK;
   }
 #endif
+  if (method.flags & PRT_CLOTH_PAPER_NARROW_GU) narrow_gu(&fabric_prep.params);
   shade_scalar(view, &fabric_prep, &light_prep, &method, pixels, first, count, out_rgb);
   return PRT_OK;
 }

@@ -103,4 +103,8 @@ typedef struct prt_cloth_lobe_fibre {
 void prt_cloth_lobe_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread* thread,
                               const prt_cloth_method* method, double out[3]);
 
+/* Eq. 13 of paper 003 as printed (PRT_CLOTH_PAPER_FRESNEL): Schlick's approximation
+ * F_0 + (1 - F_0) (1 - cos(theta_d) cos(phi_d))^5 with the binomial sum cut at l = 3. */
+double prt_cloth_fresnel_paper(double eta, double cos_theta_d, double cos_phi_d);
+
 #endif /* PRT_RUNTIME_CLOTH_SHADE_INTERNAL_H */

@@ -69,6 +69,28 @@ PRT_API prt_result prt_cloth_find_fabric(const prt_asset* asset, const char* nam
  * pixel's frame, table cells). For measuring what deduplication and sharing save. */
 #define PRT_CLOTH_TANGENT_COPIES 16u
 #define PRT_CLOTH_NO_LOBE_SHARING 32u
+/* Paper 003 as printed, for measuring; scalar backend only. Each puts back one of the paper's
+ * printed errors that the method fixes (docs/cloth/method.md, "What the paper gets wrong"):
+ *   PAPER_PHI_DOMAIN     : phi over the fibre's whole front, |phi| < pi/2, also where it lies
+ *                          below the cloth's horizon (lobes wholly below it are kept: they leak);
+ *   PAPER_THETA_SEGMENTS : theta over [-pi/2, pi/2] in 6 equal segments, the integrand's smooth
+ *                          factor linear on each, times each part's Gaussian in theta in closed
+ *                          form (the light's lobe taken as a Gaussian; theta_segments not read);
+ *   PAPER_FRESNEL        : Eq. 13 as printed, Schlick's term with cos(phi_d) expanded and its sum
+ *                          cut at the cube, in place of the exact Fresnel term (surface and
+ *                          volume parts);
+ *   PAPER_NARROW_GU      : the lobed parts' Gaussian g_u of Eq. 4 as printed, standard deviation
+ *                          gamma / sqrt 2 (every use of gamma_s and gamma_v).
+ * (The paper's full-sphere denominator of T is a property of the baked tables.) As when the SIMD
+ * ISA lacks AVX2: PRT_BACKEND_AUTO shades such a call on the scalar reference and an explicit
+ * PRT_BACKEND_SIMD is PRT_ERROR_UNSUPPORTED_BACKEND; prt_gl_cloth_shade refuses them too. */
+#define PRT_CLOTH_PAPER_PHI_DOMAIN 64u
+#define PRT_CLOTH_PAPER_THETA_SEGMENTS 128u
+#define PRT_CLOTH_PAPER_FRESNEL 256u
+#define PRT_CLOTH_PAPER_NARROW_GU 512u
+#define PRT_CLOTH_PAPER_FLAGS                                                              \
+  (PRT_CLOTH_PAPER_PHI_DOMAIN | PRT_CLOTH_PAPER_THETA_SEGMENTS | PRT_CLOTH_PAPER_FRESNEL | \
+   PRT_CLOTH_PAPER_NARROW_GU)
 
 typedef struct prt_cloth_settings {
   size_t struct_size;     /* set by the caller: sizeof(prt_cloth_settings) */
@@ -85,10 +107,11 @@ typedef struct prt_cloth_settings {
  *   PRT_BACKEND_AUTO : the context's best CPU-side backend;
  *   PRT_BACKEND_CPU  : the scalar reference of the method, in double;
  *   PRT_BACKEND_SIMD : AVX2+FMA kernels, eight samples at a time, in float (within the
- *                      conformance bound of tests/cloth);
+ *                      conformance bound of tests/cloth); not with PRT_CLOTH_PAPER_FLAGS;
  *   PRT_BACKEND_GL   : PRT_ERROR_UNSUPPORTED_BACKEND (GL shading runs through a
  *                      prt_gl_cloth_shader, below).
- * PRT_ERROR_UNSUPPORTED_BACKEND when the backend is not usable in the asset's context,
+ * PRT_ERROR_UNSUPPORTED_BACKEND when the backend is not usable in the asset's context or with the
+ * settings,
  * PRT_ERROR_NOT_FOUND without a CLTH section or for a fabric index out of range,
  * PRT_ERROR_INVALID_ARGUMENT for NULL pointers, invalid params, light or settings, bad struct
  * sizes or a backend value out of range. Degenerate samples (a zero vector, a warp parallel to
@@ -153,7 +176,8 @@ typedef struct prt_gl_cloth_gbuffer {
 /* Shades the G-buffer into the bound draw framebuffer as above, with fabric, params, light and
  * settings as prt_cloth_shade. Returns once the draw is queued. Writes no context:
  * PRT_OK, PRT_ERROR_NOT_FOUND for a fabric index out of range, PRT_ERROR_INVALID_ARGUMENT for a
- * NULL shader, light or gbuffer, invalid params, light or settings (nothing is issued then). */
+ * NULL shader, light or gbuffer, invalid params, light or settings, PRT_ERROR_UNSUPPORTED_BACKEND
+ * for settings with PRT_CLOTH_PAPER_FLAGS (nothing is issued then). */
 PRT_API prt_result prt_gl_cloth_shade(prt_gl_cloth_shader* shader, uint32_t fabric,
                                       const prt_cloth_params* params,
                                       const prt_cloth_light* light,

@@ -529,7 +529,8 @@ TEST(GlCloth, ErrorsTheApplicationLeftPendingDoNotFailCreation) {
 
 // ---- shade's refusals ----------------------------------------------------------------------
 
-// Bad arguments are refused before anything is drawn, and write no context.
+// Bad arguments, and the paper's study switches, are refused before anything is drawn, and write
+// no context.
 TEST(GlCloth, BadShadeArgumentsAreRefusedAndDrawNothing) {
   PRT_REQUIRE_GL(gl);
   GlCalls calls;
@@ -554,7 +555,7 @@ TEST(GlCloth, BadShadeArgumentsAreRefusedAndDrawNothing) {
   bad_params.struct_size = sizeof bad_params;
   ASSERT_EQ(prt_cloth_get_fabric(a.asset(), 0, nullptr, &bad_params, nullptr, nullptr), PRT_OK);
   bad_params.threads[0].coverage = 0.9f;  // a_1 + a_2 > 1
-  prt_cloth_settings bad[4] = {settings_of(64u), settings_of(0, 17), settings_of(0, 0, 9),
+  prt_cloth_settings bad[4] = {settings_of(1u << 31), settings_of(0, 17), settings_of(0, 0, 9),
                                settings_of(0)};
   bad[3].struct_size = 4;  // below 1.0's
 
@@ -577,6 +578,14 @@ TEST(GlCloth, BadShadeArgumentsAreRefusedAndDrawNothing) {
   for (const prt_cloth_settings& settings : bad)
     EXPECT_EQ(prt_gl_cloth_shade(s, 0, nullptr, &light, &settings, &gbuffer),
               PRT_ERROR_INVALID_ARGUMENT);
+  // the paper's study switches are the scalar reference's alone (prt_cloth_asset.h)
+  for (const uint32_t flags : {PRT_CLOTH_PAPER_PHI_DOMAIN, PRT_CLOTH_PAPER_THETA_SEGMENTS,
+                               PRT_CLOTH_PAPER_FRESNEL, PRT_CLOTH_PAPER_NARROW_GU}) {
+    const prt_cloth_settings paper = settings_of(flags);
+    EXPECT_EQ(prt_gl_cloth_shade(s, 0, nullptr, &light, &paper, &gbuffer),
+              PRT_ERROR_UNSUPPORTED_BACKEND)
+        << flags;
+  }
   EXPECT_EQ(target.read(), cleared) << "a refused call drew";
   EXPECT_EQ(a.message(), message_before) << "a shade call wrote the context";
   EXPECT_EQ(take_gl_error(), 0u);

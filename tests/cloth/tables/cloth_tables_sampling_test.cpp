@@ -4,7 +4,8 @@
 // its axis (prt_cloth_thread_weights there); the same along the specular cone; a single offset's
 // T is the lobe-weighted mean of M, computed here by brute force on a lat-long grid from
 // docs/cloth/model.md's formulas; table entries of mirrored nodes agree; and the tables do not
-// depend on the thread count.
+// depend on the thread count; divided by the lobe's integral over the sphere (paper 003), T is
+// scaled by the lobe's share in D.
 #include <gtest/gtest.h>
 #include <prt/prt_cloth.h>
 
@@ -309,6 +310,77 @@ TEST(ClothTableSampling, TablesDoNotDependOnTheThreadCount) {
     EXPECT_EQ(std::memcmp(a[k].full.data(), b[k].full.data(), a[k].full.size() * 4), 0);
     EXPECT_EQ(std::memcmp(a[k].cone.data(), b[k].cone.data(), a[k].cone.size() * 4), 0);
   }
+}
+
+// The share of lobe (xi, lambda)'s integral over the sphere that lies in D (z > 0, w . n' > 0):
+// the lobe sampled at points of equal mass (1 - w . xi through its inverse CDF, the azimuth about
+// xi uniform), counted in D.
+double brute_force_share_in_d(const Fibre& fibre, const Vec3& xi, double lambda, int n) {
+  const Vec3 pick = std::fabs(xi[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  Vec3 e1 = {xi[1] * pick[2] - xi[2] * pick[1], xi[2] * pick[0] - xi[0] * pick[2],
+             xi[0] * pick[1] - xi[1] * pick[0]};
+  const double l1 = std::sqrt(dot(e1, e1));
+  for (double& c : e1) c /= l1;
+  const Vec3 e2 = {xi[1] * e1[2] - xi[2] * e1[1], xi[2] * e1[0] - xi[0] * e1[2],
+                   xi[0] * e1[1] - xi[1] * e1[0]};
+  std::int64_t in = 0, all = 0;
+  for (int i = 0; i < n; ++i) {
+    const double u = (i + 0.5) / n;
+    const double s = -std::log1p(-u * -std::expm1(-2.0 * lambda)) / lambda;
+    const double ca = 1.0 - s, sa = std::sqrt(std::max(0.0, 1.0 - ca * ca));
+    for (int j = 0; j < 4 * n; ++j, ++all) {
+      const double b = 2.0 * kPi * (j + 0.5) / (4 * n);
+      Vec3 w;
+      for (int k = 0; k < 3; ++k)
+        w[k] = ca * xi[k] + sa * (std::cos(b) * e1[k] + std::sin(b) * e2[k]);
+      if (w[2] > 0.0 && dot(w, fibre.n) > 0.0) ++in;
+    }
+  }
+  return double(in) / double(all);
+}
+
+// Paper 003's T divides by the lobe's integral over the whole sphere: every entry of a row is the
+// table's over D times the share of the lobe in D, the same for every view.
+TEST(ClothTableSampling, FullSphereDenominatorScalesTByTheLobesShareInD) {
+  ClothGrid grid = small_grid();
+  grid.lambda_levels = 2;
+  grid.lambda_max = 20.0f;  // lambda 0.25 and 20
+  Context ctx;
+  ClothSampling paper = small_sampling();
+  paper.full_sphere_denominator = true;
+  const auto over_d = sample_cloth_tables({kLinen25}, grid, small_sampling(), ctx)[0].full;
+  const auto over_sphere = sample_cloth_tables({kLinen25}, grid, paper, ctx)[0].full;
+  const Fibre fibre = fibre_of(kLinen25.offset());
+  const std::size_t n2 = std::size_t(grid.xi_size) * grid.xi_size, columns = grid.columns();
+  double worst = 0.0;
+  int checked = 0;
+  for (std::size_t row = 0; row < grid.rows(); row += 3) {
+    const double lambda = row < n2 ? 0.25 : 20.0;
+    const Vec3 xi = lobe_axis(grid.xi_size, std::uint32_t(row % n2 % grid.xi_size),
+                              std::uint32_t(row % n2 / grid.xi_size));
+    const double share = brute_force_share_in_d(fibre, xi, lambda, 400);
+    for (std::size_t c = 0; c < columns; ++c) {
+      const float t = over_d[row * columns + c];
+      if (t < 0.05f) continue;
+      worst = std::max(worst, std::fabs(over_sphere[row * columns + c] / t - share));
+      ++checked;
+    }
+  }
+  // a small multiple of both quadratures' error at D's edge (the bake's azimuths)
+  EXPECT_GT(checked, 100);
+  EXPECT_LE(worst, 5e-4);
+  // and the probe, the same way
+  const Vec3 view = {0.6, 0.48, 0.64};
+  const ClothTableProbe probe_d(kLinen25, view.data(), small_sampling());
+  const ClothTableProbe probe_sphere(kLinen25, view.data(), paper);
+  for (const Vec3& xi : {Vec3{0.0, 0.0, 1.0}, Vec3{0.8, 0.0, 0.6}, Vec3{0.0, 0.6, -0.8}})
+    for (const double lambda : {0.5, 8.0}) {
+      const double t = probe_d.full(xi.data(), lambda);
+      ASSERT_GT(t, 0.05);
+      EXPECT_NEAR(probe_sphere.full(xi.data(), lambda) / t,
+                  brute_force_share_in_d(fibre, xi, lambda, 400), 5e-4)
+          << xi[0] << " " << xi[2] << " lambda " << lambda;
+    }
 }
 
 TEST(ClothTableSampling, RejectsInvalidInput) {

@@ -3,7 +3,8 @@
 // demo sky with tiny settings: a row for every knob the sweep design calls for
 // (docs/cloth/trade.md), every setting of the method better than black, detail that helps where
 // it must (more lobes, more rank), the reference's own error below the method's, the table bytes
-// ordered by rank and bits, and a second run that reads its references from the cache and
+// ordered by rank and bits, a row for each of paper 003's printed rules and one for all of them,
+// each changing the shading, and a second run that reads its references from the cache and
 // writes the same table but for the timings.
 #include <gtest/gtest.h>
 
@@ -70,27 +71,22 @@ TEST_F(ClothTradeCli, RowsBoundsAndTheCache) {
   for (const Row& r : rows) ASSERT_EQ(r.count("#fields"), 0u) << r.at("setting");
 
   // The defaults, then: the energy 1e-2 and every rank, 8 bits, one grid, K 1, the per-frame
-  // fit, 1 panel, 1 phi node, T alone, no culling, and the two reference rows.
-  const std::map<std::string, std::size_t> expected = {{"defaults", 1},
-                                                       {"energy", 3},
-                                                       {"bits", 2},
-                                                       {"grid", 2},
-                                                       {"lobes", 2},
-                                                       {"fast_light", 1},
-                                                       {"panels", 2},
-                                                       {"phi_nodes", 2},
-                                                       {"no_cone", 1},
-                                                       {"no_culling", 1},
-                                                       {"reference_merged", 1},
-                                                       {"reference_sg", 1}};
+  // fit, 1 panel, 1 phi node, T alone, no culling, the paper's five printed rules and the paper
+  // as printed, and the two reference rows.
+  const std::map<std::string, std::size_t> expected = {
+      {"defaults", 1},    {"energy", 3},     {"bits", 2},   {"grid", 2},
+      {"lobes", 2},       {"fast_light", 1}, {"panels", 2}, {"phi_nodes", 2},
+      {"no_cone", 1},     {"no_culling", 1}, {"paper", 6},  {"reference_merged", 1},
+      {"reference_sg", 1}};
   for (const auto& [sweep, count] : expected) EXPECT_EQ(of(rows, sweep).size(), count) << sweep;
-  ASSERT_EQ(rows.size(), 13u);
+  ASSERT_EQ(rows.size(), 19u);
 
   const Row defaults = of(rows, "defaults").front();
   const double error = number(defaults, "nrmse");
   for (const Row& r : rows) {
     if (r.at("sweeps").rfind("reference", 0) == 0) continue;
     EXPECT_GT(number(r, "nrmse"), 0.0) << r.at("setting");
+    if (r.at("sweeps") == "paper") continue;  // the paper's Fresnel expansion is worse than black
     EXPECT_LT(number(r, "nrmse"), 1.0) << r.at("setting");  // better than black
   }
   // Detail helps: one lobe cannot hold the sky the way eight do; a rank that leaves out 1 %
@@ -104,6 +100,18 @@ TEST_F(ClothTradeCli, RowsBoundsAndTheCache) {
   EXPECT_LE(number(coarse, "table_mb"), number(defaults, "table_mb"));
   EXPECT_LE(number(defaults, "table_mb"), number(full, "table_mb"));
   EXPECT_LT(number(of(rows, "bits").back(), "table_mb"), number(defaults, "table_mb"));
+  // Each of the paper's rules, and all of them, changes the shading.
+  const std::vector<Row> paper = of(rows, "paper");
+  const char* paper_settings[] = {"paper: T over the full sphere",
+                                  "paper: phi over the fibre's front",
+                                  "paper: 6 straight theta segments",
+                                  "paper: Eq. 13's Fresnel as printed",
+                                  "paper: g_u as printed",
+                                  "the paper as printed"};
+  for (std::size_t i = 0; i < paper.size(); ++i) {
+    EXPECT_EQ(paper[i].at("setting"), paper_settings[i]);
+    EXPECT_NE(paper[i].at("nrmse"), defaults.at("nrmse")) << paper[i].at("setting");
+  }
   // The reference's discretisation error is well below the method's.
   EXPECT_LT(number(of(rows, "reference_merged").front(), "nrmse"), error / 4);
 

@@ -76,6 +76,10 @@ struct ClothSampling {
   // No level of the hemi map or the cone coarser than this spacing (radians) is read: W has
   // features this fine whatever the lobe.
   double max_spacing = 0.025;
+  // Paper 003 as printed, for measuring: T divided by the closed form of the lobe's integral over
+  // the whole sphere, 2 pi (1 - exp(-2 lambda)) / lambda, instead of its integral over D (T_c
+  // unchanged). Off for every bake.
+  bool full_sphere_denominator = false;
 };
 
 // The default grids: N_xi 32, L 10 over lambda 0.25 .. 1e4 (the light's sharpness range), views
