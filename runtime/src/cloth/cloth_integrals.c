@@ -117,11 +117,22 @@ static double phi_half_width(const prt_cloth_lobe_fibre* lf, uint32_t flags, dou
   return c >= 1.0 ? 0.0 : acos(c);
 }
 
-double prt_cloth_fresnel_paper(double eta, double cos_theta_d, double cos_phi_d) {
+double prt_cloth_fresnel_schlick(double eta, double c, int cube) {
   const double f0 = (1.0 - eta) * (1.0 - eta) / ((1.0 + eta) * (1.0 + eta));
-  const double x = cos_theta_d * cos_phi_d;
-  /* (1 - x)^5 = sum_l C(5, l) (-x)^l, printed to l = 3 */
-  return f0 + (1.0 - f0) * (1.0 - x * (5.0 - x * (10.0 - 10.0 * x)));
+  const double m = 1.0 - c;
+  /* (1 - c)^5 = sum_l C(5, l) (-c)^l, printed to l = 3 */
+  const double power = cube ? 1.0 - c * (5.0 - c * (10.0 - 10.0 * c)) : m * m * m * m * m;
+  return f0 + (1.0 - f0) * power;
+}
+
+/* The Fresnel term at a phi node: exact, or Schlick's as paper 003's switches ask. `y` is
+ * cos(phi_d / 2), `cos_phi_d` cos(phi_d). */
+static double fresnel_at(const prt_cloth_thread* thread, uint32_t flags, double cos_d, double y,
+                         double cos_phi_d) {
+  if (!(flags & PRT_CLOTH_PAPER_FRESNEL)) return prt_cloth_fresnel(thread->eta, cos_d * y);
+  return prt_cloth_fresnel_schlick(thread->eta,
+                                   cos_d * (flags & PRT_CLOTH_PAPER_SCHLICK_ANGLE ? cos_phi_d : y),
+                                   (flags & PRT_CLOTH_PAPER_SCHLICK_CUBE) != 0);
 }
 
 /* The phi integrals at theta of the lobe's von Mises profile times the surface part's
@@ -160,9 +171,7 @@ static void phi_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread
     }
     weight *= exp(kappa * (cos(phi - lf->phi_k) - 1.0));
     y = sqrt(fmax(0.0, 0.5 * (1.0 + cos(phi - lf->phi_o)))); /* cos(phi_d / 2), |phi_d| <= pi */
-    f = (method->flags & PRT_CLOTH_PAPER_FRESNEL)
-            ? prt_cloth_fresnel_paper(thread->eta, cos_d, cos(phi - lf->phi_o))
-            : prt_cloth_fresnel(thread->eta, cos_d * y);
+    f = fresnel_at(thread, method->flags, cos_d, y, cos(phi - lf->phi_o));
     out[0] += weight * f * y;
     out[1] += weight * (1.0 - f) * (1.0 - f);
   }

@@ -103,8 +103,8 @@ typedef struct prt_cloth_lobe_fibre {
 void prt_cloth_lobe_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread* thread,
                               const prt_cloth_method* method, double out[3]);
 
-/* Eq. 13 of paper 003 as printed (PRT_CLOTH_PAPER_FRESNEL): Schlick's approximation
- * F_0 + (1 - F_0) (1 - cos(theta_d) cos(phi_d))^5 with the binomial sum cut at l = 3. */
-double prt_cloth_fresnel_paper(double eta, double cos_theta_d, double cos_phi_d);
+/* Schlick's approximation of paper 003's Eq. 13, F_0 + (1 - F_0) (1 - c)^5, at incidence cosine
+ * c; with `cube` its binomial sum cut at l = 3, as printed (PRT_CLOTH_PAPER_SCHLICK_CUBE). */
+double prt_cloth_fresnel_schlick(double eta, double c, int cube);
 
 #endif /* PRT_RUNTIME_CLOTH_SHADE_INTERNAL_H */

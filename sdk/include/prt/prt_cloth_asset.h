@@ -76,9 +76,12 @@ PRT_API prt_result prt_cloth_find_fabric(const prt_asset* asset, const char* nam
  *   PAPER_THETA_SEGMENTS : theta over [-pi/2, pi/2] in 6 equal segments, the integrand's smooth
  *                          factor linear on each, times each part's Gaussian in theta in closed
  *                          form (the light's lobe taken as a Gaussian; theta_segments not read);
- *   PAPER_FRESNEL        : Eq. 13 as printed, Schlick's term with cos(phi_d) expanded and its sum
- *                          cut at the cube, in place of the exact Fresnel term (surface and
- *                          volume parts);
+ *   PAPER_SCHLICK        : Schlick's approximation, F_0 + (1 - F_0)(1 - c)^5 at c =
+ *                          cos(theta_d) cos(phi_d/2), in place of the exact Fresnel term (surface
+ *                          and volume parts): Eq. 13 as it should read;
+ *   PAPER_SCHLICK_ANGLE  : Schlick's term at cos(theta_d) cos(phi_d), as printed;
+ *   PAPER_SCHLICK_CUBE   : Schlick's term's binomial sum cut after the cube, as printed;
+ *   PAPER_FRESNEL        : all three, Eq. 13 as printed (either of the last two implies Schlick);
  *   PAPER_NARROW_GU      : the lobed parts' Gaussian g_u of Eq. 4 as printed, standard deviation
  *                          gamma / sqrt 2 (every use of gamma_s and gamma_v).
  * (The paper's full-sphere denominator of T is a property of the baked tables.) As when the SIMD
@@ -86,8 +89,12 @@ PRT_API prt_result prt_cloth_find_fabric(const prt_asset* asset, const char* nam
  * PRT_BACKEND_SIMD is PRT_ERROR_UNSUPPORTED_BACKEND; prt_gl_cloth_shade refuses them too. */
 #define PRT_CLOTH_PAPER_PHI_DOMAIN 64u
 #define PRT_CLOTH_PAPER_THETA_SEGMENTS 128u
-#define PRT_CLOTH_PAPER_FRESNEL 256u
+#define PRT_CLOTH_PAPER_SCHLICK 256u
 #define PRT_CLOTH_PAPER_NARROW_GU 512u
+#define PRT_CLOTH_PAPER_SCHLICK_ANGLE 1024u
+#define PRT_CLOTH_PAPER_SCHLICK_CUBE 2048u
+#define PRT_CLOTH_PAPER_FRESNEL \
+  (PRT_CLOTH_PAPER_SCHLICK | PRT_CLOTH_PAPER_SCHLICK_ANGLE | PRT_CLOTH_PAPER_SCHLICK_CUBE)
 #define PRT_CLOTH_PAPER_FLAGS                                                              \
   (PRT_CLOTH_PAPER_PHI_DOMAIN | PRT_CLOTH_PAPER_THETA_SEGMENTS | PRT_CLOTH_PAPER_FRESNEL | \
    PRT_CLOTH_PAPER_NARROW_GU)

@@ -49,16 +49,27 @@ void integrals(const prt_cloth_lobe_fibre& lf, const prt_cloth_thread& th, uint3
 
 // Eq. 13 as printed: F_0 + (1 - F_0) times the binomial sum of (1 - x)^5 to l = 3, x =
 // cos(theta_d) cos(phi_d). At eta 1.5 (F_0 = 0.25^2 = 0.04), cos(theta_d) 0.8 and phi_d 60 degrees
-// (x = 0.4): 1 - 5 (0.4) + 10 (0.16) - 10 (0.064) = -0.04, so F = 0.04 + 0.96 (-0.04) = 0.0016.
-TEST(ClothPaper, FresnelIsEq13AsPrinted) {
-  EXPECT_NEAR(prt_cloth_fresnel_paper(1.5, 0.8, std::cos(kPi / 3.0)), 0.0016, 1e-15);
-  // and the switch puts it in place of the exact term, in every part that has F
+// (x = 0.4): 1 - 5 (0.4) + 10 (0.16) - 10 (0.064) = -0.04, so F = 0.04 + 0.96 (-0.04) = 0.0016;
+// the whole sum is 0.6^5 = 0.07776, F = 0.04 + 0.96 (0.07776) = 0.1146496. Schlick's term meets
+// the exact Fresnel term at normal and grazing incidence.
+TEST(ClothPaper, SchlickIsEq13WholeOrCutAsPrinted) {
+  EXPECT_NEAR(prt_cloth_fresnel_schlick(1.5, 0.8 * std::cos(kPi / 3.0), 1), 0.0016, 1e-15);
+  EXPECT_NEAR(prt_cloth_fresnel_schlick(1.5, 0.4, 0), 0.1146496, 1e-15);
+  EXPECT_NEAR(prt_cloth_fresnel_schlick(1.5, 1.0, 0), prt_cloth_fresnel(1.5, 1.0), 1e-15);
+  EXPECT_NEAR(prt_cloth_fresnel_schlick(1.5, 0.0, 0), prt_cloth_fresnel(1.5, 0.0), 1e-15);
+  // and each switch changes what replaces the exact term, in every part that has F
   const prt_cloth_lobe_fibre lf = lobe_fibre(20.0, 0.3, 0.2, -0.2, 0.5, 0.0);
   const prt_cloth_thread th = thread_of(1.46, 0.2, 0.4);
-  double exact[3], printed[3];
-  integrals(lf, th, 0u, 3, exact);
-  integrals(lf, th, PRT_CLOTH_PAPER_FRESNEL, 3, printed);
-  for (int part = 0; part < 3; ++part) EXPECT_NE(exact[part], printed[part]) << part;
+  const uint32_t kinds[] = {
+      0u, PRT_CLOTH_PAPER_SCHLICK, PRT_CLOTH_PAPER_SCHLICK | PRT_CLOTH_PAPER_SCHLICK_ANGLE,
+      PRT_CLOTH_PAPER_SCHLICK | PRT_CLOTH_PAPER_SCHLICK_CUBE, PRT_CLOTH_PAPER_FRESNEL};
+  double out[5][3];
+  for (int k = 0; k < 5; ++k) integrals(lf, th, kinds[k], 3, out[k]);
+  // each against the one it adds to: Schlick against exact, the angle and the cut against
+  // Schlick, and the cut on top of the angle
+  const int base[5] = {0, 0, 1, 1, 2};
+  for (int k = 1; k < 5; ++k)
+    for (int part = 0; part < 3; ++part) EXPECT_NE(out[k][part], out[base[k]][part]) << k << part;
 }
 
 // The fibre's front below a tilted fibre's horizon: a lobe wholly below the horizon (and on the

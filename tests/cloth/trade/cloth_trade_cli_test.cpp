@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <string>
 
@@ -71,15 +72,15 @@ TEST_F(ClothTradeCli, RowsBoundsAndTheCache) {
   for (const Row& r : rows) ASSERT_EQ(r.count("#fields"), 0u) << r.at("setting");
 
   // The defaults, then: the energy 1e-2 and every rank, 8 bits, one grid, K 1, the per-frame
-  // fit, 1 panel, 1 phi node, T alone, no culling, the paper's five printed rules and the paper
-  // as printed, and the two reference rows.
+  // fit, 1 panel, 1 phi node, T alone, no culling, the paper's printed rules (Eq. 13 in three
+  // steps) and the paper as printed, and the two reference rows.
   const std::map<std::string, std::size_t> expected = {
       {"defaults", 1},    {"energy", 3},     {"bits", 2},   {"grid", 2},
       {"lobes", 2},       {"fast_light", 1}, {"panels", 2}, {"phi_nodes", 2},
-      {"no_cone", 1},     {"no_culling", 1}, {"paper", 6},  {"reference_merged", 1},
+      {"no_cone", 1},     {"no_culling", 1}, {"paper", 9},  {"reference_merged", 1},
       {"reference_sg", 1}};
   for (const auto& [sweep, count] : expected) EXPECT_EQ(of(rows, sweep).size(), count) << sweep;
-  ASSERT_EQ(rows.size(), 19u);
+  ASSERT_EQ(rows.size(), 22u);
 
   const Row defaults = of(rows, "defaults").front();
   const double error = number(defaults, "nrmse");
@@ -105,9 +106,13 @@ TEST_F(ClothTradeCli, RowsBoundsAndTheCache) {
   const char* paper_settings[] = {"paper: T over the full sphere",
                                   "paper: phi over the fibre's front",
                                   "paper: 6 straight theta segments",
+                                  "paper: Schlick's Fresnel (Eq. 13 corrected)",
+                                  "paper: Schlick with cos phi_d as printed",
+                                  "paper: Schlick's sum cut at the cube as printed",
                                   "paper: Eq. 13's Fresnel as printed",
                                   "paper: g_u as printed",
                                   "the paper as printed"};
+  ASSERT_EQ(paper.size(), std::size(paper_settings));
   for (std::size_t i = 0; i < paper.size(); ++i) {
     EXPECT_EQ(paper[i].at("setting"), paper_settings[i]);
     EXPECT_NE(paper[i].at("nrmse"), defaults.at("nrmse")) << paper[i].at("setting");
