@@ -81,6 +81,9 @@ def error_vs_quadrature(ax, rows, maps):
 PAPER_ROWS = [("paper: T over the full sphere", "paper: T / sphere"),
               ("paper: phi over the fibre's front", "paper: phi front"),
               ("paper: 6 straight theta segments", "paper: 6 segments"),
+              ("paper: Schlick's Fresnel (Eq. 13 corrected)", "paper: Schlick"),
+              ("paper: Schlick with cos phi_d as printed", "paper: Schlick, cos phi_d"),
+              ("paper: Schlick's sum cut at the cube as printed", "paper: Schlick, cube"),
               ("paper: Eq. 13's Fresnel as printed", "paper: Eq. 13"),
               ("paper: g_u as printed", "paper: g_u"),
               ("the paper as printed", "paper as printed")]
