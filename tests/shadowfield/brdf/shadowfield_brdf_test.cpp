@@ -296,19 +296,24 @@ TEST(ErrorTable, HasEveryModelAndTermAndFallsWithTerms) {
   }
 }
 
-// Paper 000, Fig. 10: four terms suffice for n around 16, not for n of 64 and above. The bounds
-// are about twice the errors measured on the default grid, so that they catch a regression of
-// the factorisation without pinning its exact figures.
+// Paper 000, Fig. 10: four terms suffice for n around 16, not for n of 64 and above. Every error
+// that sees the truncation orders the exponents so. Under the sky (broad light, as in the
+// paper's scenes) four terms of n = 10 and n = 16 are accurate; those bounds are about twice the
+// errors measured on the default grid, so they catch a regression of the factorisation without
+// pinning its figures. The small disc light is not bounded: a lobe wider than it needs more
+// terms, which the ordering already states.
 TEST(ErrorTable, FourTermsSufficeForModerateExponentsOnly) {
-  for (const auto error : {&SeparableBrdfErrors::grid, &SeparableBrdfErrors::disc}) {
+  for (const auto error : {&SeparableBrdfErrors::grid, &SeparableBrdfErrors::disc,
+                           &SeparableBrdfErrors::disc_truncation}) {
     const double n16 = errors_of("phong", 16, 4).*error, n64 = errors_of("phong", 64, 4).*error,
                  n256 = errors_of("phong", 256, 4).*error;
     EXPECT_LT(n16, n64);
     EXPECT_LT(n64, n256);
   }
-  EXPECT_LT(errors_of("phong", 10, 4).grid, 1.0);
-  EXPECT_LT(errors_of("phong", 10, 4).sky, 1.0);
-  EXPECT_LT(errors_of("phong", 10, 4).disc, 1.0);
+  EXPECT_LT(errors_of("phong", 16, 4).sky, errors_of("phong", 256, 4).sky);
+  EXPECT_LT(errors_of("phong", 10, 4).sky, 0.06);
+  EXPECT_LT(errors_of("phong", 16, 4).sky, 0.07);
+  EXPECT_LT(errors_of("phong", 10, 4).sky_truncation, 0.05);
 }
 
 // ---- Bad options -------------------------------------------------------------------------------
