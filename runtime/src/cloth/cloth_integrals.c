@@ -160,7 +160,7 @@ static void phi_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread
     ub = normal_cdf((b - lf->phi_k) / sd);
   }
   for (q = 0; q < nodes; ++q) {
-    double phi, weight, y, f;
+    double phi, weight, cos_phi_d, y, f;
     if (ua == ub) {
       phi = 0.5 * (a + b) + 0.5 * (b - a) * x[q];
       weight = 0.5 * (b - a) * w[q];
@@ -170,8 +170,9 @@ static void phi_integrals(const prt_cloth_lobe_fibre* lf, const prt_cloth_thread
       weight = 0.5 * (ub - ua) * w[q] * sd * SQRT_2PI * exp(0.5 * z * z);
     }
     weight *= exp(kappa * (cos(phi - lf->phi_k) - 1.0));
-    y = sqrt(fmax(0.0, 0.5 * (1.0 + cos(phi - lf->phi_o)))); /* cos(phi_d / 2), |phi_d| <= pi */
-    f = fresnel_at(thread, method->flags, cos_d, y, cos(phi - lf->phi_o));
+    cos_phi_d = cos(phi - lf->phi_o);
+    y = sqrt(fmax(0.0, 0.5 * (1.0 + cos_phi_d))); /* cos(phi_d / 2), |phi_d| <= pi */
+    f = fresnel_at(thread, method->flags, cos_d, y, cos_phi_d);
     out[0] += weight * f * y;
     out[1] += weight * (1.0 - f) * (1.0 - f);
   }
