@@ -5,8 +5,8 @@
 //
 // Frames and SH: the object's own frame (the mesh-local positions), with the SH conventions of
 // prt/prt_sh.h applied to object-frame directions. Per-vertex arrays are in the order of the
-// object's vertices. Fields are point-major: value (point, coefficient) at point * n^2 + coefficient,
-// points numbered as prt/format/shadowfield_shells.h numbers them.
+// object's vertices. Fields are point-major: value (point, coefficient) at point * n^2 +
+// coefficient, points numbered as prt/format/shadowfield_shells.h numbers them.
 #pragma once
 
 #include <cstdint>
