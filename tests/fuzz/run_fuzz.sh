@@ -7,8 +7,8 @@
 # (formats/src/<technique>/, per function) and of the runtime's technique files (per file), from
 # libFuzzer's -print_coverage=1; the full coverage listing is kept in BUILD_DIR/fuzz/coverage.txt.
 # Exits non-zero if the fuzzer finds a crash, an over-read, undefined behaviour or a leak, or if
-# a technique's checker (a folder of formats/src/ other than mesh/) has no covered edge after the
-# run: its golden blobs are missing from the seeds or never reach it.
+# a technique's checker (formats/src/<t>/ for each t of PRT_TECHNIQUES) has no covered edge after
+# the run: its golden blobs are missing from the seeds or never reach it.
 set -euo pipefail
 if [ $# -ne 2 ]; then
   echo "usage: $0 BUILD_DIR SECONDS" >&2
@@ -48,8 +48,8 @@ set -e
 # COVERED_FUNC: hits: N edges: covered/total NAME FILE:LINE (UNCOVERED_FUNC alike, 0 covered).
 # Static helpers inlined into a function count as its edges. The totals include the blocks of
 # the sanitizers' checks, which a run without undefined behaviour never enters.
-techniques=$(cd "$source_dir/formats/src" && find . -mindepth 1 -maxdepth 1 -type d ! -name mesh \
-  -printf '%f\n' | sort | paste -sd' ')
+# The techniques of PRT_TECHNIQUES (written at configure time); staged ones have no golden blobs.
+techniques=$(cat "$build_dir/tests/fuzz/checked_techniques.txt")
 echo "run_fuzz: edges covered by the golden blobs alone, and after the run"
 awk -v techniques="$techniques" '
   /^(COVERED|UNCOVERED)_FUNC:/ {
