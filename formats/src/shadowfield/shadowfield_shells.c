@@ -111,9 +111,12 @@ void prt_sf_locate(const prt_sf_shells* grid, const float p[3], prt_sf_lookup* o
   out->inside = 0u;
   float d[3] = {p[0] - grid->centre[0], p[1] - grid->centre[1], p[2] - grid->centre[2]};
   const double rho = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
+  /* A point on a shell, rounded to float, must read that shell: the bounds give way by
+   * kShellSlack (relative), far above float rounding and far below any shell spacing. */
+  const double kShellSlack = 1e-6;
   const double r0 = (double)grid->radius * grid->inner;
   const double r1 = (double)grid->radius * grid->outer;
-  if (!(rho <= r1)) return; /* beyond the outermost shell, or not finite */
+  if (!(rho <= r1 * (1.0 + kShellSlack))) return; /* beyond the outermost shell, or not finite */
   if (!(rho > 0.0)) {
     d[0] = 0.0f;
     d[1] = 1.0f;
@@ -122,7 +125,7 @@ void prt_sf_locate(const prt_sf_shells* grid, const float p[3], prt_sf_lookup* o
   uint32_t shell = 0u;
   float shell_frac = 0.0f;
   if (rho < r0 || grid->shells == 1u) {
-    out->inside = rho < r0 ? 1u : 0u;
+    out->inside = rho < r0 * (1.0 - kShellSlack) ? 1u : 0u;
   } else {
     double x = (double)(grid->shells - 1u) * log(rho / r0) / log((double)grid->outer / grid->inner);
     if (x > (double)(grid->shells - 1u)) x = (double)(grid->shells - 1u);

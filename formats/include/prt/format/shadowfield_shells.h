@@ -54,6 +54,8 @@ void prt_sf_point_position(const prt_sf_shells* grid, uint64_t index, float out[
  *   `inside` is set to 1.
  * - beyond the outermost shell: no point (count 0): the field is read as absent (no occlusion,
  *   no radiance).
+ * - "below" and "beyond" give way by a relative 1e-6, so a grid point rounded to float reads
+ *   its own shell.
  * - p at the centre: the direction is +Y (any direction would do; the value is the innermost
  *   shell's there).
  * The weights are >= 0 and sum to 1 when count > 0. */
