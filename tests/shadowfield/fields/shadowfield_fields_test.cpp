@@ -4,6 +4,7 @@
 // ray escapes against the quadrature of the basis, the inside of a closed object, the diffuse
 // transfer of an open plane against the clamped-cosine band factors, a glossy transfer against a
 // brute-force quadrature of h_k cos y_i, a sphere over a plane against its blocked cosine share,
+// a convex sphere's vertices at every normal, scale and placement, non-finite and extreme input,
 // determinism across thread counts, the object's assembly, the bounding sphere and bad settings.
 #include <gtest/gtest.h>
 
@@ -243,6 +244,92 @@ TEST(SelfTransfer, SphereOverAPlaneHidesItsCosineShare) {
   // Far below the blocked share itself, so a bake that ignored the sphere would fail.
   std::printf("sphere over plane: worst coefficient error %.3g\n", worst);
   EXPECT_LT(worst, 0.004);
+}
+
+// A vertex of a convex sphere sees its whole tangent hemisphere (the faces lie inside the
+// sphere, below every vertex's tangent plane), so each normal of the sphere gets the open plane's
+// transfer: the tangent frame and the directions for normals all round.
+TEST(SelfTransfer, ConvexSphereVerticesSeeTheirWholeHemisphere) {
+  ShadowfieldFieldSettings settings = small_settings();
+  settings.transfer_rays = 1024;
+  const Baked baked = bake(test::scene_of({test::make_icosphere(2)}), settings);
+  const std::size_t n2 = coefficients(settings.order);
+  double worst = 0.0;
+  for (std::size_t v = 0; v < baked.object.positions.size(); ++v) {
+    const std::vector<double> y = sh_at(settings.order, baked.object.normals[v]);
+    for (int l = 0; l < static_cast<int>(settings.order); ++l)
+      for (int m = -l; m <= l; ++m) {
+        const std::size_t i = l * (l + 1) + m;
+        const double expected = prt_sh_cosine_band_factor(l) / kPi * y[i];
+        worst = std::max(worst, std::abs(baked.object.transfer[v * n2 + i] - expected));
+      }
+  }
+  std::printf("convex sphere diffuse: worst coefficient error %.3g\n", worst);
+  EXPECT_LT(worst, 0.0015);
+}
+
+TEST(SelfTransfer, ConvexSphereGlossyMatchesAQuadratureAtTiltedNormals) {
+  ShadowfieldMaterial material;
+  material.glossy = true;
+  material.brdf = separate_brdf(brdf_function(PhongBrdf{10.0, 1.0, 0.0}), {16, 4});
+  ShadowfieldFieldSettings settings = small_settings();
+  settings.transfer_rays = 4096;
+  const Baked baked = bake(test::scene_of({test::make_icosphere(1)}), settings, material);
+  const std::size_t stride = 4 * coefficients(settings.order);
+  double worst = 0.0;
+  for (std::size_t v : {0u, 5u, 20u}) {  // three normals, none along an axis
+    const glm::vec3 n = baked.object.normals[v];
+    const std::vector<double> expected =
+        glossy_transfer_reference(material.brdf, settings.order, n);
+    for (std::size_t i = 0; i < stride; ++i)
+      worst = std::max(worst, std::abs(baked.object.transfer[v * stride + i] - expected[i]));
+  }
+  std::printf("convex sphere glossy: worst error %.3g\n", worst);
+  EXPECT_LT(worst, 3e-4);
+}
+
+// The field depends on the object's shape alone: a sphere a thousand times smaller or larger,
+// far from the origin, casts the same field up to the few rays that graze its silhouette.
+TEST(OcclusionField, ScaleAndPlacementLeaveTheFieldAlone) {
+  ShadowfieldFieldSettings settings = small_settings();
+  settings.inner = 1.25f;
+  settings.field_directions = 1024;
+  const Baked unit = bake(test::scene_of({test::make_icosphere(3)}), settings);
+  for (const float scale : {1e-3f, 1e3f}) {
+    const glm::vec3 centre(scale * 50.0f, -scale * 20.0f, scale * 7.0f);
+    const Baked scaled = bake(test::scene_of({test::make_icosphere(3, scale, centre)}), settings);
+    ASSERT_EQ(scaled.object.oof.size(), unit.object.oof.size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < unit.object.oof.size(); ++i)
+      worst = std::max(worst, std::abs(double(scaled.object.oof[i]) - unit.object.oof[i]));
+    // Only rays grazing the silhouette can flip; allowed: two, each worth 4 pi / M times |y_i| < 1.
+    std::printf("scale %g: worst coefficient change %.3g\n", scale, worst);
+    EXPECT_LT(worst, 2.0 * 4.0 * kPi / settings.field_directions);
+  }
+}
+
+TEST(Fields, NonFinitePositionIsSkippedAndCounted) {
+  Scene scene = test::scene_of({test::make_plane(1.0f, 2), test::make_icosphere(1, 0.2f)});
+  scene.meshes[0].positions[0] = glm::vec3(NAN, 0.0f, 0.0f);
+  const Baked baked = bake(scene, small_settings());
+  EXPECT_EQ(baked.without_normal, 1u);
+  EXPECT_NEAR(baked.object.oof_shells.radius, std::sqrt(2.0f), 1e-6f);
+  for (float c : baked.object.oof) ASSERT_TRUE(std::isfinite(c));
+  for (float t : baked.object.transfer) ASSERT_TRUE(std::isfinite(t));
+}
+
+TEST(Fields, ExtremeSettingsStayFinite) {
+  ShadowfieldFieldSettings settings = small_settings();
+  settings.order = 6;
+  settings.field_directions = 1;
+  settings.transfer_rays = 1;
+  settings.oof_shells = 1;
+  settings.oof_face_size = 1;
+  const Baked baked = bake(test::scene_of({test::make_icosphere(1)}), settings);
+  EXPECT_EQ(baked.object.oof.size(), 6u * 36u);
+  EXPECT_EQ(baked.object.transfer.size(), baked.object.positions.size() * 36u);
+  for (float c : baked.object.oof) ASSERT_TRUE(std::isfinite(c));
+  for (float t : baked.object.transfer) ASSERT_TRUE(std::isfinite(t));
 }
 
 TEST(Fields, AnyThreadCountGivesTheSameBytes) {
