@@ -38,9 +38,9 @@ struct ShadowfieldFieldSettings {
   float inner = 0.2f;                // innermost shell / bounding radius, finite, > 0
   float outer = 8.0f;                // outermost / bounding radius, > inner when S > 1
   std::uint32_t oof_face_size = 16;  // F, 1..128: 6 F^2 points per shell
-  std::uint32_t field_directions =
-      1024;                            // M per shell point, 1..65536 (a power of two suits Sobol)
-  std::uint32_t transfer_rays = 1024;  // per vertex, 1..65536
+  // Directions per shell point (M) and per vertex, each 1..65536; powers of two suit Sobol.
+  std::uint32_t field_directions = 1024;
+  std::uint32_t transfer_rays = 1024;
   std::uint32_t seed = 0;
 };
 
