@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../render/parallel_tasks.hpp"
+#include "../render/vertex_directions.hpp"
 #include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
 
@@ -23,15 +24,6 @@ constexpr std::size_t kVerticesPerTask = 64;
 // Stream key of a vertex's directions (distinct from the reference renderer's tags, so a bake and
 // a reference with the same seed never share sample points).
 constexpr std::uint64_t kDirectionsTag = 0x5348;  // "SH"
-
-bool usable_normal(const glm::vec3& n) {
-  const float len2 = glm::dot(n, n);
-  return std::isfinite(len2) && len2 > 1e-12f;
-}
-
-bool finite(const glm::vec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 void validate(const ShTransferSettings& s) {
   if (s.order < 1 || s.order > PRT_SH_MAX_ORDER) {
@@ -58,7 +50,7 @@ struct VertexTable {
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
         const glm::vec3 p = mesh.positions[v];
         const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
-        const bool ok = usable_normal(n) && finite(p);
+        const bool ok = render::usable_normal(n) && render::finite_point(p);
         position.push_back(p);
         normal.push_back(ok ? glm::normalize(n) : glm::vec3(0.0f));
         usable.push_back(ok ? 1 : 0);
@@ -67,17 +59,6 @@ struct VertexTable {
     }
   }
   std::size_t size() const { return position.size(); }
-};
-
-// The i-th direction of a vertex: cosine-weighted about its normal.
-struct VertexDirections {
-  SampleStream stream;
-  Frame frame;
-  VertexDirections(std::uint32_t seed, std::size_t vertex, const glm::vec3& normal)
-      : stream(hash_key(seed, vertex, kDirectionsTag)), frame(normal) {}
-  glm::vec3 operator()(std::uint32_t i) const {
-    return frame.to_world(cosine_hemisphere(stream.get_2d(i, 0)));
-  }
 };
 
 class TransferBaker {
@@ -107,7 +88,7 @@ class TransferBaker {
       for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
-        const VertexDirections directions(settings_.seed, v, n);
+        const render::VertexDirections directions(settings_.seed, v, n, kDirectionsTag);
         for (std::uint32_t i = 0; i < settings_.rays; ++i) w[i] = directions(i);
         if (shadowed) {
           // Directions on the horizon get no weight; the batch marks them not visible.
@@ -144,7 +125,7 @@ class TransferBaker {
       for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
-        const VertexDirections directions(settings_.seed, v, n);
+        const render::VertexDirections directions(settings_.seed, v, n, kDirectionsTag);
         for (std::uint32_t i = 0; i < settings_.rays; ++i) w[i] = directions(i);
         // Directions on the horizon get no weight; the batch marks them not found.
         traced += batch.intersect(rays_->offset_origin(vertices_.position[v], n), n, w.data(),
