@@ -49,6 +49,8 @@ void check_object(const ShadowfieldObject& object, const char* stage) {
   for (std::uint32_t index : object.indices)
     if (index >= vertices)
       throw Error(where + "vertex index " + std::to_string(index) + " is out of range");
+  for (const glm::vec3& albedo : object.albedo)
+    if (!finite(albedo)) throw Error(where + "the object's albedo is not finite");
   const ShadowfieldMaterial& material = object.material;
   if (material.glossy && (material.brdf.terms == 0 ||
                           material.brdf.outgoing.size() !=
@@ -69,6 +71,8 @@ Sphere bounding_sphere(const ShadowfieldObject& object, const char* stage) {
     sphere.centre = glm::vec3(object.oof_shells.centre[0], object.oof_shells.centre[1],
                               object.oof_shells.centre[2]);
     sphere.radius = object.oof_shells.radius;
+    if (!finite(sphere.centre) || !std::isfinite(sphere.radius))
+      throw Error(std::string("shadowfield ") + stage + ": oof_shells' sphere is not finite");
     return sphere;
   }
   glm::vec3 lo(INFINITY), hi(-INFINITY);

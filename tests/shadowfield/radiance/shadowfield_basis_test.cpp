@@ -3,7 +3,8 @@
 // the samples against a point light's radiance written here (and zero behind a wall or below
 // the horizon), the PCA's properties (B W B^T = I, A^-1 A = I, a radiance in the span
 // reproduced, the reconstruction error of the samples equal to the singular values' tail by
-// Eckart-Young), determinism across thread counts and the errors of bad input.
+// Eckart-Young), determinism across thread counts, the extremes (one light, N = V, non-finite
+// and unused vertices) and the errors of bad input.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -244,6 +245,71 @@ TEST(Basis, IsTheSameForAnyThreadCount) {
   EXPECT_EQ(one.object.vertex_weights, three.object.vertex_weights);
 }
 
+// ---- Extremes ---------------------------------------------------------------------------------
+
+// With one light and a diffuse surface there is one sample r: the one function is r / |r|_W.
+TEST(Extremes, OneLightGivesTheSampleNormalised) {
+  const Mesh mesh = ball_on_floor();
+  ShadowfieldObject object = object_of(mesh);
+  test::set_sphere(object, glm::vec3(0.0f, 0.3f, 0.0f), 2.2f);
+  const auto rays = rays_of(mesh);
+  const ShadowfieldBasisReport report = bake_surface_basis(object, *rays, {1, 1, 3.0}, Context{});
+  const float distance = 3.0f * 2.2f;
+  const ShadowfieldRadianceSamples sample = shadowfield_radiance_samples(
+      object, *rays, shadowfield_light_positions(1, glm::vec3(0.0f, 0.3f, 0.0f), distance),
+      double(distance) * distance, Context{});
+  double norm2 = 0.0;
+  for (std::size_t v = 0; v < sample.vertices; ++v)
+    norm2 += object.vertex_weights[v] * sample.at(0, v) * sample.at(0, v);
+  ASSERT_GT(norm2, 0.0);
+  ASSERT_EQ(report.singular_values.size(), 1u);
+  EXPECT_NEAR(report.singular_values[0], std::sqrt(norm2), 1e-12 * std::sqrt(norm2));
+  double error = 0.0, largest = 0.0;
+  for (std::size_t v = 0; v < sample.vertices; ++v) {
+    const double expected = sample.at(0, v) / std::sqrt(norm2);
+    error = std::max(error, std::fabs(object.basis[v] - expected));
+    largest = std::max(largest, std::fabs(expected));
+  }
+  // Float storage: measured 2.6e-8.
+  EXPECT_LT(error / largest, 6e-8);
+}
+
+// N = V: the basis spans every radiance, so every sample is kept whole.
+TEST(Extremes, AsManyFunctionsAsVerticesKeepEverything) {
+  const Mesh plane = test::make_plane(1.0f, 2);  // 9 vertices
+  ShadowfieldObject object = object_of(plane);
+  const ShadowfieldBasisReport report =
+      bake_surface_basis(object, *rays_of(plane), {9, 64, 2.0}, Context{});
+  EXPECT_NEAR(report.energy_kept, 1.0, 1e-15);
+  const RowMajor b = basis_of(object);
+  const Eigen::MatrixXd a = b * weights_of(object).asDiagonal() * b.transpose();
+  // Float storage: measured 2.8e-8.
+  EXPECT_LT(max_distance_to_identity(inverse_of(object) * a), 7e-8);
+}
+
+// A vertex with a non-finite position and one no triangle uses weigh nothing and get 0; the
+// rest stays finite, fields included.
+TEST(Extremes, NonFiniteAndUnusedVerticesGetNothing) {
+  Mesh mesh = ball_on_floor();
+  const std::size_t broken = 5, unused = mesh.positions.size();
+  mesh.positions[broken] = glm::vec3(NAN, 0.0f, 0.0f);
+  mesh.positions.emplace_back(0.0f, 5.0f, 0.0f);
+  mesh.normals.emplace_back(0.0f, 1.0f, 0.0f);
+  ShadowfieldObject object = object_of(mesh);
+  const auto rays = rays_of(mesh);
+  bake_surface_basis(object, *rays, kSmall, Context{});
+  EXPECT_EQ(object.vertex_weights[broken], 0.0f);
+  EXPECT_EQ(object.vertex_weights[unused], 0.0f);
+  for (std::uint32_t i = 0; i < object.basis_size; ++i) {
+    EXPECT_EQ(object.basis[i * mesh.positions.size() + broken], 0.0f);
+    EXPECT_EQ(object.basis[i * mesh.positions.size() + unused], 0.0f);
+  }
+  for (float value : object.basis) ASSERT_TRUE(std::isfinite(value));
+  for (float value : object.basis_inverse) ASSERT_TRUE(std::isfinite(value));
+  bake_source_radiance_fields(object, *rays, {2, 2, 0.5f, 4.0f, 256, 0}, Context{});
+  for (float value : object.srf) ASSERT_TRUE(std::isfinite(value));
+}
+
 // ---- Errors ------------------------------------------------------------------------------------
 
 TEST(Errors, BadBasisSettingsAreNamed) {
@@ -289,6 +355,13 @@ TEST(Errors, BadObjectsAreNamed) {
   EXPECT_NE(bake([](ShadowfieldObject& o) {
               for (glm::vec3& p : o.positions) p = glm::vec3(1.0f);
             }).find("no extent"),
+            std::string::npos);
+  EXPECT_NE(bake([](ShadowfieldObject& o) { o.albedo[2].g = NAN; }).find("albedo is not finite"),
+            std::string::npos);
+  EXPECT_NE(bake([](ShadowfieldObject& o) {
+              o.oof_shells.radius = 1.0f;
+              o.oof_shells.centre[1] = INFINITY;
+            }).find("sphere is not finite"),
             std::string::npos);
 }
 
