@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Technique `shadowfield`'s source radiance fields: a diffuse sphere glowing with a constant
 // basis function is seen from outside as a uniform cap, whose SH is zonal with coefficients
-// from the integrals of Legendre polynomials (computed here), and from inside as nothing (every
-// ray reaches its back); a constant glossy BRDF glows as the diffuse sphere times its constant
-// g; the fields are the same for any thread count; bad settings and objects are named.
-// DISABLED_TeapotFigures prints the teapot's bake times, kept energy and field size
+// from the integrals of Legendre polynomials (computed here), from inside as nothing (every
+// ray reaches its back), and not at all through a blocker; a constant glossy BRDF glows as the
+// diffuse sphere times its constant g; the fields are the same for any thread count; bad settings
+// and objects are named. DISABLED_TeapotFigures prints the teapot's bake times, kept energy and
+// field size
 // (--gtest_also_run_disabled_tests).
 #include <gtest/gtest.h>
 
@@ -130,6 +131,14 @@ TEST(Srf, FromInsideAClosedSurfaceNothingGlows) {
   ShadowfieldObject object = glowing_sphere();
   bake_source_radiance_fields(object, *rays_of(unit_sphere()), {2, 2, 0.2f, 0.8f, 256, 0},
                               Context{});
+  for (float value : object.srf) ASSERT_EQ(value, 0.0f);
+}
+
+TEST(Srf, OtherGeometryBlocksButDoesNotGlow) {
+  // A closed shell around the sphere, inside the innermost SRF shell: every ray hits it first.
+  ShadowfieldObject object = glowing_sphere();
+  const auto rays = rays_of(unit_sphere(), {test::make_icosphere(2, 1.3f)});
+  bake_source_radiance_fields(object, *rays, kOutside, Context{});
   for (float value : object.srf) ASSERT_EQ(value, 0.0f);
 }
 
