@@ -255,6 +255,53 @@ TEST(ShadowfieldBlob, DecodedBytesAreTheObjectsFloats) {
   EXPECT_EQ(info.decoded_bytes, 4 * floats);
 }
 
+// The zstd sections decoded at quick validation give the same object as at full.
+TEST(ShadowfieldBlob, QuickLoadDecodesTheSameObject) {
+  const ShadowfieldObject o = sf_test_object();
+  const auto blob =
+      prt::bake::build_shadowfield_blob(o, prt::bake::quantize_shadowfield(o, 16), "");
+  Context ctx;
+  const LoadedAsset full(ctx.ctx, blob, PRT_VALIDATE_FULL),
+      quick(ctx.ctx, blob, PRT_VALIDATE_QUICK);
+  ASSERT_EQ(full.result, PRT_OK);
+  ASSERT_EQ(quick.result, PRT_OK);
+  const prt_sf_object* a = prt_internal_sf_object(full.asset);
+  const prt_sf_object* b = prt_internal_sf_object(quick.asset);
+  prt_shadowfield_info info = prt::sized<prt_shadowfield_info>();
+  ASSERT_EQ(prt_shadowfield_get_info(quick.asset, &info), PRT_OK);
+  // The object's floats are one allocation from positions to the SRF's end.
+  const std::size_t floats = std::size_t(info.decoded_bytes / 4);
+  ASSERT_EQ(b->srf + o.srf.size() - b->positions, std::ptrdiff_t(floats));
+  EXPECT_EQ(std::memcmp(a->positions, b->positions, 4 * floats), 0);
+}
+
+// One vertex, no triangle, order 2, one shell of 1 x 1 faces per grid, diffuse: each transfer
+// and basis row holds one value, so it is stored exactly.
+TEST(ShadowfieldBlob, SmallestObject) {
+  ShadowfieldObject o;
+  o.order = 2;
+  o.positions = {glm::vec3(0.5f, 0.0f, 0.0f)};
+  o.normals = {glm::vec3(0.0f, 1.0f, 0.0f)};
+  o.albedo = {glm::vec3(1.0f, 0.0f, 0.5f)};
+  o.transfer = sf_values(4, 0.1f, 1.0f);
+  o.oof_shells = prt_sf_shells{{0.5f, 0.0f, 0.0f}, 0.01f, 1.0f, 1.0f, 1, 1};
+  o.oof = sf_values(6 * 4, 0.2f, 1.0f);
+  o.basis_size = 1;
+  o.basis = {0.75f};
+  o.vertex_weights = {0.0f};
+  o.basis_inverse = {4.0f};
+  o.srf_shells = o.oof_shells;
+  o.srf = sf_values(6 * 4, 0.3f, 1.0f);
+  for (int bits : {8, 16}) {
+    const std::vector<BlockError> errors = round_trip(o, bits);
+    ASSERT_EQ(errors.size(), 4u);
+    EXPECT_EQ(errors[0].max_error, 0.0);
+    EXPECT_EQ(errors[2].max_error, 0.0);
+    EXPECT_LE(errors[1].max_budget_ratio, 1.0);
+    EXPECT_LE(errors[3].max_budget_ratio, 1.0);
+  }
+}
+
 // The writer refuses what the layout cannot hold, naming it.
 TEST(ShadowfieldBlob, WriterRefusesBadObjects) {
   auto refuses = [](ShadowfieldObject o, const char* field) {

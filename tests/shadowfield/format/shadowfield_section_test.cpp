@@ -189,6 +189,34 @@ TEST(ShadowfieldSection, SizeAndElementCount) {
   EXPECT_EQ(load_blob(two, PRT_VALIDATE_QUICK).result, PRT_ERROR_CORRUPT);
 }
 
+// Every count at its limit: the size the header implies is far beyond the 128 bytes there are,
+// and the load says which size without overflowing or allocating (quick validation: full
+// compares the vertex count with VPOS's first).
+TEST(ShadowfieldSection, LargestHeaderImpliesItsSize) {
+  const ShadowfieldObject o = sf_test_object();
+  Bytes sfld = encoded(o);
+  sfld.resize(PRT_BLOB_SFLD_HEADER_SIZE);
+  const std::uint64_t v = 0xffffffffu, n2 = 36, k = 8, g = 64, n = 64, p = 64 * 6 * 64 * 64;
+  put_u32(sfld, PRT_BLOB_SFLD_OFF_ORDER, 6);
+  put_u32(sfld, PRT_BLOB_SFLD_OFF_TERMS, std::uint32_t(k));
+  put_u32(sfld, PRT_BLOB_SFLD_OFF_VERTICES, std::uint32_t(v));
+  put_u32(sfld, PRT_BLOB_SFLD_OFF_BASIS, std::uint32_t(n));
+  put_u32(sfld, PRT_BLOB_SFLD_OFF_BRDF_GRID, std::uint32_t(g));
+  for (std::size_t grid : {PRT_BLOB_SFLD_OFF_OOF_SHELLS, PRT_BLOB_SFLD_OFF_SRF_SHELLS}) {
+    put_u32(sfld, grid + PRT_BLOB_SFLD_SHELL_OFF_SHELLS, 64);
+    put_u32(sfld, grid + PRT_BLOB_SFLD_SHELL_OFF_FACE_SIZE, 64);
+    put_f32(sfld, grid + PRT_BLOB_SFLD_SHELL_OFF_OUTER, 4.0f);
+  }
+  // SPEC §7.5 at 16 bits: Q(R, C) = 8 R + 2 C (even, so no padding).
+  auto q = [](std::uint64_t rows, std::uint64_t count) { return 8 * rows + 2 * count; };
+  const std::uint64_t size = 128 + 12 * v + 4 * k * g * g + q(k * n2, v * k * n2) + q(n2, p * n2) +
+                             q(n, n * v) + 4 * v + 4 * n * n + q(n * k * n2, n * k * p * n2);
+  const Outcome r = load_blob(sf_raw_blob(o, sfld), PRT_VALIDATE_QUICK);
+  EXPECT_EQ(r.result, PRT_ERROR_CORRUPT);
+  EXPECT_NE(r.message.find("header implies " + std::to_string(size)), std::string::npos)
+      << r.message;
+}
+
 // The writer refuses a blob without VNRM, so its section (1) is renamed to an optional unknown
 // tag afterwards.
 TEST(ShadowfieldSection, NeedsNormals) {
