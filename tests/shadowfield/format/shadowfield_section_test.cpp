@@ -6,7 +6,9 @@
 // checks the header, CORRUPT); content failures only at full validation.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -279,6 +281,25 @@ TEST(ShadowfieldSection, BlockPadding) {
   Bytes sfld = base;
   sfld[std::size_t(l.basis.payload_end) + 1] = 1;
   expect_rejected(o, sfld, PRT_ERROR_CORRUPT, "basis padding", false);
+}
+
+// The encoder's 8-bit section stored raw, and the same with a negative SRF scale, for the
+// second reader written from SPEC.md alone (tests/format/spec_reader.py; the CTest tests in
+// CMakeLists.txt run it on the files written when PRT_SHADOWFIELD_RAW_BLOB names one).
+TEST(ShadowfieldSection, RawBlobsForTheSpecReader) {
+  const ShadowfieldObject o = sf_test_object();
+  Bytes sfld = encoded(o, 8);
+  const Bytes good = sf_raw_blob(o, sfld);
+  put_f32(sfld, std::size_t(sf_layout(sfld).srf.params + 4), -1.0f);
+  const Bytes bad = sf_raw_blob(o, sfld);
+  EXPECT_EQ(load_blob(good, PRT_VALIDATE_FULL).result, PRT_OK);
+  EXPECT_EQ(load_blob(bad, PRT_VALIDATE_FULL).result, PRT_ERROR_CORRUPT);
+  const char* path = std::getenv("PRT_SHADOWFIELD_RAW_BLOB");
+  if (!path) return;
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(good.data()), std::streamsize(good.size()));
+  std::ofstream(std::string(path) + ".bad", std::ios::binary)
+      .write(reinterpret_cast<const char*>(bad.data()), std::streamsize(bad.size()));
 }
 
 }  // namespace
