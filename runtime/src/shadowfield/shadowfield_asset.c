@@ -59,22 +59,29 @@ static void decode_block(const uint8_t* p, const prt_blob_sfld_block* b, uint32_
       }
 }
 
+/* The next `count` floats from *at. */
+static float* take(float** at, uint64_t count) {
+  float* p = *at;
+  *at += count;
+  return p;
+}
+
 /* Points the object's arrays into `f` (float_count floats) in a fixed order. */
 static void lay_out(prt_sf_view* view, float* f) {
   const prt_blob_sfld_layout* l = &view->layout;
   const uint64_t v = l->vertices;
   prt_sf_object* o = &view->object;
   float* at = f;
-  o->positions = at, at += 3u * v;
-  o->normals = at, at += 3u * v;
-  o->albedo = at, at += 3u * v;
-  o->g_table = l->g_values ? at : NULL, at += l->g_values;
-  o->transfer = at, at += l->transfer.count;
-  o->oof = at, at += l->oof.count;
-  o->basis = at, at += l->basis.count;
-  o->vertex_weights = at, at += v;
-  o->basis_inverse = at, at += (uint64_t)l->basis_size * l->basis_size;
-  o->srf = at;
+  o->positions = take(&at, 3u * v);
+  o->normals = take(&at, 3u * v);
+  o->albedo = take(&at, 3u * v);
+  o->g_table = l->g_values ? take(&at, l->g_values) : NULL;
+  o->transfer = take(&at, l->transfer.count);
+  o->oof = take(&at, l->oof.count);
+  o->basis = take(&at, l->basis.count);
+  o->vertex_weights = take(&at, v);
+  o->basis_inverse = take(&at, (uint64_t)l->basis_size * l->basis_size);
+  o->srf = take(&at, l->srf.count);
 }
 
 /* Floats of the decoded object (positions, normals, albedo and weights: 10 per vertex); 0 when they
