@@ -302,6 +302,39 @@ TEST(ShadowfieldBlob, SmallestObject) {
   }
 }
 
+// The layout header's row functions (SPEC §7.5's rows) read from the section's bytes give the
+// runtime's decoded values bit for bit.
+TEST(ShadowfieldBlob, RowFunctionsGiveTheDecodedValues) {
+  const ShadowfieldObject o = sf_test_object();
+  for (int bits : {8, 16}) {
+    const auto quantized = prt::bake::quantize_shadowfield(o, bits);
+    const Bytes sfld = prt::bake::encode_sfld_section(o, quantized);
+    const prt_blob_sfld_layout l = sf_layout(sfld);
+    Context ctx;
+    const LoadedAsset a(ctx.ctx, prt::bake::build_shadowfield_blob(o, quantized, ""));
+    ASSERT_EQ(a.result, PRT_OK);
+    const prt_sf_object* d = prt_internal_sf_object(a.asset);
+    using RowFn = std::uint64_t (*)(const prt_blob_sfld_layout*, std::uint64_t);
+    const struct {
+      const prt_blob_sfld_block* block;
+      RowFn row;
+      const float* decoded;
+    } blocks[] = {{&l.transfer, prt_blob_sfld_transfer_row, d->transfer},
+                  {&l.oof, prt_blob_sfld_oof_row, d->oof},
+                  {&l.basis, prt_blob_sfld_basis_row, d->basis},
+                  {&l.srf, prt_blob_sfld_srf_row, d->srf}};
+    for (const auto& b : blocks)
+      for (std::uint64_t x = 0; x < b.block->count; ++x) {
+        const std::uint8_t* pair = sfld.data() + b.block->params + 8 * b.row(&l, x);
+        const std::uint8_t* value = sfld.data() + b.block->values + x * l.value_size;
+        const std::uint32_t q = bits == 8 ? *value : prt_le_load_u16(value);
+        const float expected =
+            prt_blob_sfld_load_f32(pair) + prt_blob_sfld_load_f32(pair + 4) * float(q);
+        ASSERT_EQ(b.decoded[x], expected) << x;
+      }
+  }
+}
+
 // The writer refuses what the layout cannot hold, naming it.
 TEST(ShadowfieldBlob, WriterRefusesBadObjects) {
   auto refuses = [](ShadowfieldObject o, const char* field) {
