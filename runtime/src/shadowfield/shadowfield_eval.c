@@ -142,16 +142,17 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
     }
 }
 
-/* field(p) = sum_ik w_ikc SRF_ik(p) at every SRF point. */
-static void source_field(const prt_sf_object* object, const float* weights, float* field) {
+/* field(p) = sum_ik w_ikc SRF_ik(p) at the SRF points [first, first + count). */
+static void source_field(const prt_sf_object* object, const float* weights, float* field,
+                         uint64_t first, uint64_t count) {
   const uint32_t n2 = object->order * object->order, terms = object->terms;
   const uint64_t points = prt_sf_point_count(&object->srf_shells);
-  memset(field, 0, (size_t)points * n2 * 3u * sizeof(float));
+  memset(field + first * n2 * 3u, 0, (size_t)count * n2 * 3u * sizeof(float));
   for (uint32_t i = 0; i < object->basis_size; ++i)
     for (uint32_t k = 0; k < terms; ++k) {
       const float* w = weights + ((size_t)i * terms + k) * 3u;
       const float* srf = object->srf + ((size_t)i * terms + k) * points * n2;
-      for (uint64_t p = 0; p < points; ++p)
+      for (uint64_t p = first; p < first + count; ++p)
         for (uint32_t c = 0; c < n2; ++c) {
           const float s = srf[p * n2 + c];
           float* out = field + (p * n2 + c) * 3u;
@@ -162,7 +163,7 @@ static void source_field(const prt_sf_object* object, const float* weights, floa
     }
 }
 
-void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
+void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
   const prt_sf_instance* source = &scene->instances[instance];
   if (!source->is_source) return;
   const prt_sf_object* object = scene->objects[source->object];
@@ -170,7 +171,24 @@ void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, 
       source->incident + (size_t)pass * object->vertex_count * object->terms * 3u;
   float* projected = source->weights + (size_t)object->basis_size * object->terms * 3u;
   basis_weights(object, incident, source->weights, projected);
-  source_field(object, source->weights, source->field);
+}
+
+uint64_t prt_sf_field_points(const prt_shadowfield_scene* scene, uint32_t instance) {
+  const prt_sf_instance* source = &scene->instances[instance];
+  if (!source->is_source) return 0u;
+  return prt_sf_point_count(&scene->objects[source->object]->srf_shells);
+}
+
+void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, uint64_t first,
+                       uint64_t count) {
+  const prt_sf_instance* source = &scene->instances[instance];
+  if (!source->is_source) return;
+  source_field(scene->objects[source->object], source->weights, source->field, first, count);
+}
+
+void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
+  prt_sf_project_weights(scene, pass, instance);
+  prt_sf_cast_field(scene, instance, 0u, prt_sf_field_points(scene, instance));
 }
 
 /* ---- Output --------------------------------------------------------------------------------- */

@@ -80,6 +80,12 @@ void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, f
 void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance,
                          uint32_t first_vertex, uint32_t vertex_count);
 void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance);
+/* prt_sf_project_instance in two steps, the second split by SRF points: the basis weights, then
+ * the field at points [first, first + count) of prt_sf_field_points (0 unless a source). */
+void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance);
+uint64_t prt_sf_field_points(const prt_shadowfield_scene* scene, uint32_t instance);
+void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, uint64_t first,
+                       uint64_t count);
 void prt_sf_output_range(const prt_shadowfield_scene* scene, uint32_t instance,
                          uint32_t through_pass, uint32_t first_vertex, uint32_t vertex_count,
                          float* out_rgb);

@@ -11,9 +11,10 @@
  *     pass 0 (direct light) ... pass B (bounce B): gather each instance's vertices, then, between
  *                                                   two passes, project each instance
  *     output (outgoing radiance per vertex towards the eye, summed over passes 0..p).
- * prt_shadowfield_shade runs all of it on the calling thread. A game's job system can instead
- * call the range functions below in that order, each stage's calls on any threads at once, with
- * a barrier between stages (a pass reads what the previous stage wrote for every instance).
+ * prt_shadowfield_shade runs all of it on the calling thread, prt_shadowfield_shade_workers on a
+ * runtime-owned pool. A game's job system can instead call the range functions below in that
+ * order, each stage's calls on any threads at once, with a barrier between stages (a pass reads
+ * what the previous stage wrote for every instance).
  *
  * Thread safety: the functions that change the scene (add, set a transform, prepare, shade,
  * destroy) need exclusive use of it; gather, project and output of one stage may run on several
@@ -25,6 +26,7 @@
 #include <prt/prt_asset.h>
 #include <prt/prt_context.h>
 #include <prt/prt_types.h>
+#include <prt/prt_workers.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -94,6 +96,13 @@ PRT_API prt_result prt_shadowfield_shade(prt_shadowfield_scene* scene, const flo
                                          const float eye[3],
                                          const prt_shadowfield_settings* settings,
                                          float* const* out_rgb);
+
+/* prt_shadowfield_shade split over the pool's threads (prt_workers.h): every stage's vertices
+ * and source-field points in contiguous chunks; bitwise the one-thread call's result. */
+PRT_API prt_result prt_shadowfield_shade_workers(prt_workers* workers, prt_shadowfield_scene* scene,
+                                                 const float* light_sh_rgb, const float eye[3],
+                                                 const prt_shadowfield_settings* settings,
+                                                 float* const* out_rgb);
 
 /* ---- The frame in stages, for a job system --------------------------------------------------
  * prepare records failures in the context; the range functions write no context (they may run

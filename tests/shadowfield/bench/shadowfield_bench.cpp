@@ -8,7 +8,8 @@
 //              per source (the source's field read at the vertex, rotated, dotted with T);
 //   Project/k: one source's basis weights and field (its cost does not depend on receivers);
 //   Frame:     a 64 x 64 floor and a 2,025-vertex glossy object (K = 4), 3 bounces, the whole
-//              frame: the teapot-on-floor budget is 16 ms on 2 cores.
+//              frame on 1 thread and on a pool of 2 (wall clock): the teapot-on-floor
+//              budget is 16 ms on 2 cores.
 // Printed, never asserted.
 #include <benchmark/benchmark.h>
 
@@ -125,9 +126,28 @@ void BM_Frame(benchmark::State& state) {
   prt_shadowfield_settings settings{};
   settings.struct_size = sizeof settings;
   settings.bounces = 3;
-  for (auto _ : state) prt_shadowfield_shade(s.scene, light.data(), kEye, &settings, out);
+  const uint32_t threads = uint32_t(state.range(0));
+  prt_workers* workers = nullptr;
+  if (threads > 1) {
+    prt_workers_desc desc{};
+    desc.struct_size = sizeof desc;
+    desc.thread_count = threads;
+    prt_workers_create(s.context, &desc, &workers);
+  }
+  for (auto _ : state) {
+    if (workers)
+      prt_shadowfield_shade_workers(workers, s.scene, light.data(), kEye, &settings, out);
+    else
+      prt_shadowfield_shade(s.scene, light.data(), kEye, &settings, out);
+  }
+  prt_workers_destroy(workers);
 }
-BENCHMARK(BM_Frame)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Frame)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace prt::test

@@ -379,5 +379,37 @@ TEST(ShadowfieldScene, TheStagesGiveTheOneCallsResult) {
   }
 }
 
+TEST(ShadowfieldScene, AWorkerPoolGivesTheOneThreadResult) {
+  BusyScene busy;
+  const std::vector<float> light = test_light(4);
+  const auto expected = busy.scene.shade(light, kNearEye, 3);
+  for (const uint32_t threads : {2u, 3u}) {
+    prt_workers_desc desc{};
+    desc.struct_size = sizeof desc;
+    desc.thread_count = threads;
+    prt_workers* workers = nullptr;
+    ASSERT_EQ(prt_workers_create(busy.scene.context, &desc, &workers), PRT_OK);
+    std::vector<std::vector<float>> out(expected.size());
+    std::vector<float*> pointers;
+    for (size_t i = 0; i < expected.size(); ++i) {
+      out[i].assign(expected[i].size(), -1.0f);
+      pointers.push_back(i == 1 ? nullptr : out[i].data());  // a skipped output stays as it was
+    }
+    prt_shadowfield_settings settings{};
+    settings.struct_size = sizeof settings;
+    settings.bounces = 3;
+    EXPECT_EQ(prt_shadowfield_shade_workers(workers, busy.scene.scene, light.data(), kNearEye,
+                                            &settings, pointers.data()),
+              PRT_OK);
+    for (size_t i = 0; i < expected.size(); ++i) {
+      if (i == 1)
+        EXPECT_EQ(out[i], std::vector<float>(expected[i].size(), -1.0f));
+      else
+        EXPECT_EQ(out[i], expected[i]) << threads << " threads, instance " << i;
+    }
+    prt_workers_destroy(workers);
+  }
+}
+
 }  // namespace
 }  // namespace prt::test
