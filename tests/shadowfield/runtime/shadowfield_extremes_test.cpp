@@ -221,7 +221,9 @@ TEST(ShadowfieldExtremes, BadArgumentsAreRefused) {
   EXPECT_EQ(prt_shadowfield_prepare(s.scene, light.data(), kEye, &settings),
             PRT_ERROR_INVALID_ARGUMENT);
 
-  EXPECT_EQ(prt_shadowfield_scene_create(s.context, 0, &s.scene), PRT_ERROR_INVALID_ARGUMENT);
+  prt_shadowfield_scene* none = s.scene;
+  EXPECT_EQ(prt_shadowfield_scene_create(s.context, 0, &none), PRT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(none, nullptr);
 }
 
 TEST(ShadowfieldExtremes, AViewFromBelowOrAtTheVertexIsFinite) {
