@@ -28,6 +28,26 @@ static int read_field(const prt_sf_shells* grid, const float* field, uint32_t wi
   return 1;
 }
 
+/* The same for a field of three colour planes (points x width floats each), into three planes
+ * of width floats. */
+static int read_planar_field(const prt_sf_shells* grid, const float* field, uint32_t width,
+                             const float p[3], float* out_planes) {
+  prt_sf_lookup lookup;
+  prt_sf_locate(grid, p, &lookup);
+  if (lookup.count == 0u) return 0;
+  const uint64_t plane = prt_sf_point_count(grid) * width;
+  memset(out_planes, 0, (size_t)width * 3u * sizeof(float));
+  for (uint32_t c = 0; c < 3u; ++c) {
+    float* out = out_planes + c * width;
+    for (uint32_t e = 0; e < lookup.count; ++e) {
+      const float w = lookup.weight[e];
+      const float* row = field + c * plane + lookup.index[e] * width;
+      for (uint32_t i = 0; i < width; ++i) out[i] += w * row[i];
+    }
+  }
+  return 1;
+}
+
 static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]) {
   for (int r = 0; r < 3; ++r)
     p[r] = pair->to_other[3 * r] * x[0] + pair->to_other[3 * r + 1] * x[1] +
@@ -80,9 +100,11 @@ static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instan
     const prt_sf_object* object = scene->objects[source->object];
     float p[3];
     point_in_other(pair, x, p);
-    if (!read_field(&object->srf_shells, source->field, n2 * 3u, p, local)) continue;
-    prt_sf_rotate_apply(order, pair->sh_rotation, local, turned, 3u);
-    for (uint32_t c = 0; c < n2 * 3u; ++c) light[c] += turned[c];
+    if (!read_planar_field(&object->srf_shells, source->field, n2, p, local)) continue;
+    for (uint32_t c = 0; c < 3u; ++c) {
+      prt_sf_rotate_apply(order, pair->sh_rotation, local + c * n2, turned, 1u);
+      for (uint32_t i = 0; i < n2; ++i) light[3u * i + c] += turned[i];
+    }
     lit = 1;
   }
   return lit;
@@ -142,25 +164,23 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
     }
 }
 
-/* field(p) = sum_ik w_ikc SRF_ik(p) at the SRF points [first, first + count). */
+/* field_c(p) = sum_ik w_ikc SRF_ik(p) at the SRF points [first, first + count): per colour, a
+ * sum of contiguous rows of the SRF, which the compiler vectorises. */
 static void source_field(const prt_sf_object* object, const float* weights, float* field,
                          uint64_t first, uint64_t count) {
   const uint32_t n2 = object->order * object->order, terms = object->terms;
   const uint64_t points = prt_sf_point_count(&object->srf_shells);
-  memset(field + first * n2 * 3u, 0, (size_t)count * n2 * 3u * sizeof(float));
-  for (uint32_t i = 0; i < object->basis_size; ++i)
-    for (uint32_t k = 0; k < terms; ++k) {
-      const float* w = weights + ((size_t)i * terms + k) * 3u;
-      const float* srf = object->srf + ((size_t)i * terms + k) * points * n2;
-      for (uint64_t p = first; p < first + count; ++p)
-        for (uint32_t c = 0; c < n2; ++c) {
-          const float s = srf[p * n2 + c];
-          float* out = field + (p * n2 + c) * 3u;
-          out[0] += w[0] * s;
-          out[1] += w[1] * s;
-          out[2] += w[2] * s;
-        }
-    }
+  const size_t length = (size_t)count * n2;
+  for (uint32_t c = 0; c < 3u; ++c) {
+    float* plane = field + ((size_t)c * points + first) * n2;
+    memset(plane, 0, length * sizeof(float));
+    for (uint32_t i = 0; i < object->basis_size; ++i)
+      for (uint32_t k = 0; k < terms; ++k) {
+        const float w = weights[((size_t)i * terms + k) * 3u + c];
+        const float* srf = object->srf + (((size_t)i * terms + k) * points + first) * n2;
+        for (size_t e = 0; e < length; ++e) plane[e] += w * srf[e];
+      }
+  }
 }
 
 void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {

@@ -38,8 +38,8 @@ typedef struct prt_sf_instance {
   /* Basis weights w_ikc of the last projected pass ([(i K + k) 3 + c]), then as much scratch. */
   float* weights;
   size_t weights_floats;
-  /* The source field of the last projected pass: sum_ik w_ikc SRF_ik(p), [(p n^2 + coef) 3 + c];
-   * NULL when the object has no basis. */
+  /* The source field of the last projected pass, sum_ik w_ikc SRF_ik(p), one plane per colour:
+   * [(c points + p) n^2 + coef]; NULL when the object has no basis. */
   float* field;
   size_t field_floats;
 
