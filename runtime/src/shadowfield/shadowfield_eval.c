@@ -79,10 +79,17 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
       memcpy(visibility, local, n2 * sizeof(float));
     }
   }
-  if (blocked)
-    prt_sf_sh_multiply_rgb(&scene->gaunt, receiver->light, visibility, light);
-  else
+  if (!blocked) {
     memcpy(light, receiver->light, (size_t)n2 * 3u * sizeof(float));
+    return;
+  }
+  for (uint32_t c = 0; c < 3u; ++c)
+    for (uint32_t k = 0; k < n2; ++k) {
+      const float* row = receiver->light_product + ((size_t)c * n2 + k) * n2;
+      float sum = 0.0f;
+      for (uint32_t j = 0; j < n2; ++j) sum += row[j] * visibility[j];
+      light[3u * k + c] = sum;
+    }
 }
 
 /* Step 3: the light reaching vertex x from every source's field of the previous pass, in the

@@ -121,21 +121,3 @@ void prt_sf_sh_multiply(const prt_sf_gaunt* gaunt, const float* a, const float* 
     out[k] = sum;
   }
 }
-
-void prt_sf_sh_multiply_rgb(const prt_sf_gaunt* gaunt, const float* a_rgb, const float* b,
-                            float* out_rgb) {
-  const uint32_t n2 = gaunt->order * gaunt->order;
-  for (uint32_t k = 0; k < n2; ++k) {
-    float r = 0.0f, g = 0.0f, bl = 0.0f;
-    for (uint32_t e = gaunt->k_start[k]; e < gaunt->k_start[k + 1u]; ++e) {
-      const float cb = gaunt->value[e] * b[gaunt->j[e]];
-      const float* a = a_rgb + 3u * gaunt->i[e];
-      r += cb * a[0];
-      g += cb * a[1];
-      bl += cb * a[2];
-    }
-    out_rgb[3u * k] = r;
-    out_rgb[3u * k + 1u] = g;
-    out_rgb[3u * k + 2u] = bl;
-  }
-}

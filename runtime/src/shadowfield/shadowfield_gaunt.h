@@ -36,8 +36,5 @@ void prt_sf_gaunt_free(const prt_allocator* allocator, prt_sf_gaunt* gaunt);
 /* out = the product of a and b (order^2 coefficients each) projected to the order; out may not
  * alias a or b. */
 void prt_sf_sh_multiply(const prt_sf_gaunt* gaunt, const float* a, const float* b, float* out);
-/* The same for RGB a (coefficient-major, 3 per coefficient) and scalar b. */
-void prt_sf_sh_multiply_rgb(const prt_sf_gaunt* gaunt, const float* a_rgb, const float* b,
-                            float* out_rgb);
 
 #endif /* PRT_RUNTIME_SHADOWFIELD_GAUNT_H */

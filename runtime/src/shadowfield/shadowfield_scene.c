@@ -49,6 +49,7 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     free_floats(allocator, instance->incident, instance->incident_floats);
     free_floats(allocator, instance->weights, instance->weights_floats);
     free_floats(allocator, instance->field, instance->field_floats);
+    free_floats(allocator, instance->light_product, instance->light_product_floats);
   }
   if (scene->pairs)
     prt_internal_free(allocator, scene->pairs, scene->pair_capacity * sizeof(prt_sf_pair));
@@ -180,7 +181,9 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
   instance->object = object;
   instance->incident_floats = (size_t)PRT_SF_PASSES * o->vertex_count * o->terms * 3u;
   instance->incident = alloc_floats(&scene->allocator, instance->incident_floats);
-  int failed = instance->incident == NULL;
+  instance->light_product_floats = (size_t)3u * n2 * n2;
+  instance->light_product = alloc_floats(&scene->allocator, instance->light_product_floats);
+  int failed = instance->incident == NULL || instance->light_product == NULL;
   if (o->basis_size > 0u) {
     instance->weights_floats = 2u * (size_t)o->basis_size * o->terms * 3u;
     instance->weights = alloc_floats(&scene->allocator, instance->weights_floats);
@@ -192,6 +195,7 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
     free_floats(&scene->allocator, instance->incident, instance->incident_floats);
     free_floats(&scene->allocator, instance->weights, instance->weights_floats);
     free_floats(&scene->allocator, instance->field, instance->field_floats);
+    free_floats(&scene->allocator, instance->light_product, instance->light_product_floats);
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield instance buffers");
   }
   scene->prepared = 0u;

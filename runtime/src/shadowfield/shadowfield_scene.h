@@ -43,6 +43,11 @@ typedef struct prt_sf_instance {
   float* field;
   size_t field_floats;
 
+  /* The triple product with the frame's light as a matrix, one plane per colour:
+   * [(c n^2 + k) n^2 + j] = sum_i C_ijk light_i,c, so that light x V = this . V. */
+  float* light_product;
+  size_t light_product_floats;
+
   /* Per frame (prepare). */
   float light[PRT_SF_MAX_COEFFS * 3u]; /* the environment in this instance's frame */
   uint32_t pair_first, pair_count;

@@ -95,17 +95,6 @@ TEST(ShadowfieldGaunt, MultiplyIsTheProjectionOfThePointwiseProduct) {
     std::printf("order %u: max |product - dense projection| %.2e (of %.2f)\n", order, worst, scale);
     // Measured up to 4.3e-5 of the scale: the midpoint rule's own error.
     EXPECT_LT(worst, 1e-4 * scale) << "order " << order;
-
-    // The RGB form is the scalar one per channel.
-    std::vector<float> a_rgb(n2 * 3), out_rgb(n2 * 3);
-    for (uint32_t i = 0; i < n2; ++i)
-      a_rgb[3 * i] = a[i], a_rgb[3 * i + 1] = 2.0f * a[i], a_rgb[3 * i + 2] = -a[i];
-    prt_sf_sh_multiply_rgb(&t.gaunt, a_rgb.data(), b.data(), out_rgb.data());
-    for (uint32_t k = 0; k < n2; ++k) {
-      EXPECT_NEAR(out_rgb[3 * k], out[k], 1e-5f);
-      EXPECT_NEAR(out_rgb[3 * k + 1], 2.0f * out[k], 2e-5f);
-      EXPECT_NEAR(out_rgb[3 * k + 2], -out[k], 1e-5f);
-    }
   }
 }
 
