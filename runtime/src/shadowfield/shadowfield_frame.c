@@ -207,6 +207,7 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
     prt_sh_rotate(scene->order, to_local, light_sh_rgb, instance->light, 3u);
     light_product(&scene->gaunt, instance->light, instance->light_product);
     instance->is_source = 0u;
+    instance->pair_first = instance->pair_count = 0u; /* find_pairs sets them only when it fills */
   }
   if (reserve_pairs(scene, find_pairs(scene, NULL)) != PRT_OK)
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield pairs");
