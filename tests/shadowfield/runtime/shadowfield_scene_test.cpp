@@ -140,6 +140,21 @@ TEST(ShadowfieldScene, ABlockerBeyondItsOuterShellIsCulled) {
   EXPECT_EQ(kept.scene.scene->pair_count, 2u);
 }
 
+TEST(ShadowfieldScene, AMovedBlockerShadowsWhereItIsNow) {
+  // Frame by frame: a closed blocker near, then moved beyond its reach, then back.
+  const std::vector<float> light = test_light(4);
+  const float near[3] = {0.0f, 1.0f, 0.0f};
+  Pair pair(std::vector<float>(16, 0.0f), near, identity_rotation());
+  const std::vector<float> open = alone(pair.receiver, light);
+  EXPECT_EQ(max_abs(pair.scene.shade(light, kFarEye, 2)[0]), 0.0);
+  const prt_shadowfield_transform far = make_transform(identity_rotation(), 0.0f, 20.0f, 0.0f);
+  ASSERT_EQ(prt_shadowfield_scene_set_transform(pair.scene.scene, 1, &far), PRT_OK);
+  EXPECT_EQ(max_difference(pair.scene.shade(light, kFarEye, 2)[0], open), 0.0);
+  const prt_shadowfield_transform back = make_transform(identity_rotation(), 0.0f, 1.0f, 0.0f);
+  ASSERT_EQ(prt_shadowfield_scene_set_transform(pair.scene.scene, 1, &back), PRT_OK);
+  EXPECT_EQ(max_abs(pair.scene.shade(light, kFarEye, 2)[0]), 0.0);
+}
+
 TEST(ShadowfieldScene, ARotatedBlockerShadowsInItsOwnFrame) {
   // OOF f(w_j) = 0.6 + 0.4 w_j.z (SH frame of the blocker) at every point: the receiver (also
   // rotated) sees L(R_i w) f(R_j^T R_i w) in its frame, projected here by a dense quadrature.
