@@ -71,7 +71,10 @@ PRT_API prt_result prt_shadowfield_scene_add_object(prt_shadowfield_scene* scene
                                                     const prt_asset* asset, uint32_t* out_object);
 
 /* Adds an instance of `object` at `transform`; *out_instance is its index (instances are
- * numbered 0, 1, ... in the order they are added). PRT_ERROR_NOT_FOUND for an unknown object,
+ * numbered 0, 1, ... in the order they are added). It allocates its frame's buffers: the light
+ * of every pass (PRT_SHADOWFIELD_MAX_BOUNCES + 1 of them) per vertex and BRDF term, and, when the
+ * object has a radiance basis, the field it casts (SRF points x order^2 RGB floats).
+ * PRT_ERROR_NOT_FOUND for an unknown object,
  * PRT_ERROR_INVALID_ARGUMENT for a bad transform, PRT_ERROR_BUFFER_TOO_SMALL when full,
  * PRT_ERROR_OUT_OF_MEMORY. */
 PRT_API prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint32_t object,
