@@ -1,0 +1,375 @@
+/* SPDX-License-Identifier: MIT */
+/* Technique `shadowfield`'s evaluation on the CPU, scalar (docs/shadowfield/design.md, "At run
+ * time", steps 2 to 4): gather a pass's incident light per receiver vertex, project a source's
+ * radiance onto its basis and cast its field, and the outgoing radiance towards the eye. */
+#include <math.h>
+#include <string.h>
+
+#include "../internal.h"
+#include "shadowfield_scene.h"
+
+#define SF_PI 3.14159265358979323846
+
+/* ---- Reading fields ------------------------------------------------------------------------- */
+
+/* The field (points x width floats) read at object-frame point p of its grid: 0 when p is
+ * beyond the outermost shell. */
+static int read_field(const prt_sf_shells* grid, const float* field, uint32_t width,
+                      const float p[3], float* out) {
+  prt_sf_lookup lookup;
+  prt_sf_locate(grid, p, &lookup);
+  if (lookup.count == 0u) return 0;
+  memset(out, 0, width * sizeof(float));
+  for (uint32_t e = 0; e < lookup.count; ++e) {
+    const float w = lookup.weight[e];
+    const float* row = field + lookup.index[e] * width;
+    for (uint32_t c = 0; c < width; ++c) out[c] += w * row[c];
+  }
+  return 1;
+}
+
+/* The same for a field of three colour planes (points x width floats each), into three planes
+ * of width floats. */
+static int read_planar_field(const prt_sf_shells* grid, const float* field, uint32_t width,
+                             const float p[3], float* out_planes) {
+  prt_sf_lookup lookup;
+  prt_sf_locate(grid, p, &lookup);
+  if (lookup.count == 0u) return 0;
+  const uint64_t plane = prt_sf_point_count(grid) * width;
+  memset(out_planes, 0, (size_t)width * 3u * sizeof(float));
+  for (uint32_t c = 0; c < 3u; ++c) {
+    float* out = out_planes + c * width;
+    for (uint32_t e = 0; e < lookup.count; ++e) {
+      const float w = lookup.weight[e];
+      const float* row = field + c * plane + lookup.index[e] * width;
+      for (uint32_t i = 0; i < width; ++i) out[i] += w * row[i];
+    }
+  }
+  return 1;
+}
+
+static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]) {
+  for (int r = 0; r < 3; ++r)
+    p[r] = pair->to_other[3 * r] * x[0] + pair->to_other[3 * r + 1] * x[1] +
+           pair->to_other[3 * r + 2] * x[2] + pair->offset[r];
+}
+
+/* ---- Gather --------------------------------------------------------------------------------- */
+
+/* Step 2: the environment at vertex x times every blocker's visibility, in the receiver's frame
+ * (RGB). */
+static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                           const float x[3], float* light) {
+  const uint32_t order = scene->order, n2 = order * order;
+  float visibility[PRT_SF_MAX_COEFFS], local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
+  int blocked = 0;
+  for (uint32_t q = 0; q < receiver->pair_count; ++q) {
+    const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
+    if (!pair->occludes) continue;
+    const prt_sf_object* blocker = scene->objects[scene->instances[pair->other].object];
+    float p[3];
+    point_in_other(pair, x, p);
+    if (!read_field(&blocker->oof_shells, blocker->oof, n2, p, local)) continue;
+    if (!blocked) {
+      prt_sf_rotate_apply(order, pair->sh_rotation, local, visibility, 1u);
+      blocked = 1;
+    } else {
+      prt_sf_rotate_apply(order, pair->sh_rotation, local, turned, 1u);
+      prt_sf_sh_multiply(&scene->gaunt, visibility, turned, local);
+      memcpy(visibility, local, n2 * sizeof(float));
+    }
+  }
+  if (!blocked) {
+    memcpy(light, receiver->light, (size_t)n2 * 3u * sizeof(float));
+    return;
+  }
+  for (uint32_t c = 0; c < 3u; ++c)
+    for (uint32_t k = 0; k < n2; ++k) {
+      const float* row = receiver->light_product + ((size_t)c * n2 + k) * n2;
+      float sum = 0.0f;
+      for (uint32_t j = 0; j < n2; ++j) sum += row[j] * visibility[j];
+      light[3u * k + c] = sum;
+    }
+}
+
+/* Step 3: the light reaching vertex x from every source's field of the previous pass, in the
+ * receiver's frame (RGB); 0 when no source reaches it. */
+static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                         const float x[3], float* light) {
+  const uint32_t order = scene->order, n2 = order * order;
+  float local[PRT_SF_MAX_COEFFS * 3u], turned[PRT_SF_MAX_COEFFS * 3u];
+  int lit = 0;
+  memset(light, 0, (size_t)n2 * 3u * sizeof(float));
+  for (uint32_t q = 0; q < receiver->pair_count; ++q) {
+    const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
+    if (!pair->lights) continue;
+    const prt_sf_instance* source = &scene->instances[pair->other];
+    const prt_sf_object* object = scene->objects[source->object];
+    float p[3];
+    point_in_other(pair, x, p);
+    if (!read_planar_field(&object->srf_shells, source->field, n2, p, local)) continue;
+    for (uint32_t c = 0; c < 3u; ++c) {
+      prt_sf_rotate_apply(order, pair->sh_rotation, local + c * n2, turned, 1u);
+      for (uint32_t i = 0; i < n2; ++i) light[3u * i + c] += turned[i];
+    }
+    lit = 1;
+  }
+  return lit;
+}
+
+void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance,
+                         uint32_t first_vertex, uint32_t vertex_count) {
+  const prt_sf_instance* receiver = &scene->instances[instance];
+  const prt_sf_object* object = scene->objects[receiver->object];
+  const uint32_t n2 = scene->order * scene->order, terms = object->terms;
+  float* incident = receiver->incident + (size_t)pass * object->vertex_count * terms * 3u;
+  float light[PRT_SF_MAX_COEFFS * 3u];
+  for (uint32_t v = first_vertex; v < first_vertex + vertex_count; ++v) {
+    const float* x = object->positions + 3u * v;
+    float* out = incident + (size_t)v * terms * 3u;
+    if (pass == 0u) {
+      shadowed_light(scene, receiver, x, light);
+    } else if (!bounced_light(scene, receiver, x, light)) {
+      memset(out, 0, terms * 3u * sizeof(float));
+      continue;
+    }
+    /* L_k(x) = T_k(x) . L */
+    for (uint32_t k = 0; k < terms; ++k) {
+      const float* transfer = object->transfer + ((size_t)v * terms + k) * n2;
+      float sum[3] = {0.0f, 0.0f, 0.0f};
+      for (uint32_t i = 0; i < n2; ++i)
+        for (uint32_t c = 0; c < 3u; ++c) sum[c] += transfer[i] * light[3u * i + c];
+      for (uint32_t c = 0; c < 3u; ++c) out[3u * k + c] = sum[c];
+    }
+  }
+}
+
+/* ---- Project -------------------------------------------------------------------------------- */
+
+/* w_ikc = (A^-1 B W r_kc)_i with r_kc(v) = albedo_c(v) L_k,c(v) of `pass`. */
+static void basis_weights(const prt_sf_object* object, const float* incident, float* weights,
+                          float* projected) {
+  const uint32_t basis = object->basis_size, terms = object->terms, width = terms * 3u;
+  const uint32_t vertices = object->vertex_count;
+  memset(projected, 0, (size_t)basis * width * sizeof(float));
+  for (uint32_t m = 0; m < basis; ++m) {
+    float* row = projected + (size_t)m * width;
+    for (uint32_t v = 0; v < vertices; ++v) {
+      const float bw = object->basis[(size_t)m * vertices + v] * object->vertex_weights[v];
+      const float* albedo = object->albedo + 3u * v;
+      const float* l = incident + (size_t)v * width;
+      for (uint32_t k = 0; k < terms; ++k)
+        for (uint32_t c = 0; c < 3u; ++c) row[3u * k + c] += bw * albedo[c] * l[3u * k + c];
+    }
+  }
+  for (uint32_t i = 0; i < basis; ++i)
+    for (uint32_t e = 0; e < width; ++e) {
+      float sum = 0.0f;
+      for (uint32_t m = 0; m < basis; ++m)
+        sum += object->basis_inverse[(size_t)i * basis + m] * projected[(size_t)m * width + e];
+      weights[(size_t)i * width + e] = sum;
+    }
+}
+
+/* field_c(p) = sum_ik w_ikc SRF_ik(p) at the SRF points [first, first + count): per colour, a
+ * sum of contiguous rows of the SRF, which the compiler vectorises. */
+static void source_field(const prt_sf_object* object, const float* weights, float* field,
+                         uint64_t first, uint64_t count) {
+  const uint32_t n2 = object->order * object->order, terms = object->terms;
+  const uint64_t points = prt_sf_point_count(&object->srf_shells);
+  const size_t length = (size_t)count * n2;
+  for (uint32_t c = 0; c < 3u; ++c) {
+    float* plane = field + ((size_t)c * points + first) * n2;
+    memset(plane, 0, length * sizeof(float));
+    for (uint32_t i = 0; i < object->basis_size; ++i)
+      for (uint32_t k = 0; k < terms; ++k) {
+        const float w = weights[((size_t)i * terms + k) * 3u + c];
+        const float* srf = object->srf + (((size_t)i * terms + k) * points + first) * n2;
+        for (size_t e = 0; e < length; ++e) plane[e] += w * srf[e];
+      }
+  }
+}
+
+void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
+  const prt_sf_instance* source = &scene->instances[instance];
+  if (!source->is_source) return;
+  const prt_sf_object* object = scene->objects[source->object];
+  const float* incident =
+      source->incident + (size_t)pass * object->vertex_count * object->terms * 3u;
+  float* projected = source->weights + (size_t)object->basis_size * object->terms * 3u;
+  basis_weights(object, incident, source->weights, projected);
+}
+
+uint64_t prt_sf_field_points(const prt_shadowfield_scene* scene, uint32_t instance) {
+  const prt_sf_instance* source = &scene->instances[instance];
+  if (!source->is_source) return 0u;
+  return prt_sf_point_count(&scene->objects[source->object]->srf_shells);
+}
+
+void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, uint64_t first,
+                       uint64_t count) {
+  const prt_sf_instance* source = &scene->instances[instance];
+  if (!source->is_source) return;
+  source_field(scene->objects[source->object], source->weights, source->field, first, count);
+}
+
+void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
+  prt_sf_project_weights(scene, pass, instance);
+  prt_sf_cast_field(scene, instance, 0u, prt_sf_field_points(scene, instance));
+}
+
+/* ---- Output --------------------------------------------------------------------------------- */
+
+void prt_sf_square_from_hemisphere(const double direction[3], double* a, double* b) {
+  const double z = direction[2] > 0.0 ? direction[2] : 0.0;
+  const double length = sqrt(direction[0] * direction[0] + direction[1] * direction[1] + z * z);
+  if (!(length > 0.0)) { /* straight below the surface: read at the normal */
+    *a = *b = 0.0;
+    return;
+  }
+  const double dz = z / length;
+  const double r = sqrt(1.0 - dz > 0.0 ? 1.0 - dz : 0.0);
+  if (r == 0.0) {
+    *a = *b = 0.0;
+    return;
+  }
+  double phi = atan2(direction[1] / length, direction[0] / length);
+  if (phi < -SF_PI / 4.0) phi += 2.0 * SF_PI;
+  const double to_square = 4.0 / SF_PI;
+  if (phi < SF_PI / 4.0) {
+    *a = r;
+    *b = phi * to_square * r;
+  } else if (phi < 3.0 * SF_PI / 4.0) {
+    *a = (SF_PI / 2.0 - phi) * to_square * r;
+    *b = r;
+  } else if (phi < 5.0 * SF_PI / 4.0) {
+    *a = -r;
+    *b = -(phi - SF_PI) * to_square * r;
+  } else {
+    *a = (phi - 3.0 * SF_PI / 2.0) * to_square * r;
+    *b = -r;
+  }
+}
+
+/* The two cells along one square axis around `coordinate` in [-1, 1] and the second's weight,
+ * clamped to the outermost centres. */
+static void axis_span(double coordinate, uint32_t size, uint32_t* first, uint32_t* second,
+                      double* weight) {
+  double at = (coordinate + 1.0) * 0.5 * size - 0.5;
+  if (!(at > 0.0)) at = 0.0;
+  if (at > size - 1.0) at = size - 1.0;
+  *first = (uint32_t)at < size - 1u ? (uint32_t)at : size - 1u;
+  *second = *first + 1u < size ? *first + 1u : size - 1u;
+  *weight = at - *first;
+}
+
+float prt_sf_outgoing_at(const prt_sf_object* object, uint32_t term, const double wo[3]) {
+  const uint32_t size = object->brdf_grid;
+  double a, b, wx, wy;
+  uint32_t x0, x1, y0, y1;
+  prt_sf_square_from_hemisphere(wo, &a, &b);
+  axis_span(a, size, &x0, &x1, &wx);
+  axis_span(b, size, &y0, &y1, &wy);
+  const float* g = object->g_table + (size_t)term * size * size;
+  return (float)((1.0 - wx) * (1.0 - wy) * g[y0 * size + x0] + wx * (1.0 - wy) * g[y0 * size + x1] +
+                 (1.0 - wx) * wy * g[y1 * size + x0] + wx * wy * g[y1 * size + x1]);
+}
+
+void prt_sf_tangent_frame(const float n[3], float t[3], float b[3]) {
+  const float sign = copysignf(1.0f, n[2]);
+  const float a = -1.0f / (sign + n[2]);
+  const float b_ = n[0] * n[1] * a;
+  t[0] = 1.0f + sign * n[0] * n[0] * a;
+  t[1] = sign * b_;
+  t[2] = -sign * n[0];
+  b[0] = b_;
+  b[1] = sign + n[1] * n[1] * a;
+  b[2] = -n[1];
+}
+
+/* The direction to the eye from object-frame vertex x, in x's tangent frame; the normal when the
+ * eye is at the vertex. */
+static void view_direction(const prt_shadowfield_scene* scene, const prt_sf_instance* instance,
+                           const float x[3], const float normal[3], double wo[3]) {
+  const float* r = instance->rotation;
+  float to_eye_world[3], to_eye[3], t[3], b[3];
+  for (int c = 0; c < 3; ++c)
+    to_eye_world[c] =
+        scene->eye[c] - instance->translation[c] -
+        instance->scale * (r[3 * c] * x[0] + r[3 * c + 1] * x[1] + r[3 * c + 2] * x[2]);
+  for (int c = 0; c < 3; ++c)
+    to_eye[c] = r[c] * to_eye_world[0] + r[3 + c] * to_eye_world[1] + r[6 + c] * to_eye_world[2];
+  prt_sf_tangent_frame(normal, t, b);
+  wo[0] = (double)t[0] * to_eye[0] + (double)t[1] * to_eye[1] + (double)t[2] * to_eye[2];
+  wo[1] = (double)b[0] * to_eye[0] + (double)b[1] * to_eye[1] + (double)b[2] * to_eye[2];
+  wo[2] =
+      (double)normal[0] * to_eye[0] + (double)normal[1] * to_eye[1] + (double)normal[2] * to_eye[2];
+  if (wo[0] == 0.0 && wo[1] == 0.0 && wo[2] == 0.0) wo[2] = 1.0;
+}
+
+void prt_sf_output_range(const prt_shadowfield_scene* scene, uint32_t instance,
+                         uint32_t through_pass, uint32_t first_vertex, uint32_t vertex_count,
+                         float* out_rgb) {
+  const prt_sf_instance* receiver = &scene->instances[instance];
+  const prt_sf_object* object = scene->objects[receiver->object];
+  const uint32_t terms = object->terms;
+  const size_t pass_floats = (size_t)object->vertex_count * terms * 3u;
+  for (uint32_t v = first_vertex; v < first_vertex + vertex_count; ++v) {
+    float g[PRT_SF_MAX_TERMS];
+    if (object->glossy) {
+      double wo[3];
+      view_direction(scene, receiver, object->positions + 3u * v, object->normals + 3u * v, wo);
+      for (uint32_t k = 0; k < terms; ++k) g[k] = prt_sf_outgoing_at(object, k, wo);
+    } else {
+      g[0] = 1.0f;
+    }
+    float sum[3] = {0.0f, 0.0f, 0.0f};
+    for (uint32_t pass = 0; pass <= through_pass; ++pass) {
+      const float* l = receiver->incident + pass * pass_floats + (size_t)v * terms * 3u;
+      for (uint32_t k = 0; k < terms; ++k)
+        for (uint32_t c = 0; c < 3u; ++c) sum[c] += g[k] * l[3u * k + c];
+    }
+    float* out = out_rgb + (size_t)(v - first_vertex) * 3u;
+    for (uint32_t c = 0; c < 3u; ++c) out[c] = object->albedo[3u * v + c] * sum[c];
+  }
+}
+
+/* ---- The stages' entry points --------------------------------------------------------------- */
+
+static int range_ok(uint32_t first, uint32_t count, uint32_t size) {
+  return first <= size && count <= size - first;
+}
+
+prt_result prt_shadowfield_gather(prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance,
+                                  uint32_t first_vertex, uint32_t vertex_count) {
+  if (!scene) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!scene->prepared) return PRT_ERROR_INVALID_OPERATION;
+  if (pass > scene->bounces || instance >= scene->instance_count ||
+      !range_ok(first_vertex, vertex_count, prt_shadowfield_instance_vertex_count(scene, instance)))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  prt_sf_gather_range(scene, pass, instance, first_vertex, vertex_count);
+  return PRT_OK;
+}
+
+prt_result prt_shadowfield_project(prt_shadowfield_scene* scene, uint32_t pass,
+                                   uint32_t first_instance, uint32_t instance_count) {
+  if (!scene) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!scene->prepared) return PRT_ERROR_INVALID_OPERATION;
+  if (pass >= scene->bounces || !range_ok(first_instance, instance_count, scene->instance_count))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  for (uint32_t i = first_instance; i < first_instance + instance_count; ++i)
+    prt_sf_project_instance(scene, pass, i);
+  return PRT_OK;
+}
+
+prt_result prt_shadowfield_output(const prt_shadowfield_scene* scene, uint32_t instance,
+                                  uint32_t through_pass, uint32_t first_vertex,
+                                  uint32_t vertex_count, float* out_rgb) {
+  if (!scene || !out_rgb) return PRT_ERROR_INVALID_ARGUMENT;
+  if (!scene->prepared) return PRT_ERROR_INVALID_OPERATION;
+  if (through_pass > scene->bounces || instance >= scene->instance_count ||
+      !range_ok(first_vertex, vertex_count, prt_shadowfield_instance_vertex_count(scene, instance)))
+    return PRT_ERROR_INVALID_ARGUMENT;
+  prt_sf_output_range(scene, instance, through_pass, first_vertex, vertex_count, out_rgb);
+  return PRT_OK;
+}

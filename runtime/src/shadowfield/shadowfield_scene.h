@@ -1,0 +1,107 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the runtime: technique `shadowfield`'s scene (prt/prt_shadowfield.h) and the
+ * evaluation of docs/shadowfield/design.md, "At run time" (shadowfield_eval.c). */
+#ifndef PRT_RUNTIME_SHADOWFIELD_SCENE_H
+#define PRT_RUNTIME_SHADOWFIELD_SCENE_H
+
+#include <prt/prt.h>
+
+#include "shadowfield_gaunt.h"
+#include "shadowfield_object.h"
+
+#define PRT_SF_MAX_COEFFS (PRT_SF_GAUNT_MAX_ORDER * PRT_SF_GAUNT_MAX_ORDER)
+/* An SH rotation up to order 6 as its band blocks: sum over l < 6 of (2l + 1)^2. */
+#define PRT_SF_ROTATION_FLOATS 286u
+#define PRT_SF_PASSES (PRT_SHADOWFIELD_MAX_BOUNCES + 1u)
+/* The most BRDF terms an object may have (the baker's default is 4). */
+#define PRT_SF_MAX_TERMS 64u
+
+/* Receiver instance i and another instance j that affects it. */
+typedef struct prt_sf_pair {
+  uint32_t other;
+  uint32_t occludes; /* within j's OOF: j shadows i */
+  uint32_t lights;   /* within j's SRF and j has a basis: j lights i */
+  float to_other[9]; /* row-major: i's local frame to j's, p = to_other x + offset */
+  float offset[3];
+  /* SH rotation from j's frame to i's (R_i^T R_j), band blocks row-major. */
+  float sh_rotation[PRT_SF_ROTATION_FLOATS];
+} prt_sf_pair;
+
+typedef struct prt_sf_instance {
+  uint32_t object;
+  float rotation[9]; /* row-major, orthonormalised */
+  float translation[3];
+  float scale;
+  /* L_k,c per pass: incident[((pass V + v) K + k) 3 + c]. */
+  float* incident;
+  size_t incident_floats;
+  /* Basis weights w_ikc of the last projected pass ([(i K + k) 3 + c]), then as much scratch. */
+  float* weights;
+  size_t weights_floats;
+  /* The source field of the last projected pass, sum_ik w_ikc SRF_ik(p), one plane per colour:
+   * [(c points + p) n^2 + coef]; NULL when the object has no basis. */
+  float* field;
+  size_t field_floats;
+
+  /* The triple product with the frame's light as a matrix, one plane per colour:
+   * [(c n^2 + k) n^2 + j] = sum_i C_ijk light_i,c, so that light x V = this . V. */
+  float* light_product;
+  size_t light_product_floats;
+
+  /* Per frame (prepare). */
+  float light[PRT_SF_MAX_COEFFS * 3u]; /* the environment in this instance's frame */
+  uint32_t pair_first, pair_count;
+  uint32_t is_source; /* some pair reads its field */
+} prt_sf_instance;
+
+struct prt_shadowfield_scene {
+  prt_context* context;
+  prt_allocator allocator;
+  uint32_t max_instances;
+  uint32_t order; /* 0 until the first object */
+  uint32_t object_count, instance_count;
+  const prt_sf_object** objects;
+  prt_sf_instance* instances;
+  prt_sf_gaunt gaunt;
+  prt_sf_pair* pairs;
+  uint32_t pair_count, pair_capacity;
+
+  /* The prepared frame. */
+  uint32_t prepared;
+  uint32_t bounces;
+  float eye[3];
+};
+
+/* The test entry and what prt_shadowfield_scene_add_object calls: adds an object read in place
+ * (it must outlive the scene). Records failures in the scene's context. */
+prt_result prt_internal_sf_scene_add_object(prt_shadowfield_scene* scene,
+                                            const prt_sf_object* object, uint32_t* out_object);
+
+/* Rotates `in` (order^2 coefficients x channels, coefficient-major) by band blocks. */
+void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, float* out,
+                         uint32_t channels);
+
+/* The evaluation's steps on valid arguments (shadowfield_eval.c). */
+void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance,
+                         uint32_t first_vertex, uint32_t vertex_count);
+void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance);
+/* prt_sf_project_instance in two steps, the second split by SRF points: the basis weights, then
+ * the field at points [first, first + count) of prt_sf_field_points (0 unless a source). */
+void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance);
+uint64_t prt_sf_field_points(const prt_shadowfield_scene* scene, uint32_t instance);
+void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, uint64_t first,
+                       uint64_t count);
+void prt_sf_output_range(const prt_shadowfield_scene* scene, uint32_t instance,
+                         uint32_t through_pass, uint32_t first_vertex, uint32_t vertex_count,
+                         float* out_rgb);
+
+/* The concentric map of a direction (z >= 0 used; below is read at the horizon) to the square
+ * [-1, 1]^2, as the baker's square_from_hemisphere. */
+void prt_sf_square_from_hemisphere(const double direction[3], double* a, double* b);
+/* Term k of the object's g table read bilinearly between cell centres at local direction wo,
+ * as the baker's SeparableBrdf::outgoing_at. */
+float prt_sf_outgoing_at(const prt_sf_object* object, uint32_t term, const double wo[3]);
+/* The tangent frame of a unit normal (Duff et al. 2017, as the baker's Frame). */
+void prt_sf_tangent_frame(const float n[3], float t[3], float b[3]);
+
+#endif /* PRT_RUNTIME_SHADOWFIELD_SCENE_H */

@@ -1,0 +1,141 @@
+/* SPDX-License-Identifier: MIT */
+/* prtkit runtime C API: technique `shadowfield`'s scene (docs/shadowfield/design.md, "At run
+ * time"): rigid objects, each baked alone, and instances of them that move every frame, shadow
+ * each other and light each other by interreflection under a low-frequency environment in SH.
+ * C99 and C++.
+ *
+ * A scene holds objects (one per baked asset) and instances (an object with a rotation R, a
+ * translation t and a uniform scale s: world = s R local + t). Every object of a scene has one SH
+ * order (the first object's; prt_shadowfield_scene_order). A frame is
+ *     prepare (light, eye, settings; pairs of instances that interact)
+ *     pass 0 (direct light) ... pass B (bounce B): gather each instance's vertices, then, between
+ *                                                   two passes, project each instance
+ *     output (outgoing radiance per vertex towards the eye, summed over passes 0..p).
+ * prt_shadowfield_shade runs all of it on the calling thread, prt_shadowfield_shade_workers on a
+ * runtime-owned pool. A game's job system can instead call the range functions below in that
+ * order, each stage's calls on any threads at once, with a barrier between stages (a pass reads
+ * what the previous stage wrote for every instance).
+ *
+ * Thread safety: the functions that change the scene (add, set a transform, prepare, shade,
+ * destroy) need exclusive use of it; gather, project and output of one stage may run on several
+ * threads at once over disjoint ranges. Objects are read, never copied: an asset must outlive the
+ * scene. */
+#ifndef PRT_SHADOWFIELD_H
+#define PRT_SHADOWFIELD_H
+
+#include <prt/prt_asset.h>
+#include <prt/prt_context.h>
+#include <prt/prt_types.h>
+#include <prt/prt_workers.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct prt_shadowfield_scene prt_shadowfield_scene;
+
+/* Light bounces between instances a frame may ask for; buffers for all of them are kept. */
+#define PRT_SHADOWFIELD_MAX_BOUNCES 8u
+#define PRT_SHADOWFIELD_DEFAULT_BOUNCES 3u
+
+/* An instance's placement: world = scale * rotation * local + translation. */
+typedef struct prt_shadowfield_transform {
+  size_t struct_size; /* set by the caller: sizeof(prt_shadowfield_transform) */
+  float rotation[9];  /* row-major proper rotation (orthonormal to 1e-3, determinant +1) */
+  float translation[3];
+  float scale; /* > 0, finite */
+} prt_shadowfield_transform;
+
+typedef struct prt_shadowfield_settings {
+  size_t struct_size; /* set by the caller: sizeof(prt_shadowfield_settings) */
+  /* Passes after the direct light, 0..PRT_SHADOWFIELD_MAX_BOUNCES. A zeroed struct gives 0
+   * bounces (direct light only); NULL settings give PRT_SHADOWFIELD_DEFAULT_BOUNCES. */
+  uint32_t bounces;
+  /* PRT_BACKEND_AUTO or PRT_BACKEND_CPU (the scalar evaluation); others are
+   * PRT_ERROR_UNSUPPORTED_BACKEND for now. */
+  prt_backend backend;
+} prt_shadowfield_settings;
+
+/* A scene on `context` (its allocator, its record of failures; it must outlive the scene) for
+ * at most max_instances instances and as many objects. PRT_ERROR_INVALID_ARGUMENT for NULL
+ * pointers or max_instances 0, PRT_ERROR_OUT_OF_MEMORY. */
+PRT_API prt_result prt_shadowfield_scene_create(prt_context* context, uint32_t max_instances,
+                                                prt_shadowfield_scene** out_scene);
+/* NULL is ignored. */
+PRT_API void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene);
+
+/* Adds the asset's shadowfield object; *out_object is its index. PRT_ERROR_NOT_FOUND when the
+ * asset has no shadowfield section, PRT_ERROR_INVALID_ARGUMENT when its SH order differs from
+ * the scene's, PRT_ERROR_BUFFER_TOO_SMALL when the scene is full. */
+PRT_API prt_result prt_shadowfield_scene_add_object(prt_shadowfield_scene* scene,
+                                                    const prt_asset* asset, uint32_t* out_object);
+
+/* Adds an instance of `object` at `transform`; *out_instance is its index (instances are
+ * numbered 0, 1, ... in the order they are added). It allocates its frame's buffers: the light
+ * of every pass (PRT_SHADOWFIELD_MAX_BOUNCES + 1 of them) per vertex and BRDF term, and, when the
+ * object has a radiance basis, the field it casts (SRF points x order^2 RGB floats).
+ * PRT_ERROR_NOT_FOUND for an unknown object,
+ * PRT_ERROR_INVALID_ARGUMENT for a bad transform, PRT_ERROR_BUFFER_TOO_SMALL when full,
+ * PRT_ERROR_OUT_OF_MEMORY. */
+PRT_API prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint32_t object,
+                                                      const prt_shadowfield_transform* transform,
+                                                      uint32_t* out_instance);
+/* Moves an instance (before prepare; a frame in progress must be prepared again). */
+PRT_API prt_result prt_shadowfield_scene_set_transform(prt_shadowfield_scene* scene,
+                                                       uint32_t instance,
+                                                       const prt_shadowfield_transform* transform);
+
+PRT_API uint32_t prt_shadowfield_scene_order(const prt_shadowfield_scene* scene);
+PRT_API uint32_t prt_shadowfield_scene_instance_count(const prt_shadowfield_scene* scene);
+/* Vertices of an instance's object; 0 for an unknown instance. */
+PRT_API uint32_t prt_shadowfield_instance_vertex_count(const prt_shadowfield_scene* scene,
+                                                       uint32_t instance);
+
+/* The whole frame on the calling thread: outgoing radiance of every instance's vertices towards
+ * `eye` (world position) under the environment light_sh_rgb (world frame, the scene's order,
+ * RGB coefficient-major as prt_sh.h). out_rgb holds one pointer per instance, each to
+ * vertex_count x 3 floats (vertex-major), or NULL to skip that instance's output. */
+PRT_API prt_result prt_shadowfield_shade(prt_shadowfield_scene* scene, const float* light_sh_rgb,
+                                         const float eye[3],
+                                         const prt_shadowfield_settings* settings,
+                                         float* const* out_rgb);
+
+/* prt_shadowfield_shade split over the pool's threads (prt_workers.h): every stage's vertices
+ * and source-field points in contiguous chunks; bitwise the one-thread call's result. */
+PRT_API prt_result prt_shadowfield_shade_workers(prt_workers* workers, prt_shadowfield_scene* scene,
+                                                 const float* light_sh_rgb, const float eye[3],
+                                                 const prt_shadowfield_settings* settings,
+                                                 float* const* out_rgb);
+
+/* ---- The frame in stages, for a job system --------------------------------------------------
+ * prepare records failures in the context; the range functions write no context (they may run
+ * on any thread) and return PRT_ERROR_INVALID_ARGUMENT for a range or pass out of bounds and
+ * PRT_ERROR_INVALID_OPERATION before prepare. */
+
+/* Rotates the light into each instance's frame and finds the pairs that interact (bounding
+ * spheres within the other's outer shell). May allocate (the pairs' rotations). */
+PRT_API prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* light_sh_rgb,
+                                           const float eye[3],
+                                           const prt_shadowfield_settings* settings);
+/* Pass `pass` (0: direct, b: bounce b, up to the prepared bounces) of the vertices
+ * [first_vertex, first_vertex + vertex_count) of `instance`. */
+PRT_API prt_result prt_shadowfield_gather(prt_shadowfield_scene* scene, uint32_t pass,
+                                          uint32_t instance, uint32_t first_vertex,
+                                          uint32_t vertex_count);
+/* After every instance's gather of `pass` and before pass + 1: the basis weights of the
+ * radiance the instances [first_instance, first_instance + instance_count) leave in `pass`,
+ * and the source field they cast from it. */
+PRT_API prt_result prt_shadowfield_project(prt_shadowfield_scene* scene, uint32_t pass,
+                                           uint32_t first_instance, uint32_t instance_count);
+/* After the last pass: the outgoing radiance towards the prepared eye of the vertices
+ * [first_vertex, first_vertex + vertex_count) of `instance` summed over passes 0..through_pass
+ * (so through_pass = b is the radiance after b bounces), into out_rgb (vertex_count x 3). */
+PRT_API prt_result prt_shadowfield_output(const prt_shadowfield_scene* scene, uint32_t instance,
+                                          uint32_t through_pass, uint32_t first_vertex,
+                                          uint32_t vertex_count, float* out_rgb);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PRT_SHADOWFIELD_H */
