@@ -119,6 +119,7 @@ struct ReferenceReport {
   double env_rotate_degrees = 0.0;  // the environment turned about world +Y (EnvMap::rotation)
   std::size_t vertices = 0, triangles = 0, dropped_triangles = 0;
   ReferenceSettings settings;
+  std::optional<glm::vec3> eye;
   unsigned threads = 1;
   bool has_vertices = false;
   VertexRadiance vertex_result;  // radiance not written, only its statistics
