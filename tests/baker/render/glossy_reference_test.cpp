@@ -253,5 +253,83 @@ TEST(GlossyReference, RejectsBadBrdfsAndParsesTheirNames) {
   }
 }
 
+// The relative RMS difference between two runs, and the noise their halves state for it.
+struct RunDifference {
+  double measured = 0.0, stated = 0.0;
+};
+RunDifference compare_runs(const VertexRadiance& a, const VertexRadiance& b) {
+  double diff_sq = 0.0, radiance_sq = 0.0;
+  for (std::size_t v = 0; v < a.radiance.size(); ++v) {
+    const glm::dvec3 d = glm::dvec3(a.radiance[v]) - glm::dvec3(b.radiance[v]);
+    diff_sq += glm::dot(d, d);
+    radiance_sq += 0.5 * (glm::dot(glm::dvec3(a.radiance[v]), glm::dvec3(a.radiance[v])) +
+                          glm::dot(glm::dvec3(b.radiance[v]), glm::dvec3(b.radiance[v])));
+  }
+  return {std::sqrt(diff_sq / radiance_sq), std::hypot(a.relative_rmse, b.relative_rmse)};
+}
+
+// Phong with exponent 0 is the constant 1/pi, and Phong with only its diffuse part is kd/pi:
+// Lambert, but estimated through the glossy path (lobe and mixture sampling, the view carried
+// from bounce to bounce). With bounces, both must agree with the Lambertian estimate within the
+// noise the two runs state. No eye: a glossy surface seen from behind reflects nothing, where
+// Lambert never reads the view.
+TEST(GlossyReference, ConstantGlossyBrdfsAgreeWithLambertWithBounces) {
+  const Scene scene = make_demo_scene();
+  const io::EnvMap sky = make_demo_sky(128);
+  ReferenceSettings settings;
+  settings.bounces = 2;
+  settings.spp = 16;
+  const ReferenceRenderer lambert(scene, sky, settings, Context{});
+  const VertexRadiance expected = lambert.render_vertices(Context{});
+  settings.seed = 1;
+  for (const char* brdf : {"phong:0", "phong:20,0,1"}) {
+    settings.brdf = parse_surface_brdf(brdf);
+    const ReferenceRenderer glossy(scene, sky, settings, Context{});
+    const RunDifference d = compare_runs(expected, glossy.render_vertices(Context{}));
+    RecordProperty(std::string(brdf) == "phong:0" ? "constant" : "diffuse_only",
+                   std::to_string(d.measured / d.stated));
+    EXPECT_GT(d.measured / d.stated, 0.9) << brdf << " " << d.measured << " " << d.stated;
+    EXPECT_LT(d.measured / d.stated, 1.1) << brdf << " " << d.measured << " " << d.stated;
+  }
+}
+
+// Two runs of a glossy scene with different seeds differ by what their halves state.
+TEST(GlossyReference, StatedNoiseMatchesTheDifferenceBetweenSeeds) {
+  const Scene scene = make_demo_scene();
+  const io::EnvMap sky = make_demo_sky(128);
+  ReferenceSettings settings;
+  settings.bounces = 1;
+  settings.spp = 32;
+  settings.brdf = SurfaceBrdf::of(GgxBrdf{0.2, 0.5});
+  const glm::vec3 eye(1.0f, 2.0f, 5.0f);
+  settings.seed = 1;
+  const ReferenceRenderer first(scene, sky, settings, Context{});
+  settings.seed = 2;
+  const ReferenceRenderer second(scene, sky, settings, Context{});
+  const RunDifference d =
+      compare_runs(first.render_vertices(Context{}, eye), second.render_vertices(Context{}, eye));
+  RecordProperty("ratio", std::to_string(d.measured / d.stated));
+  EXPECT_GT(d.measured / d.stated, 0.9) << d.measured << " " << d.stated;
+  EXPECT_LT(d.measured / d.stated, 1.1) << d.measured << " " << d.stated;
+}
+
+// An eye that is not a usable point (NaN), or that sits on a vertex, leaves the view along the
+// normal: the same bytes as no eye there.
+TEST(GlossyReference, AnEyeWithoutADirectionFallsBackToTheNormal) {
+  const Scene scene = test::scene_of({test::make_icosphere(1)});
+  const io::EnvMap sky = make_demo_sky(64);
+  ReferenceSettings settings = glossy_settings(SurfaceBrdf::of(PhongBrdf{10.0, 1.0, 0.0}), 8, 1.0f);
+  const ReferenceRenderer renderer(scene, sky, settings, Context{});
+  const VertexRadiance plain = renderer.render_vertices(Context{});
+  const VertexRadiance nan_eye = renderer.render_vertices(Context{}, glm::vec3(NAN, 0.0f, 0.0f));
+  EXPECT_EQ(std::memcmp(plain.radiance.data(), nan_eye.radiance.data(), plain.radiance.size() * 12),
+            0);
+  const glm::vec3 vertex = scene.meshes[0].positions[5];
+  const VertexRadiance on_vertex = renderer.render_vertices(Context{}, vertex);
+  EXPECT_EQ(std::memcmp(&plain.radiance[5], &on_vertex.radiance[5], 12), 0);
+  EXPECT_NE(std::memcmp(&plain.radiance[6], &on_vertex.radiance[6], 12), 0);
+  for (const glm::vec3& r : on_vertex.radiance) EXPECT_TRUE(std::isfinite(r.g));
+}
+
 }  // namespace
 }  // namespace prt::bake
