@@ -79,6 +79,7 @@ PlacedScene place_instances(const std::vector<Scene>& objects,
       placed.scene.meshes.push_back(
           placed_mesh(object_mesh, instance, material_offset[instance.object]));
       placed.instance_of_mesh.push_back(i);
+      placed.object_of_mesh.push_back(instance.object);
       vertices += object_mesh.vertex_count();
     }
   }

@@ -55,6 +55,9 @@ TEST(Instances, PlacesPositionsNormalsMaterialsAndTheVertexMap) {
   EXPECT_EQ(placed.scene.vertex_count(), 2 * sphere + object);
   EXPECT_EQ(placed.first_mesh, (std::vector<std::size_t>{0, 1, 3, 4}));
   EXPECT_EQ(placed.instance_of_mesh, (std::vector<std::size_t>{0, 1, 1, 2}));
+  EXPECT_EQ(placed.object_of_mesh, (std::vector<std::size_t>{1, 0, 0, 1}));
+  EXPECT_EQ(placed.mesh_values(std::vector<char>{'a', 'b'}),
+            (std::vector<char>{'b', 'a', 'a', 'b'}));
   // Materials: the first object's two, then the second's one.
   ASSERT_EQ(placed.scene.materials.size(), 3u);
   EXPECT_EQ(placed.scene.meshes[0].material, 2);
@@ -109,12 +112,15 @@ TEST(Instances, RejectsBadInstances) {
   EXPECT_EQ(place_instances(objects, {}).scene.vertex_count(), 0u);
 }
 
-// Light from a distant environment does not care where an object stands or how large it is, and
-// turning both the object and the environment by R turns everything it sees: a glossy instance
-// turned about +Y, moved and scaled, seen from the correspondingly placed eye, under the map
-// turned by the same R, has the radiance of the object alone under the map as it is.
-TEST(Instances, TurnedInstanceUnderTurnedEnvironmentMatchesTheObject) {
-  const std::vector<Scene> objects = {plane_and_sphere()};
+// Light from a distant environment does not care where objects stand or how large they are, and
+// turning both them and the environment by R turns everything they see: two instances (a glossy
+// sphere over a glossy plane, each its own object with its own BRDF) turned together about +Y,
+// moved and scaled, seen from the correspondingly placed eye, under the map turned by the same R,
+// have the radiance of the objects in place under the map as it is.
+TEST(Instances, TurnedInstancesUnderTurnedEnvironmentMatchTheObjects) {
+  const Scene both = plane_and_sphere();
+  const std::vector<Scene> objects = {test::scene_of({both.meshes[0]}),
+                                      test::scene_of({both.meshes[1]})};
   const io::EnvMap sky = make_demo_sky(128);
   io::EnvMap turned_sky = make_demo_sky(128);
   const double degrees = 70.0;
@@ -123,8 +129,12 @@ TEST(Instances, TurnedInstanceUnderTurnedEnvironmentMatchesTheObject) {
   turned.rotation = io::rotation_about_y(degrees);
   turned.translation = glm::vec3(5.0f, -2.0f, 3.0f);
   turned.scale = 2.5f;
-  const PlacedScene alone = place_instances(objects, {Instance{}});
-  const PlacedScene moved = place_instances(objects, {turned});
+  Instance turned_sphere = turned;
+  turned_sphere.object = 1;
+  Instance sphere;
+  sphere.object = 1;
+  const PlacedScene in_place = place_instances(objects, {Instance{}, sphere});
+  const PlacedScene moved = place_instances(objects, {turned, turned_sphere});
   const glm::vec3 eye(0.5f, 2.0f, 3.0f);
 
   ReferenceSettings settings;
@@ -132,28 +142,36 @@ TEST(Instances, TurnedInstanceUnderTurnedEnvironmentMatchesTheObject) {
   settings.spp = 256;
   settings.override_albedo = true;
   settings.albedo = glm::vec3(0.7f);
-  settings.brdf = SurfaceBrdf::of(PhongBrdf{10.0, 0.6, 0.3});
-  const ReferenceRenderer first(alone.scene, sky, settings, Context{});
+  const std::vector<SurfaceBrdf> object_brdfs = {SurfaceBrdf::of(GgxBrdf{0.2, 0.5}),
+                                                 SurfaceBrdf::of(PhongBrdf{10.0, 0.6, 0.3})};
+  settings.mesh_brdfs = in_place.mesh_values(object_brdfs);
+  const ReferenceRenderer first(in_place.scene, sky, settings, Context{});
   settings.seed = 1;
+  settings.mesh_brdfs = moved.mesh_values(object_brdfs);
   const ReferenceRenderer second(moved.scene, turned_sky, settings, Context{});
   const VertexRadiance a = first.render_vertices(Context{}, eye);
   const VertexRadiance b = second.render_vertices(Context{}, turned.place(eye));
-  const std::vector<glm::vec3> b_object = moved.instance_values(b.radiance, 0);
-  ASSERT_EQ(a.radiance.size(), b_object.size());
 
   double diff_sq = 0.0, radiance_sq = 0.0;
-  for (std::size_t v = 0; v < a.radiance.size(); ++v) {
-    const glm::dvec3 d = glm::dvec3(a.radiance[v]) - glm::dvec3(b_object[v]);
-    diff_sq += glm::dot(d, d);
-    radiance_sq += glm::dot(glm::dvec3(a.radiance[v]), glm::dvec3(a.radiance[v]));
+  for (std::size_t instance = 0; instance < 2; ++instance) {
+    const std::vector<glm::vec3> expected = in_place.instance_values(a.radiance, instance);
+    const std::vector<glm::vec3> found = moved.instance_values(b.radiance, instance);
+    ASSERT_EQ(expected.size(), objects[instance].vertex_count());
+    ASSERT_EQ(found.size(), expected.size());
+    for (std::size_t v = 0; v < expected.size(); ++v) {
+      const glm::dvec3 d = glm::dvec3(expected[v]) - glm::dvec3(found[v]);
+      diff_sq += glm::dot(d, d);
+      radiance_sq += glm::dot(glm::dvec3(expected[v]), glm::dvec3(expected[v]));
+    }
   }
   const double measured = std::sqrt(diff_sq / radiance_sq);
-  // Two independent estimates differ by the root sum of squares of their stated noise.
+  // Two independent estimates differ by the root sum of squares of their stated noise. A few
+  // vertices at the sun's shadow edges dominate both, so the ratio measured / stated spreads
+  // widely over seeds (0.7-1.4 over nine); turning the map the wrong way makes it about 90.
   const double stated = std::hypot(a.relative_rmse, b.relative_rmse);
-  RecordProperty("measured", std::to_string(measured));
-  RecordProperty("stated", std::to_string(stated));
-  EXPECT_LT(measured, 1.5 * stated) << "measured " << measured << " stated " << stated;
-  EXPECT_GT(measured, 0.5 * stated) << "measured " << measured << " stated " << stated;
+  RecordProperty("ratio", std::to_string(measured / stated));
+  EXPECT_LT(measured, 2.0 * stated) << "measured " << measured << " stated " << stated;
+  EXPECT_GT(measured, 0.4 * stated) << "measured " << measured << " stated " << stated;
 }
 
 }  // namespace

@@ -40,11 +40,20 @@ struct PlacedScene {
   std::vector<std::size_t> first_vertex;
   // first_mesh[i]: the world mesh of instance i's first object mesh (same layout), plus the total.
   std::vector<std::size_t> first_mesh;
-  // instance_of_mesh[m]: the instance world mesh m belongs to.
+  // instance_of_mesh[m], object_of_mesh[m]: the instance world mesh m belongs to, and its object.
   std::vector<std::size_t> instance_of_mesh;
+  std::vector<std::size_t> object_of_mesh;
 
   std::size_t world_vertex(std::size_t instance, std::size_t object_vertex) const {
     return first_vertex[instance] + object_vertex;
+  }
+  // A per-object value (e.g. a BRDF) for every world mesh, e.g. ReferenceSettings::mesh_brdfs.
+  template <typename T>
+  std::vector<T> mesh_values(const std::vector<T>& per_object) const {
+    std::vector<T> values;
+    values.reserve(object_of_mesh.size());
+    for (const std::size_t object : object_of_mesh) values.push_back(per_object.at(object));
+    return values;
   }
   // The slice of a per-vertex array (Scene order) that belongs to `instance`, in its object's
   // vertex order.
