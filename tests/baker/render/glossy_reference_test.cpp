@@ -75,7 +75,7 @@ ReferenceSettings glossy_settings(const SurfaceBrdf& brdf, std::uint32_t spp, fl
 struct GlossyCase {
   const char* name;
   SurfaceBrdf brdf;
-  double tolerance;  // absolute, on radiance: about 3x the largest error measured at 1024 spp
+  double tolerance;
 };
 
 // White furnace: a closed convex sphere under radiance 1 never sees itself, so each vertex
@@ -111,9 +111,11 @@ TEST_P(GlossyFurnace, EveryVertexReflectsTheDirectionalAlbedoAtItsViewAngle) {
 
 INSTANTIATE_TEST_SUITE_P(
     Models, GlossyFurnace,
+    // Tolerances, absolute on radiance: 2-4x the largest error over the vertices checked with
+    // this seed, 1.5-2x the largest over a few other seeds (docs/reference-renderer.md).
     ::testing::Values(GlossyCase{"phong10", SurfaceBrdf::of(PhongBrdf{10.0, 1.0, 0.0}), 0.0025},
                       GlossyCase{"phong1000", SurfaceBrdf::of(PhongBrdf{1000.0, 1.0, 0.0}), 0.003},
-                      GlossyCase{"ggx0.3", SurfaceBrdf::of(GgxBrdf{0.3, 0.5}), 0.002}),
+                      GlossyCase{"ggx0.3", SurfaceBrdf::of(GgxBrdf{0.3, 0.5}), 0.003}),
     [](const auto& info) {
       std::string name = info.param.name;
       for (char& ch : name) ch = ch == '.' ? '_' : ch;
@@ -149,15 +151,17 @@ TEST(GlossyReference, PlaneUnderADiscLightReflectsTheIntegralOfTheBrdfOverTheDis
   const Scene scene = test::scene_of({test::make_plane(1.0f, 4)});
   const glm::vec3 eye = 1000.0f * glm::vec3(-centre.x, centre.y, 0.0f);
   const float rho = 0.8f;
+  // Tolerances on the largest relative error over the vertices: 2-3x what this seed gives,
+  // 1.8-2x the largest over a few other seeds (docs/reference-renderer.md).
   const GlossyCase cases[] = {
-      {"phong100", SurfaceBrdf::of(PhongBrdf{100.0, 1.0, 0.0}), 0.0},
-      {"ggx0_3", SurfaceBrdf::of(GgxBrdf{0.3, 0.04}), 0.0},
+      {"phong100", SurfaceBrdf::of(PhongBrdf{100.0, 1.0, 0.0}), 0.01},
+      {"ggx0_3", SurfaceBrdf::of(GgxBrdf{0.3, 0.04}), 0.015},
   };
   for (const GlossyCase& c : cases) {
     const ReferenceRenderer renderer(scene, env, glossy_settings(c.brdf, 1024, rho), Context{});
     const VertexRadiance result = renderer.render_vertices(Context{}, eye);
     const Mesh& mesh = scene.meshes[0];
-    double largest = 0.0;
+    double largest = 0.0, mean = 0.0;  // relative errors
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       // The plane's normal is +Y: local (x, y, z) = world (x, -z, y) keeps a right-handed frame.
       auto local = [](const glm::dvec3& d) { return glm::dvec3(d.x, -d.z, d.y); };
@@ -175,9 +179,13 @@ TEST(GlossyReference, PlaneUnderADiscLightReflectsTheIntegralOfTheBrdfOverTheDis
       }
       const double expected = rho * sum;
       largest = std::max(largest, std::abs(result.radiance[v].g / expected - 1.0));
+      mean += (result.radiance[v].g / expected - 1.0) / mesh.vertex_count();
     }
     RecordProperty(std::string(c.name) + "_largest_relative_error", std::to_string(largest));
-    EXPECT_LT(largest, 0.01) << c.name;
+    RecordProperty(std::string(c.name) + "_mean_relative_error", std::to_string(mean));
+    EXPECT_LT(largest, c.tolerance) << c.name;
+    // Over seeds and map sizes the mean stays within about 0.1 %: no bias.
+    EXPECT_LT(std::abs(mean), 0.003) << c.name;
   }
 }
 
