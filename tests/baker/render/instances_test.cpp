@@ -167,7 +167,7 @@ TEST(Instances, TurnedInstancesUnderTurnedEnvironmentMatchTheObjects) {
   const double measured = std::sqrt(diff_sq / radiance_sq);
   // Two independent estimates differ by the root sum of squares of their stated noise. A few
   // vertices at the sun's shadow edges dominate both, so the ratio measured / stated spreads
-  // widely over seeds (0.7-1.4 over nine); turning the map the wrong way makes it about 90.
+  // widely over seeds (docs/reference-renderer.md); a wrong turn makes it far larger.
   const double stated = std::hypot(a.relative_rmse, b.relative_rmse);
   RecordProperty("ratio", std::to_string(measured / stated));
   EXPECT_LT(measured, 2.0 * stated) << "measured " << measured << " stated " << stated;
