@@ -78,13 +78,16 @@ TEST(ReferenceCommand, GlossyFurnaceWithAnEyeThroughTheCommandLine) {
   const fs::path dir = output_dir();
   const Mesh sphere = test::make_icosphere(2, 1.5f);
   write_obj(sphere, dir / "glossy_sphere.obj");
-  const fs::path npy = dir / "glossy_sphere.npy", report = dir / "glossy_report.json";
+  const fs::path npy = dir / "glossy_sphere.npy", report = dir / "glossy_report.json",
+                 image = dir / "glossy_sphere.hdr";
   fs::remove(npy);
+  fs::remove(image);
   const glm::vec3 eye(1.0f, 2.0f, 6.0f);
   const prt_test::CommandResult r =
       run("reference " + quoted(dir / "glossy_sphere.obj") +
           " --albedo 0.8,0.8,0.8 --brdf phong:0 --eye 1,2,6 --spp 1024 --vertex-out " +
-          quoted(npy) + " --report " + quoted(report) + " --quiet");
+          quoted(npy) + " --report " + quoted(report) + " --image-out " + quoted(image) +
+          " --image-size 16x12 --image-spp 4 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const prt_test::NpyArray values = prt_test::read_npy_f32(npy);
   ASSERT_EQ(values.rows, sphere.vertex_count());
@@ -104,6 +107,7 @@ TEST(ReferenceCommand, GlossyFurnaceWithAnEyeThroughTheCommandLine) {
   const std::string json = prt_test::read_text(report);
   EXPECT_NE(json.find("\"phong:0,1,0\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"eye\""), std::string::npos) << json;
+  EXPECT_TRUE(fs::exists(image));  // seen from the eye
 }
 
 TEST(ReferenceCommand, WritesPngAndHdrImages) {
