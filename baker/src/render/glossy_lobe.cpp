@@ -87,21 +87,23 @@ double GlossyLobe::lobe_pdf(const glm::dvec3& w) const {
   return ggx_distribution(brdf_.ggx.alpha, h.z) * h.z / (4.0 * cos_oh);
 }
 
-glm::vec3 GlossyLobe::sample(const glm::vec2& u) const {
+GlossyLobe::Sample GlossyLobe::sample(const glm::vec2& u) const {
   const double q = lobe_share_;
   if (u.x < q) {
     const double ux = std::min(u.x / q, 1.0 - 1e-12);
-    return to_world(sample_lobe(glm::dvec2(ux, u.y)));
+    return {to_world(sample_lobe(glm::dvec2(ux, u.y))), true};
   }
   const double ux = (u.x - q) / (1.0 - q);
   const glm::vec3 local = cosine_hemisphere(glm::vec2(static_cast<float>(ux), u.y));
-  return to_world(glm::dvec3(local));
+  return {to_world(glm::dvec3(local)), false};
 }
 
-double GlossyLobe::pdf(const glm::vec3& w) const {
+GlossyLobe::Densities GlossyLobe::densities(const glm::vec3& w) const {
   const glm::dvec3 local = to_local(w);
-  const double cosine = local.z > 0.0 ? local.z / kPi : 0.0;
-  return (1.0 - lobe_share_) * cosine + (lobe_share_ > 0.0 ? lobe_share_ * lobe_pdf(local) : 0.0);
+  Densities d;
+  d.cosine = local.z > 0.0 ? (1.0 - lobe_share_) * local.z / kPi : 0.0;
+  d.lobe = lobe_share_ > 0.0 ? lobe_share_ * lobe_pdf(local) : 0.0;
+  return d;
 }
 
 }  // namespace prt::bake::render

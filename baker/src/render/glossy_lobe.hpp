@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// A glossy BRDF at one path vertex: its exact value and the sampling of its BRDF strategy, a
-// mixture of cosine-weighted and lobe sampling (private header).
+// A glossy BRDF at one path vertex: its exact value, and its two sampling strategies,
+// cosine-weighted and lobe sampling, picked at random for each sample (private header).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -18,12 +18,22 @@ class GlossyLobe {
   bool visible() const { return outgoing_.z > 0.0; }
   // f(w, wo) of shadowfield_brdf.hpp, w unit in world space (no albedo, no cosine).
   double f(const glm::vec3& w) const;
-  // A direction of the BRDF strategy from u in [0,1)^2: lobe sampling with probability
-  // lobe_share(), else cosine-weighted (u.x picks the strategy and is rescaled, so the point's
-  // stratification carries over). It may lie below the horizon (then f is 0 there).
-  glm::vec3 sample(const glm::vec2& u) const;
-  // The strategy's density in solid angle at w: (1 - q) p_cos(w) + q p_lobe(w).
-  double pdf(const glm::vec3& w) const;
+  // The BRDF's two sampling strategies, as one sample: lobe sampling with probability
+  // q = lobe_share(), else cosine-weighted (u.x picks the strategy and is rescaled, so the
+  // point's stratification carries over). The direction may lie below the horizon (then f is 0
+  // there).
+  struct Sample {
+    glm::vec3 direction;
+    bool from_lobe = false;
+  };
+  Sample sample(const glm::vec2& u) const;
+  // Each strategy's density in solid angle at w times its probability of being picked:
+  // (1 - q) p_cos(w) and q p_lobe(w). Their sum is the density of sample()'s direction.
+  struct Densities {
+    double cosine = 0.0, lobe = 0.0;
+    double sum() const { return cosine + lobe; }
+  };
+  Densities densities(const glm::vec3& w) const;
   double lobe_share() const { return lobe_share_; }
 
  private:

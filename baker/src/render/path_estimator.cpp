@@ -21,6 +21,12 @@ float power_heuristic(float a, float b) {
   return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
+// The same against two others (the three strategies of a glossy surface), in double.
+double power_heuristic(double a, double b, double c) {
+  const double a2 = a * a;
+  return a2 > 0.0 ? a2 / (a2 + b * b + c * c) : 0.0;
+}
+
 }  // namespace
 
 PathEstimator::PathEstimator(const Scene& scene, const EmbreeScene& rays, const io::EnvMap& env,
@@ -137,7 +143,7 @@ PathEstimator::Step PathEstimator::glossy_step(const SurfacePoint& x, const Samp
     return at_vertex || glm::dot(w, x.geometric_normal) > 0.0f;
   };
 
-  // Strategy 1: the environment's importance distribution, against the BRDF strategy's density.
+  // Strategy 1: the environment's importance distribution.
   if (env_distribution_.valid()) {
     float env_pdf = 0.0f;
     const glm::vec3 w = env_distribution_.sample(stream.get_2d(index, pair), &env_pdf);
@@ -146,25 +152,30 @@ PathEstimator::Step PathEstimator::glossy_step(const SurfacePoint& x, const Samp
     if (f > 0.0) {
       ++*rays;
       if (!rays_.occluded(origin, w)) {
-        const double weight = power_heuristic(env_pdf, static_cast<float>(lobe.pdf(w)));
+        const GlossyLobe::Densities d = lobe.densities(w);
+        const double weight = power_heuristic(env_pdf, d.cosine, d.lobe);
         *radiance += *throughput * x.albedo * env_.radiance(w) *
                      static_cast<float>(f * cos_w / env_pdf * weight);
       }
     }
   }
 
-  // Strategies 2 and 3: cosine or lobe sampling, one mixture sample; continues the path.
-  const glm::vec3 w = lobe.sample(stream.get_2d(index, pair + 1));
+  // Strategies 2 and 3: cosine or lobe sampling, one picked at random; continues the path.
+  const GlossyLobe::Sample sample = lobe.sample(stream.get_2d(index, pair + 1));
+  const glm::vec3 w = sample.direction;
   const float cos_w = glm::dot(x.normal, w);
   if (!(cos_w > 0.0f) || !leaves_surface(w)) return Step::Stop;
-  const double pdf = lobe.pdf(w), f = lobe.f(w);
-  if (!(pdf > 0.0) || !(f > 0.0)) return Step::Stop;
-  const glm::vec3 carried = x.albedo * static_cast<float>(f * cos_w / pdf);
+  const GlossyLobe::Densities d = lobe.densities(w);
+  const double f = lobe.f(w), picked = sample.from_lobe ? d.lobe : d.cosine;
+  if (!(picked > 0.0) || !(f > 0.0)) return Step::Stop;
+  // Light from the environment: the one-sample estimate of the picked strategy, weighted by the
+  // power heuristic over all three.
   auto escaped = [&] {
-    const float weight = env_distribution_.valid()
-                             ? power_heuristic(static_cast<float>(pdf), env_distribution_.pdf(w))
-                             : 1.0f;
-    return *throughput * carried * env_.radiance(w) * weight;
+    const double env_pdf = env_distribution_.valid() ? env_distribution_.pdf(w) : 0.0;
+    const double weight = sample.from_lobe ? power_heuristic(d.lobe, d.cosine, env_pdf)
+                                           : power_heuristic(d.cosine, d.lobe, env_pdf);
+    return *throughput * x.albedo * env_.radiance(w) *
+           static_cast<float>(f * cos_w / picked * weight);
   };
   ++*rays;
   if (last) {
@@ -176,7 +187,9 @@ PathEstimator::Step PathEstimator::glossy_step(const SurfacePoint& x, const Samp
     *radiance += escaped();
     return Step::Stop;
   }
-  *throughput *= carried;
+  // Light from other surfaces has only these two strategies: the path goes on with the density
+  // of the direction whichever strategy picked it (their balance heuristic).
+  *throughput *= x.albedo * static_cast<float>(f * cos_w / d.sum());
   if (*throughput == glm::vec3(0.0f)) return Step::Stop;
   *next = surface_at(hit, w);
   return Step::Continue;

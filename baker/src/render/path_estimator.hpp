@@ -56,8 +56,8 @@ class PathEstimator {
   // How a path vertex ends its step: the path goes on from `next` (along -next.outgoing), or
   // stops.
   enum class Step { Continue, Stop };
-  // One path vertex's two strategies on a Lambertian or a glossy surface: adds what reaches the
-  // viewer to *radiance, scales *throughput and fills *next when the path goes on.
+  // One path vertex on a Lambertian surface (two strategies) or a glossy one (three): adds what
+  // reaches the viewer to *radiance, scales *throughput and fills *next when the path goes on.
   Step lambert_step(const SurfacePoint& x, const SampleStream& stream, std::uint32_t index,
                     std::uint32_t pair, bool last, glm::vec3* throughput, glm::vec3* radiance,
                     SurfacePoint* next, std::uint64_t* rays) const;

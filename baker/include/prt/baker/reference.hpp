@@ -9,9 +9,9 @@
 // f = 1/pi (Lambert) or an exact glossy BRDF (shadowfield_brdf.hpp), where L_in is the
 // environment where the ray escapes and, for up to `bounces` indirect bounces, the outgoing
 // radiance of the surface it hits towards x. Each path vertex takes one environment sample
-// (importance sampled by luminance) and one BRDF sample (cosine-weighted; on a glossy surface a
-// mixture of cosine and lobe sampling), combined with the power heuristic (multiple importance
-// sampling, Veach 1997). Samples come from Owen-scrambled Sobol streams (sampling.hpp) keyed by a
+// (importance sampled by luminance) and one BRDF sample (cosine-weighted; on a glossy surface
+// cosine or lobe sampling, picked at random), combined with the power heuristic (multiple
+// importance sampling, Veach 1997). Samples come from Owen-scrambled Sobol streams (sampling.hpp) keyed by a
 // hash of the seed and the vertex or pixel index, so results are deterministic for a seed
 // whatever the thread count.
 #pragma once
