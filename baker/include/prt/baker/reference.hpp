@@ -11,9 +11,9 @@
 // radiance of the surface it hits towards x. Each path vertex takes one environment sample
 // (importance sampled by luminance) and one BRDF sample (cosine-weighted; on a glossy surface
 // cosine or lobe sampling, picked at random), combined with the power heuristic (multiple
-// importance sampling, Veach 1997). Samples come from Owen-scrambled Sobol streams (sampling.hpp) keyed by a
-// hash of the seed and the vertex or pixel index, so results are deterministic for a seed
-// whatever the thread count.
+// importance sampling, Veach 1997). Samples come from Owen-scrambled Sobol streams
+// (sampling.hpp) keyed by a hash of the seed and the vertex or pixel index, so results are
+// deterministic for a seed whatever the thread count.
 #pragma once
 
 #include <cstdint>
