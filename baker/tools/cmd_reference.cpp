@@ -3,8 +3,10 @@
 // camera image) every technique is measured against. Parses options and reports; the work is in
 // prt/baker/reference.hpp.
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,7 +19,7 @@ namespace prt::bake::cli {
 namespace {
 
 struct ReferenceOptions {
-  std::string scene, env, env_mapping = "auto", albedo, vertex_out, report;
+  std::string scene, env, env_mapping = "auto", albedo, vertex_out, report, brdf = "lambert", eye;
   std::vector<std::string> image_outs;  // one render, written to each (.png and/or .hdr)
   std::string image_size = "640x480";
   ReferenceSettings settings;
@@ -35,6 +37,27 @@ void parse_image_size(const std::string& text, int* width, int* height) {
   }
 }
 
+glm::vec3 parse_eye(const std::string& text) {
+  glm::vec3 p;
+  char comma1 = 0, comma2 = 0, rest = 0;
+  std::istringstream in(text);
+  if (!(in >> p.x >> comma1 >> p.y >> comma2 >> p.z) || comma1 != ',' || comma2 != ',' ||
+      (in >> rest) || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    throw Error("--eye: expected x,y,z (e.g. 0,1,5), got '" + text + "'");
+  }
+  return p;
+}
+
+// The image's camera: from the eye at the scene's centre when there is one, else framing it.
+io::Camera image_camera(const EmbreeScene& rays, const std::optional<glm::vec3>& eye,
+                        float aspect) {
+  const glm::vec3 centre = 0.5f * (rays.bounds_lo() + rays.bounds_hi());
+  if (eye && glm::length(*eye - centre) > 0.0f) {
+    return io::Camera::look_at(*eye, centre, 40.0f, aspect);
+  }
+  return io::Camera::auto_frame(rays.bounds_lo(), rays.bounds_hi(), aspect);
+}
+
 std::string join(const std::vector<std::string>& paths) {
   std::string text;
   for (const std::string& path : paths) text += (text.empty() ? "" : ", ") + path;
@@ -48,6 +71,9 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
     settings.override_albedo = true;
     settings.albedo = parse_albedo(options.albedo);
   }
+  settings.brdf = parse_surface_brdf(options.brdf);
+  std::optional<glm::vec3> eye;
+  if (!options.eye.empty()) eye = parse_eye(options.eye);
   int width = 0, height = 0;
   parse_image_size(options.image_size, &width, &height);
   const io::EnvMapping mapping = io::parse_env_mapping(options.env_mapping);
@@ -69,11 +95,12 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
   report.triangles = scene.triangle_count();
   report.dropped_triangles = renderer.embree_scene().dropped_triangles();
   report.settings = settings;
+  report.eye = eye;
   report.threads = ctx.thread_count();
 
   const bool want_vertices = !options.vertex_out.empty() || options.image_outs.empty();
   if (want_vertices) {
-    VertexRadiance result = renderer.render_vertices(ctx);
+    VertexRadiance result = renderer.render_vertices(ctx, eye);
     ctx.info(std::to_string(scene.vertex_count()) + " vertices, " + std::to_string(settings.spp) +
              " spp, " + std::to_string(settings.bounces) + " bounces: " +
              format("estimated relative RMSE %.3f %% (two independent halves); ",
@@ -89,9 +116,8 @@ void run_reference(const ReferenceOptions& options, const CommandEnv& env) {
     report.vertex_result = std::move(result);
   }
   if (!options.image_outs.empty()) {
-    const EmbreeScene& rays = renderer.embree_scene();
-    const io::Camera camera = io::Camera::auto_frame(rays.bounds_lo(), rays.bounds_hi(),
-                                                     static_cast<float>(width) / height);
+    const io::Camera camera =
+        image_camera(renderer.embree_scene(), eye, static_cast<float>(width) / height);
     const io::LinearImage image =
         renderer.render_image(camera, width, height, ctx, &report.image_stats);
     const float ev = options.exposure_given ? options.exposure_ev : io::auto_exposure_ev(image);
@@ -130,6 +156,13 @@ void add_reference_command(CLI::App& app, CommandEnv& env) {
   cmd->add_option("--albedo", options->albedo,
                   "Diffuse albedo r,g,b for every surface "
                   "(default: from the materials)");
+  cmd->add_option("--brdf", options->brdf,
+                  "BRDF of every surface, times its albedo: lambert, phong:N[,specular[,diffuse]] "
+                  "or ggx:ALPHA[,F0]")
+      ->capture_default_str();
+  cmd->add_option("--eye", options->eye,
+                  "Eye position x,y,z: vertex radiance towards it (default: along each normal) "
+                  "and the image's viewpoint");
   cmd->add_option("--bounces", s.bounces, "Indirect bounces (0 = direct light with visibility)")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();

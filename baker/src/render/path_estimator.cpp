@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "glossy_lobe.hpp"
+
 namespace prt::bake::render {
 namespace {
 
@@ -19,16 +21,24 @@ float power_heuristic(float a, float b) {
   return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
+// The same against two others (the three strategies of a glossy surface), in double.
+double power_heuristic(double a, double b, double c) {
+  const double a2 = a * a;
+  return a2 > 0.0 ? a2 / (a2 + b * b + c * c) : 0.0;
+}
+
 }  // namespace
 
 PathEstimator::PathEstimator(const Scene& scene, const EmbreeScene& rays, const io::EnvMap& env,
                              const EnvDistribution& env_distribution,
-                             const std::vector<glm::vec3>& vertex_albedo, int bounces)
+                             const std::vector<glm::vec3>& vertex_albedo,
+                             const std::vector<SurfaceBrdf>& mesh_brdf, int bounces)
     : scene_(scene),
       rays_(rays),
       env_(env),
       env_distribution_(env_distribution),
       vertex_albedo_(vertex_albedo),
+      mesh_brdf_(mesh_brdf),
       bounces_(bounces) {
   std::size_t offset = 0;
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -44,65 +54,145 @@ glm::vec3 PathEstimator::sample(const SurfacePoint& point, const SampleStream& s
   glm::vec3 radiance(0.0f), throughput(1.0f);
   SurfacePoint x = point;
   for (int depth = 0;; ++depth) {
-    const bool at_vertex = glm::dot(x.geometric_normal, x.geometric_normal) == 0.0f;
-    const glm::vec3 origin =
-        rays_.offset_origin(x.position, at_vertex ? x.normal : x.geometric_normal);
-    // A direction under the triangle's plane would start inside the surface: it gets nothing.
-    auto leaves_surface = [&](const glm::vec3& w) {
-      return at_vertex || glm::dot(w, x.geometric_normal) > 0.0f;
-    };
     const std::uint32_t pair = first_pair + 2u * static_cast<std::uint32_t>(depth);
-
-    // Strategy 1: a direction from the environment's importance distribution.
-    if (env_distribution_.valid()) {
-      float env_pdf = 0.0f;
-      const glm::vec3 w = env_distribution_.sample(stream.get_2d(index, pair), &env_pdf);
-      const float cos_w = glm::dot(x.normal, w);
-      if (cos_w > 0.0f && env_pdf > 0.0f && leaves_surface(w)) {
-        ++*rays;
-        // Find the texels and start loading them now: the ray hides their memory latency.
-        const io::EnvMap::Footprint texels = env_.footprint(w);
-        env_.prefetch(texels);
-        if (!rays_.occluded(origin, w)) {
-          const float weight = power_heuristic(env_pdf, cos_w * kInvPi);
-          radiance += throughput * x.albedo * env_.footprint_radiance(texels) *
-                      (kInvPi * cos_w / env_pdf * weight);
-        }
-      }
-    }
-
-    // Strategy 2: a cosine-weighted direction (f cos / pdf = albedo); continues the path.
-    const Frame frame(x.normal);
-    const glm::vec3 w = frame.to_world(cosine_hemisphere(stream.get_2d(index, pair + 1)));
-    const float cos_w = glm::dot(x.normal, w);
-    if (!(cos_w > 0.0f) || !leaves_surface(w)) break;
-    // Only an escaping ray needs the environment and its multiple-importance weight; their
-    // memory is fetched while the ray is traced.
-    const io::EnvMap::Footprint texels = env_.footprint(w);
-    env_.prefetch(texels);
-    const std::size_t cell = env_distribution_.valid() ? env_distribution_.cell(w) : 0;
-    if (env_distribution_.valid()) env_distribution_.prefetch_cell(cell);
-    auto escaped = [&] {
-      const float weight = env_distribution_.valid()
-                               ? power_heuristic(cos_w * kInvPi, env_distribution_.cell_pdf(cell))
-                               : 1.0f;
-      return throughput * x.albedo * env_.footprint_radiance(texels) * weight;
-    };
-    ++*rays;
-    if (depth == bounces_) {
-      if (!rays_.occluded(origin, w)) radiance += escaped();
-      break;
-    }
-    RayHit hit;
-    if (!rays_.intersect(origin, w, &hit)) {
-      radiance += escaped();
-      break;
-    }
-    throughput *= x.albedo;
-    if (throughput == glm::vec3(0.0f)) break;  // a black surface ends the path
-    x = surface_at(hit, w);
+    const bool last = depth == bounces_;
+    SurfacePoint next;
+    const Step step =
+        mesh_brdf_[x.mesh].model == SurfaceBrdf::Model::Lambert
+            ? lambert_step(x, stream, index, pair, last, &throughput, &radiance, &next, rays)
+            : glossy_step(x, stream, index, pair, last, &throughput, &radiance, &next, rays);
+    if (step == Step::Stop) break;
+    x = next;
   }
   return radiance;
+}
+
+PathEstimator::Step PathEstimator::lambert_step(const SurfacePoint& x, const SampleStream& stream,
+                                                std::uint32_t index, std::uint32_t pair, bool last,
+                                                glm::vec3* throughput, glm::vec3* radiance,
+                                                SurfacePoint* next, std::uint64_t* rays) const {
+  const bool at_vertex = glm::dot(x.geometric_normal, x.geometric_normal) == 0.0f;
+  const glm::vec3 origin =
+      rays_.offset_origin(x.position, at_vertex ? x.normal : x.geometric_normal);
+  // A direction under the triangle's plane would start inside the surface: it gets nothing.
+  auto leaves_surface = [&](const glm::vec3& w) {
+    return at_vertex || glm::dot(w, x.geometric_normal) > 0.0f;
+  };
+
+  // Strategy 1: a direction from the environment's importance distribution.
+  if (env_distribution_.valid()) {
+    float env_pdf = 0.0f;
+    const glm::vec3 w = env_distribution_.sample(stream.get_2d(index, pair), &env_pdf);
+    const float cos_w = glm::dot(x.normal, w);
+    if (cos_w > 0.0f && env_pdf > 0.0f && leaves_surface(w)) {
+      ++*rays;
+      // Find the texels and start loading them now: the ray hides their memory latency.
+      const io::EnvMap::Footprint texels = env_.footprint(w);
+      env_.prefetch(texels);
+      if (!rays_.occluded(origin, w)) {
+        const float weight = power_heuristic(env_pdf, cos_w * kInvPi);
+        *radiance += *throughput * x.albedo * env_.footprint_radiance(texels) *
+                     (kInvPi * cos_w / env_pdf * weight);
+      }
+    }
+  }
+
+  // Strategy 2: a cosine-weighted direction (f cos / pdf = albedo); continues the path.
+  const Frame frame(x.normal);
+  const glm::vec3 w = frame.to_world(cosine_hemisphere(stream.get_2d(index, pair + 1)));
+  const float cos_w = glm::dot(x.normal, w);
+  if (!(cos_w > 0.0f) || !leaves_surface(w)) return Step::Stop;
+  // Only an escaping ray needs the environment and its multiple-importance weight; their
+  // memory is fetched while the ray is traced.
+  const io::EnvMap::Footprint texels = env_.footprint(w);
+  env_.prefetch(texels);
+  const std::size_t cell = env_distribution_.valid() ? env_distribution_.cell(w) : 0;
+  if (env_distribution_.valid()) env_distribution_.prefetch_cell(cell);
+  auto escaped = [&] {
+    const float weight = env_distribution_.valid()
+                             ? power_heuristic(cos_w * kInvPi, env_distribution_.cell_pdf(cell))
+                             : 1.0f;
+    return *throughput * x.albedo * env_.footprint_radiance(texels) * weight;
+  };
+  ++*rays;
+  if (last) {
+    if (!rays_.occluded(origin, w)) *radiance += escaped();
+    return Step::Stop;
+  }
+  RayHit hit;
+  if (!rays_.intersect(origin, w, &hit)) {
+    *radiance += escaped();
+    return Step::Stop;
+  }
+  *throughput *= x.albedo;
+  if (*throughput == glm::vec3(0.0f)) return Step::Stop;  // a black surface ends the path
+  *next = surface_at(hit, w);
+  return Step::Continue;
+}
+
+PathEstimator::Step PathEstimator::glossy_step(const SurfacePoint& x, const SampleStream& stream,
+                                               std::uint32_t index, std::uint32_t pair, bool last,
+                                               glm::vec3* throughput, glm::vec3* radiance,
+                                               SurfacePoint* next, std::uint64_t* rays) const {
+  const GlossyLobe lobe(mesh_brdf_[x.mesh], x.normal, x.outgoing);
+  if (!lobe.visible()) return Step::Stop;  // seen from behind: f = 0
+  const bool at_vertex = glm::dot(x.geometric_normal, x.geometric_normal) == 0.0f;
+  const glm::vec3 origin =
+      rays_.offset_origin(x.position, at_vertex ? x.normal : x.geometric_normal);
+  auto leaves_surface = [&](const glm::vec3& w) {
+    return at_vertex || glm::dot(w, x.geometric_normal) > 0.0f;
+  };
+
+  // Strategy 1: the environment's importance distribution.
+  if (env_distribution_.valid()) {
+    float env_pdf = 0.0f;
+    const glm::vec3 w = env_distribution_.sample(stream.get_2d(index, pair), &env_pdf);
+    const float cos_w = glm::dot(x.normal, w);
+    const double f = cos_w > 0.0f && env_pdf > 0.0f && leaves_surface(w) ? lobe.f(w) : 0.0;
+    if (f > 0.0) {
+      ++*rays;
+      if (!rays_.occluded(origin, w)) {
+        const GlossyLobe::Densities d = lobe.densities(w);
+        const double weight = power_heuristic(env_pdf, d.cosine, d.lobe);
+        *radiance += *throughput * x.albedo * env_.radiance(w) *
+                     static_cast<float>(f * cos_w / env_pdf * weight);
+      }
+    }
+  }
+
+  // Strategies 2 and 3: cosine or lobe sampling, one picked at random; continues the path.
+  const GlossyLobe::Sample sample = lobe.sample(stream.get_2d(index, pair + 1));
+  const glm::vec3 w = sample.direction;
+  const float cos_w = glm::dot(x.normal, w);
+  if (!(cos_w > 0.0f) || !leaves_surface(w)) return Step::Stop;
+  const GlossyLobe::Densities d = lobe.densities(w);
+  const double f = lobe.f(w), picked = sample.from_lobe ? d.lobe : d.cosine;
+  if (!(picked > 0.0) || !(f > 0.0)) return Step::Stop;
+  // Light from the environment: the one-sample estimate of the picked strategy, weighted by the
+  // power heuristic over all three.
+  auto escaped = [&] {
+    const double env_pdf = env_distribution_.valid() ? env_distribution_.pdf(w) : 0.0;
+    const double weight = sample.from_lobe ? power_heuristic(d.lobe, d.cosine, env_pdf)
+                                           : power_heuristic(d.cosine, d.lobe, env_pdf);
+    return *throughput * x.albedo * env_.radiance(w) *
+           static_cast<float>(f * cos_w / picked * weight);
+  };
+  ++*rays;
+  if (last) {
+    if (!rays_.occluded(origin, w)) *radiance += escaped();
+    return Step::Stop;
+  }
+  RayHit hit;
+  if (!rays_.intersect(origin, w, &hit)) {
+    *radiance += escaped();
+    return Step::Stop;
+  }
+  // Light from other surfaces has only these two strategies: the path goes on with the density
+  // of the direction whichever strategy picked it (their balance heuristic).
+  *throughput *= x.albedo * static_cast<float>(f * cos_w / d.sum());
+  if (*throughput == glm::vec3(0.0f)) return Step::Stop;
+  *next = surface_at(hit, w);
+  return Step::Continue;
 }
 
 SurfacePoint PathEstimator::surface_at(const RayHit& hit, const glm::vec3& dir) const {
@@ -122,6 +212,8 @@ SurfacePoint PathEstimator::surface_at(const RayHit& hit, const glm::vec3& dir) 
     if (usable_normal(n)) ns = glm::normalize(n);
   }
   point.normal = glm::dot(ns, ng) < 0.0f ? -ns : ns;
+  point.outgoing = -dir;
+  point.mesh = hit.mesh;
   const std::size_t first = first_vertex_[hit.mesh];
   point.albedo = w0 * vertex_albedo_[first + i0] + hit.u * vertex_albedo_[first + i1] +
                  hit.v * vertex_albedo_[first + i2];
@@ -139,6 +231,8 @@ bool PathEstimator::vertex_point(std::size_t vertex, SurfacePoint* point) const 
   point->normal = glm::normalize(mesh.normals[local]);
   point->geometric_normal = glm::vec3(0.0f);
   point->albedo = vertex_albedo_[vertex];
+  point->outgoing = point->normal;
+  point->mesh = m;
   return true;
 }
 

@@ -36,6 +36,35 @@ void validate(const ReferenceSettings& settings) {
   }
 }
 
+void check_surface_brdf(const SurfaceBrdf& brdf) {
+  if (brdf.model == SurfaceBrdf::Model::Phong) check_brdf(brdf.phong);
+  if (brdf.model == SurfaceBrdf::Model::Ggx) check_brdf(brdf.ggx);
+}
+
+// One BRDF per mesh: mesh_brdfs, or the one every mesh shares.
+std::vector<SurfaceBrdf> brdf_per_mesh(const Scene& scene, const ReferenceSettings& settings) {
+  if (settings.mesh_brdfs.empty()) {
+    check_surface_brdf(settings.brdf);
+    return std::vector<SurfaceBrdf>(scene.meshes.size(), settings.brdf);
+  }
+  if (settings.mesh_brdfs.size() != scene.meshes.size()) {
+    throw Error("reference renderer: " + std::to_string(settings.mesh_brdfs.size()) +
+                " mesh BRDFs for " + std::to_string(scene.meshes.size()) + " meshes");
+  }
+  for (const SurfaceBrdf& brdf : settings.mesh_brdfs) check_surface_brdf(brdf);
+  return settings.mesh_brdfs;
+}
+
+// The unit direction from `position` to the eye; the normal where there is no eye or it is at
+// the position.
+glm::vec3 towards_eye(const std::optional<glm::vec3>& eye, const glm::vec3& position,
+                      const glm::vec3& normal) {
+  if (!eye) return normal;
+  const glm::vec3 d = *eye - position;
+  const float length = glm::length(d);
+  return length > 0.0f && std::isfinite(length) ? d / length : normal;
+}
+
 }  // namespace
 
 struct ReferenceRenderer::Impl {
@@ -45,6 +74,7 @@ struct ReferenceRenderer::Impl {
   EmbreeScene rays;
   EnvDistribution env_distribution;
   std::vector<glm::vec3> vertex_albedo;
+  std::vector<SurfaceBrdf> mesh_brdf;
   render::PathEstimator estimator;
 
   Impl(const Scene& scene_in, const io::EnvMap& env_in, const ReferenceSettings& settings_in,
@@ -55,7 +85,9 @@ struct ReferenceRenderer::Impl {
         rays(scene_in, ctx),
         env_distribution(env_in),
         vertex_albedo(albedo_per_vertex(scene_in, settings_in)),
-        estimator(scene, rays, env, env_distribution, vertex_albedo, settings_in.bounces) {}
+        mesh_brdf(brdf_per_mesh(scene_in, settings_in)),
+        estimator(scene, rays, env, env_distribution, vertex_albedo, mesh_brdf,
+                  settings_in.bounces) {}
 
   static std::vector<glm::vec3> albedo_per_vertex(const Scene& scene,
                                                   const ReferenceSettings& settings) {
@@ -73,6 +105,7 @@ struct ReferenceRenderer::Impl {
 ReferenceRenderer::ReferenceRenderer(const Scene& scene, const io::EnvMap& env,
                                      const ReferenceSettings& settings, const Context& ctx) {
   validate(settings);
+  brdf_per_mesh(scene, settings);  // throws before the ray-tracing scene is built
   tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
   arena.execute([&] { impl_ = std::make_unique<Impl>(scene, env, settings, ctx); });
   if (!impl_->env_distribution.valid()) {
@@ -89,7 +122,8 @@ const ReferenceSettings& ReferenceRenderer::settings() const {
   return impl_->settings;
 }
 
-VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
+VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx,
+                                                  const std::optional<glm::vec3>& eye) const {
   const auto start = std::chrono::steady_clock::now();
   const render::PathEstimator& estimator = impl_->estimator;
   const ReferenceSettings& settings = impl_->settings;
@@ -108,6 +142,7 @@ VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx) const {
     for (std::size_t v = task * kVerticesPerTask; v < end; ++v) {
       render::SurfacePoint point;
       if (!estimator.vertex_point(v, &point)) continue;
+      point.outgoing = towards_eye(eye, point.position, point.normal);
       has_normal[v] = 1;
       const SampleStream half_a(hash_key(settings.seed, v, kVertexHalfA));
       const SampleStream half_b(hash_key(settings.seed, v, kVertexHalfB));

@@ -37,9 +37,16 @@ void write_reference_report(const std::string& path, const ReferenceReport& repo
         {"spp", s.spp},
         {"image_spp", s.image_spp},
         {"seed", s.seed},
+        {"brdf", surface_brdf_name(s.brdf)},
         {"threads", report.threads}}},
   };
   if (s.override_albedo) json["settings"]["albedo"] = {s.albedo.r, s.albedo.g, s.albedo.b};
+  if (!s.mesh_brdfs.empty()) {
+    nlohmann::json names = nlohmann::json::array();
+    for (const SurfaceBrdf& brdf : s.mesh_brdfs) names.push_back(surface_brdf_name(brdf));
+    json["settings"]["brdf"] = names;  // one per mesh
+  }
+  if (report.eye) json["settings"]["eye"] = {report.eye->x, report.eye->y, report.eye->z};
   if (report.has_vertices) {
     const VertexRadiance& v = report.vertex_result;
     json["vertices"] = stats_json(v.stats);
