@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The JSON form of a shadowfield scene, which the app reads (schema: docs/shadowfield/scenes.md).
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -11,29 +13,44 @@
 namespace prt::bake {
 namespace {
 
-using nlohmann::json;
+// Ordered, so the file reads in the order of the schema (docs/shadowfield/scenes.md).
+using json = nlohmann::ordered_json;
 
 constexpr const char* kFormat = "prtkit shadowfield scene";
 constexpr int kVersion = 1;
 
+// The shortest decimal that reads back to the same float, so that the file shows 0.001 rather
+// than the float's exact binary value 0.0010000000474974513.
+double shortest(float value) {
+  char text[32];
+  for (int digits = 6; digits < 9; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, double(value));
+    const double parsed = std::strtod(text, nullptr);
+    if (float(parsed) == value) return parsed;
+  }
+  return double(value);  // 9 significant digits always round-trip a float
+}
+
 json vec3_json(const glm::vec3& v) {
-  return json::array({v.x, v.y, v.z});
+  return json::array({shortest(v.x), shortest(v.y), shortest(v.z)});
 }
 
 // glTF's order: x, y, z, w.
 json quat_json(const glm::quat& q) {
-  return json::array({q.x, q.y, q.z, q.w});
+  return json::array({shortest(q.x), shortest(q.y), shortest(q.z), shortest(q.w)});
 }
 
-json path_json(const ShadowfieldPath& path) {
+json instance_json(const ShadowfieldInstance& instance) {
+  const ShadowfieldPath& path = instance.path;
   json keyframes = json::array();
   for (const ShadowfieldKeyframe& k : path.keyframes) {
-    keyframes.push_back({{"time", k.time},
+    keyframes.push_back({{"time", shortest(k.time)},
                          {"translation", vec3_json(k.placement.translation)},
                          {"rotation", quat_json(k.placement.rotation)},
-                         {"scale", k.placement.scale}});
+                         {"scale", shortest(k.placement.scale)}});
   }
-  return {{"duration", path.duration}, {"keyframes", keyframes}};
+  return {
+      {"object", instance.object}, {"duration", shortest(path.duration)}, {"keyframes", keyframes}};
 }
 
 glm::vec3 read_vec3(const json& j) {
@@ -102,9 +119,7 @@ void write_shadowfield_scene_json(const ShadowfieldSceneDescription& description
       throw Error(path + ": an instance names object " + std::to_string(instance.object) + " of " +
                   std::to_string(description.objects.size()));
     instance.path.check();
-    json entry = path_json(instance.path);
-    entry["object"] = instance.object;
-    instances.push_back(entry);
+    instances.push_back(instance_json(instance));
   }
   const json scene = {{"format", kFormat},
                       {"version", kVersion},

@@ -51,6 +51,9 @@ TEST(SceneJson, RoundTripsAPreset) {
     EXPECT_EQ(file.instances[i].object, scene.instances[i].object);
     expect_same_path(file.instances[i].path, scene.instances[i].path);
   }
+  // Numbers in their shortest form: the sphere's scale 0.4f, not 0.4000000059604645.
+  EXPECT_NE(prt_test::read_bytes(dir.file("scene.json")).find("\"scale\": 0.4\n"),
+            std::string::npos);
 }
 
 TEST(SceneJson, WriterRefusesMismatchedBlobNames) {
