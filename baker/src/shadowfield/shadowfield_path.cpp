@@ -52,6 +52,7 @@ ShadowfieldPlacement ShadowfieldPath::at(float time) const {
     p.rotation = glm::normalize(p.rotation);
     return p;
   }
+  if (!std::isfinite(time)) throw Error("shadowfield path: time is not finite");
   float tau = std::fmod(time, duration);
   if (tau < 0.0f) tau += duration;
   // The wrap-around segment runs from the last keyframe to the first one, a period later.

@@ -167,6 +167,8 @@ TEST(Path, BadPathsAreRejected) {
                }).check(),
                Error);
   EXPECT_NO_THROW(three_keyframes().check());
+  EXPECT_THROW(three_keyframes().at(nan), Error);
+  EXPECT_THROW(three_keyframes().at(std::numeric_limits<float>::infinity()), Error);
 }
 
 }  // namespace

@@ -59,7 +59,8 @@ struct ShadowfieldPath {
   std::vector<ShadowfieldKeyframe> keyframes;
   float duration = 0.0f;  // seconds, > the last keyframe's time when there are several
 
-  // The placement at any time (negative too). Throws Error for a path check() rejects.
+  // The placement at any finite time (negative too). Throws Error for a path check() rejects
+  // and, when the path moves, for a non-finite time.
   ShadowfieldPlacement at(float time) const;
   // Throws Error naming what is wrong: no keyframe, times not ascending or outside
   // [0, duration), a scale <= 0, a non-finite value.
