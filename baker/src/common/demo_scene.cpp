@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "prt/baker/demo_scene.hpp"
 
-#include "prt/baker/mesh_generators.hpp"
-
 #include <cmath>
 #include <utility>
 
 #include <glm/gtc/constants.hpp>
+
+#include "prt/baker/mesh_generators.hpp"
 
 namespace prt::bake {
 namespace {
