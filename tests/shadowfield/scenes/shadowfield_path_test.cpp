@@ -93,6 +93,17 @@ TEST(Path, LoopsWithItsDurationThroughTheWrapSegment) {
   }
 }
 
+TEST(Path, StaysOnThePathAtExtremeTimes) {
+  const ShadowfieldPath path = three_keyframes();
+  for (float t : {-1e7f, 1e7f, 3e38f, -3e38f, 1e-30f}) {
+    const ShadowfieldPlacement p = path.at(t);
+    EXPECT_TRUE(std::isfinite(p.translation.x + p.translation.y + p.translation.z)) << t;
+    EXPECT_NEAR(glm::length(p.rotation), 1.0f, 2.5e-7f) << t;
+    EXPECT_GE(p.scale, 0.5f) << t;  // the keyframes' smallest scale
+    EXPECT_LE(p.scale, 2.0f) << t;  // and largest
+  }
+}
+
 TEST(Path, WrapsBeforeAFirstKeyframeThatIsNotAtZero) {
   ShadowfieldPath path;
   path.duration = 4.0f;

@@ -56,6 +56,16 @@ TEST(SceneJson, RoundTripsAPreset) {
             std::string::npos);
 }
 
+TEST(SceneJson, RoundTripsAnEmptyScene) {
+  const prt_test::TempDir dir("shadowfield_scene_json_empty");
+  ShadowfieldSceneDescription empty;
+  write_shadowfield_scene_json(empty, {}, dir.file("empty.json"));
+  const ShadowfieldSceneFile file = read_shadowfield_scene_json(dir.file("empty.json"));
+  EXPECT_TRUE(file.objects.empty());
+  EXPECT_TRUE(file.instances.empty());
+  EXPECT_EQ(file.env, kShadowfieldBuiltinSky);
+}
+
 TEST(SceneJson, WriterRefusesMismatchedBlobNames) {
   const prt_test::TempDir dir("shadowfield_scene_json_names");
   const ShadowfieldSceneDescription scene = make_shadowfield_scene("procedural", "");
