@@ -412,7 +412,7 @@ std::vector<TestRadiance> sky_radiances(const Scene& scene, std::size_t vertices
     ReferenceSettings reference;
     reference.bounces = 0;
     reference.spp = settings.sky_spp;
-    reference.seed = turn;
+    reference.seed = hash_key(settings.seed, turn);
     reference.override_albedo = true;
     reference.albedo = glm::vec3(settings.albedo);
     const ReferenceRenderer renderer(scene, turned, reference, ctx);
@@ -497,7 +497,7 @@ BasisStudyReport compare_surface_bases(const BasisStudyScene& study, const io::E
   const std::vector<float> receiver_weights = shadowfield_vertex_weights(receiver);
   const SourceIrradiance irradiance =
       source_irradiance(object, rays, study.receiver.positions, study.receiver.normals,
-                        settings.receiver_directions, 0, ctx);
+                        settings.receiver_directions, settings.seed, ctx);
 
   // sums[family][size][sky?]
   std::vector<std::vector<std::array<ErrorSums, 2>>> sums(

@@ -2,7 +2,8 @@
 // Technique `shadowfield`'s basis comparison (docs/shadowfield/basis.md): SH, Haar, Fourier
 // cosine and PCA bases of 4, 8 and 16 terms for the radiance of the floor under the teapot and
 // of spot over a floor, printed as a markdown table (or CSV with --csv). Assets come from the
-// shared folder; --threads N limits the threads.
+// shared folder; --seed S changes the sky's samples and the receiver's rays; --threads N limits
+// the threads.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -50,6 +51,26 @@ BasisStudyScene spot_scene(const Context& ctx) {
   return {"spot", std::move(spot), make_study_floor(glm::vec2(0.0f), 1.5f, base, kFloorSide)};
 }
 
+// The best other family's error over the PCA's, per lighting and size, for each error.
+void print_margins(const BasisStudyReport& report) {
+  std::printf(
+      "\n| lighting | terms | best other (radiance) | its error / PCA's | "
+      "best other (image) | its error / PCA's |\n|---|---|---|---|---|---|\n");
+  for (const BasisStudyRow& pca : report.rows) {
+    if (pca.basis != "PCA") continue;
+    const BasisStudyRow *radiance = nullptr, *image = nullptr;
+    for (const BasisStudyRow& row : report.rows) {
+      if (row.basis == "PCA" || row.lighting != pca.lighting || row.terms != pca.terms) continue;
+      if (!radiance || row.radiance_error < radiance->radiance_error) radiance = &row;
+      if (!image || row.image_error < image->image_error) image = &row;
+    }
+    if (!radiance || !image) continue;
+    std::printf("| %s | %u | %s | %.2f | %s | %.2f |\n", pca.lighting.c_str(), pca.terms,
+                radiance->basis.c_str(), radiance->radiance_error / pca.radiance_error,
+                image->basis.c_str(), image->image_error / pca.image_error);
+  }
+}
+
 void print(const BasisStudyReport& report, const BasisStudyScene& scene, bool csv) {
   if (!csv) {
     std::printf(
@@ -66,6 +87,7 @@ void print(const BasisStudyReport& report, const BasisStudyScene& scene, bool cs
     std::printf(csv ? "%s,%s,%u,%s,%.5f,%.5f\n" : "| %s | %s | %u | %s | %.4f | %.4f |\n",
                 row.surface.c_str(), row.lighting.c_str(), row.terms, row.basis.c_str(),
                 row.radiance_error, row.image_error);
+  if (!csv) print_margins(report);
 }
 
 }  // namespace
@@ -73,19 +95,21 @@ void print(const BasisStudyReport& report, const BasisStudyScene& scene, bool cs
 int main(int argc, char** argv) {
   bool csv = false;
   Context ctx;
+  BasisStudySettings settings;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--csv") == 0) {
       csv = true;
+    } else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
+      settings.seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       ctx.threads = unsigned(std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr, "usage: %s [--csv] [--threads N]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--csv] [--seed S] [--threads N]\n", argv[0]);
       return 2;
     }
   }
   try {
     const prt::io::EnvMap sky = make_demo_sky(256);
-    const BasisStudySettings settings;
     if (csv) std::printf("surface,lighting,terms,basis,radiance_error,image_error\n");
     for (const BasisStudyScene& scene : {floor_scene(ctx), spot_scene(ctx)})
       print(compare_surface_bases(scene, sky, settings, ctx), scene, csv);

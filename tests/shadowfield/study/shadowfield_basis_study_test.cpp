@@ -282,6 +282,31 @@ TEST(SourceIrradiance, MatchesTheFormFactorOfAGlowingSquare) {
   }
 }
 
+// A receiver vertex without a usable normal (zero or NaN) casts no ray and receives nothing; a
+// radiance of the wrong length is refused.
+TEST(SourceIrradiance, SkipsReceiversWithoutANormal) {
+  const Mesh square = facing(make_study_floor(glm::vec2(0.0f), 1.0f, 0.5f, 3), -1.0f);
+  ShadowfieldObject source;
+  source.positions = square.positions;
+  source.normals = square.normals;
+  source.indices = square.indices;
+  const EmbreeScene rays(test::scene_of({square}), Context{});
+  const std::vector<glm::vec3> receivers(3, glm::vec3(0.0f));
+  const std::vector<glm::vec3> normals = {glm::vec3(0.0f), glm::vec3(NAN, 1.0f, 0.0f),
+                                          glm::vec3(0.0f, 2.0f, 0.0f)};
+  const SourceIrradiance g = source_irradiance(source, rays, receivers, normals, 64, 0, {});
+  EXPECT_EQ(g.rays_traced, 64u);
+  const std::vector<double> e = g.apply(std::vector<double>(square.positions.size(), 1.0));
+  EXPECT_EQ(e[0], 0.0);
+  EXPECT_EQ(e[1], 0.0);
+  EXPECT_GT(e[2], 0.0);
+  EXPECT_NE(thrown_message([&] { g.apply({1.0}); }).find("vertex count"), std::string::npos);
+  EXPECT_NE(thrown_message([&] {
+              source_irradiance(source, rays, receivers, {}, 64, 0, {});
+            }).find("one normal per vertex"),
+            std::string::npos);
+}
+
 TEST(Compare, GivesEveryFamilySizeAndLightingWithinBounds) {
   BasisStudyScene scene{"floor", make_study_floor(glm::vec2(0.0f), 1.5f, 0.0f, 12),
                         test::make_icosphere(1, 0.4f, glm::vec3(0.2f, 0.4f, -0.1f))};

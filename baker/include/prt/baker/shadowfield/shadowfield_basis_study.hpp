@@ -131,6 +131,7 @@ struct BasisStudySettings {
   std::uint32_t sky_spp = 256;
   float albedo = 0.8f;                      // grey, on the surface and the receiver
   std::uint32_t receiver_directions = 256;  // rays per receiver vertex for the image error
+  std::uint32_t seed = 0;                   // of the sky's samples and the receiver's rays
 };
 
 // Errors are pooled over the lightings of a kind: radiance error
