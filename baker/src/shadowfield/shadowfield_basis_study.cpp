@@ -42,6 +42,11 @@ double inner(const std::vector<double>& a, const std::vector<double>& b,
   return sum;
 }
 
+// A vertex weight as the fits read it: negative or non-finite counts as 0.
+double usable_weight(float w) {
+  return std::isfinite(w) && w > 0.0f ? double(w) : 0.0;
+}
+
 double luminance(const glm::vec3& rgb) {
   return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
 }
@@ -104,9 +109,16 @@ bool cosine_pair(std::size_t index, std::uint32_t* a, std::uint32_t* b) {
   return false;
 }
 
-void check_uv(const std::vector<glm::vec2>& uv, const std::vector<float>& weights) {
+// The uv the families read: a non-finite coordinate is read as 0.
+std::vector<glm::vec2> checked_uv(const std::vector<glm::vec2>& uv,
+                                  const std::vector<float>& weights) {
   if (uv.size() != weights.size())
     throw Error("shadowfield basis study: one uv per vertex is needed (TEXCOORD_0)");
+  std::vector<glm::vec2> out(uv);
+  for (glm::vec2& p : out)
+    for (int a = 0; a < 2; ++a)
+      if (!std::isfinite(p[a])) p[a] = 0.0f;
+  return out;
 }
 
 SurfaceBasis prefix(const SurfaceBasis& basis, std::size_t size) {
@@ -135,9 +147,14 @@ const char* surface_basis_name(SurfaceBasisFamily family) {
 }
 
 SurfaceBasis orthonormal_surface_basis(const CandidateFunction& candidate,
-                                       const std::vector<float>& weights, std::size_t size) {
+                                       const std::vector<float>& surface_weights,
+                                       std::size_t size) {
+  std::vector<float> weights(surface_weights);
   double area = 0.0;
-  for (float w : weights) area += std::isfinite(w) ? double(w) : 0.0;
+  for (float& w : weights) {
+    w = float(usable_weight(w));
+    area += w;
+  }
   if (!(area > 0.0)) throw Error("shadowfield basis study: the surface has no area");
   const std::size_t vertices = weights.size();
   std::vector<std::vector<double>> taken;
@@ -192,7 +209,7 @@ SurfaceBasis sh_surface_basis(const std::vector<glm::vec3>& positions, const glm
 
 SurfaceBasis haar_surface_basis(const std::vector<glm::vec2>& uv, const std::vector<float>& weights,
                                 std::size_t size) {
-  check_uv(uv, weights);
+  const std::vector<glm::vec2> read = checked_uv(uv, weights);
   return orthonormal_surface_basis(
       [&](std::size_t index, std::vector<double>& values) {
         if (index == 0) {
@@ -201,7 +218,7 @@ SurfaceBasis haar_surface_basis(const std::vector<glm::vec2>& uv, const std::vec
         }
         HaarFunction f;
         if (!haar_function(index, &f)) return false;
-        for (std::size_t v = 0; v < values.size(); ++v) values[v] = haar_value(f, uv[v]);
+        for (std::size_t v = 0; v < values.size(); ++v) values[v] = haar_value(f, read[v]);
         return true;
       },
       weights, size);
@@ -209,13 +226,13 @@ SurfaceBasis haar_surface_basis(const std::vector<glm::vec2>& uv, const std::vec
 
 SurfaceBasis cosine_surface_basis(const std::vector<glm::vec2>& uv,
                                   const std::vector<float>& weights, std::size_t size) {
-  check_uv(uv, weights);
+  const std::vector<glm::vec2> read = checked_uv(uv, weights);
   return orthonormal_surface_basis(
       [&](std::size_t index, std::vector<double>& values) {
         std::uint32_t a = 0, b = 0;
         if (!cosine_pair(index, &a, &b)) return false;
         for (std::size_t v = 0; v < values.size(); ++v)
-          values[v] = std::cos(kPi * a * uv[v].x) * std::cos(kPi * b * uv[v].y);
+          values[v] = std::cos(kPi * a * read[v].x) * std::cos(kPi * b * read[v].y);
         return true;
       },
       weights, size);
@@ -241,8 +258,8 @@ std::vector<double> basis_weights(const SurfaceBasis& basis, const std::vector<f
     throw Error("shadowfield basis study: basis, weights and radiance sizes differ");
   const Eigen::Index n = Eigen::Index(basis.size), vertices = Eigen::Index(basis.vertices);
   const Eigen::Map<const RowMajorMatrix> b(basis.functions.data(), n, vertices);
-  const Eigen::VectorXd w =
-      Eigen::Map<const Eigen::VectorXf>(weights.data(), vertices).cast<double>();
+  Eigen::VectorXd w(vertices);
+  for (Eigen::Index v = 0; v < vertices; ++v) w[v] = usable_weight(weights[std::size_t(v)]);
   const Eigen::MatrixXd bw = b * w.asDiagonal();
   const Eigen::MatrixXd a = bw * b.transpose();
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);

@@ -46,16 +46,17 @@ using CandidateFunction = std::function<bool(std::size_t index, std::vector<doub
 // Gram-Schmidt (twice, for rounding) in the W inner product over the candidates in order: a
 // candidate whose part outside the span of those taken is below 1e-4 of its W-norm adds nothing
 // over these vertices (e.g. an SH function that is constant on a flat floor) and is skipped, so
-// the result is the first `size` independent ones. Throws Error when the family runs out first or
-// W has no area. The first n functions of a basis of size N > n are the basis of size n.
+// the result is the first `size` independent ones. A weight that is negative or not finite counts
+// as 0 (its vertex then does not constrain the basis). Throws Error when the family runs out
+// first or W has no area. The first n functions of a basis of size N > n are the basis of size n.
 SurfaceBasis orthonormal_surface_basis(const CandidateFunction& candidate,
                                        const std::vector<float>& weights, std::size_t size);
 
 // SH (prt/prt_sh.h's real basis, by band l then m) of the unit direction from `centre` to each
-// vertex (the constant where the vertex is at the centre). Orders 2, 3, 4 give 4, 9, 16
-// functions; 8 is the first 8 of order 3 (bands 0 and 1, and band 2 but its m = +2 function).
-// On a surface where some of them coincide (a plane through the centre sees only its azimuth)
-// the next bands fill in, up to PRT_SH_MAX_ORDER.
+// vertex (the constant alone where the vertex is at the centre or not finite). Orders 2, 3, 4 give
+// 4, 9, 16 functions; 8 is the first 8 of order 3 (bands 0 and 1, and band 2 but its m = +2
+// function). On a surface where some of them coincide (a plane through the centre sees only its
+// azimuth) the next bands fill in, up to PRT_SH_MAX_ORDER.
 SurfaceBasis sh_surface_basis(const std::vector<glm::vec3>& positions, const glm::vec3& centre,
                               const std::vector<float>& weights, std::size_t size);
 
@@ -63,7 +64,8 @@ SurfaceBasis sh_surface_basis(const std::vector<glm::vec3>& positions, const glm
 // level (level j: 4^j cells of side 2^-j), in each level the horizontal detail of every cell,
 // then the vertical, then the diagonal, cells in row-major order. 4 functions are the box and
 // level 0; 16 add level 1; 8 add the first 4 of level 1 (the horizontal detail of its 4 cells).
-// uv is clamped to [0, 1]; u = 1 belongs to the last cell.
+// uv is clamped to [0, 1]; u = 1 belongs to the last cell. Here and in the cosine series a
+// non-finite uv coordinate is read as 0.
 SurfaceBasis haar_surface_basis(const std::vector<glm::vec2>& uv, const std::vector<float>& weights,
                                 std::size_t size);
 
@@ -75,7 +77,8 @@ SurfaceBasis cosine_surface_basis(const std::vector<glm::vec2>& uv,
 SurfaceBasis pca_surface_basis(const ShadowfieldObject& object, std::size_t size);
 
 // w = A^-1 (B W r), A = B W B^T (solved in double by a full-pivot LU), and the approximation
-// B^T w. Throws Error for sizes that do not match or a singular A.
+// B^T w. Weights read as in orthonormal_surface_basis. Throws Error for sizes that do not match
+// or a singular A. A non-finite radiance gives non-finite weights (nothing is hidden).
 std::vector<double> basis_weights(const SurfaceBasis& basis, const std::vector<float>& weights,
                                   const std::vector<double>& radiance);
 std::vector<double> approximated_radiance(const SurfaceBasis& basis,
