@@ -467,95 +467,144 @@ double ratio(double error, double norm) {
   return norm > 0.0 ? std::sqrt(error / norm) : 0.0;
 }
 
+void check_study(const BasisStudyScene& study, const BasisStudySettings& settings) {
+  const Mesh& surface = study.surface;
+  if (surface.texcoords0.size() != surface.positions.size())
+    throw Error("shadowfield basis study: surface '" + study.name + "' has no TEXCOORD_0");
+  if (settings.sizes.empty()) throw Error("shadowfield basis study: no sizes to compare");
+  for (std::uint32_t size : settings.sizes)
+    if (size == 0) throw Error("shadowfield basis study: a basis needs at least 1 term");
+}
+
+ShadowfieldObject study_object(const Mesh& surface, float albedo) {
+  ShadowfieldObject object;
+  object.positions = surface.positions;
+  object.normals = surface.normals;
+  object.indices = surface.indices;
+  object.albedo.assign(surface.positions.size(), glm::vec3(albedo));
+  return object;
+}
+
+// Every family at `largest` terms, in the order of SurfaceBasisFamily; object has its PCA basis.
+std::vector<SurfaceBasis> study_families(const ShadowfieldObject& object,
+                                         const std::vector<glm::vec2>& uv, const glm::vec3& centre,
+                                         std::size_t largest) {
+  const std::vector<float>& weights = object.vertex_weights;
+  std::vector<SurfaceBasis> families;
+  families.push_back(sh_surface_basis(object.positions, centre, weights, largest));
+  families.push_back(haar_surface_basis(uv, weights, largest));
+  families.push_back(cosine_surface_basis(uv, weights, largest));
+  families.push_back(pca_surface_basis(object, largest));
+  return families;
+}
+
+// The summed squared errors and norms: sums[family][size][0 point, 1 sky].
+using StudySums = std::vector<std::vector<std::array<ErrorSums, 2>>>;
+
+class ErrorAccumulator {
+ public:
+  ErrorAccumulator(const std::vector<SurfaceBasis>& families,
+                   const std::vector<std::uint32_t>& sizes, const std::vector<float>& weights,
+                   const SourceIrradiance& irradiance, std::vector<float> receiver_weights)
+      : weights_(weights),
+        irradiance_(irradiance),
+        receiver_weights_(std::move(receiver_weights)),
+        bases_(families.size()),
+        sums_(families.size(), std::vector<std::array<ErrorSums, 2>>(sizes.size())) {
+    for (std::size_t f = 0; f < families.size(); ++f)
+      for (std::uint32_t size : sizes) bases_[f].push_back(prefix(families[f], size));
+  }
+
+  // Returns false for an unlit radiance, which has no relative error to speak of.
+  bool add(const TestRadiance& r) {
+    const double norm = weighted_distance2(r.values, {}, weights_);
+    if (!(norm > 0.0)) return false;
+    const std::vector<double> image = irradiance_.apply(r.values);
+    const double image_norm = weighted_distance2(image, {}, receiver_weights_);
+    for (std::size_t f = 0; f < bases_.size(); ++f)
+      for (std::size_t s = 0; s < bases_[f].size(); ++s) {
+        const std::vector<double> approx = approximated_radiance(bases_[f][s], weights_, r.values);
+        ErrorSums& sum = sums_[f][s][r.sky ? 1 : 0];
+        sum.radiance_error += weighted_distance2(r.values, approx, weights_);
+        sum.radiance_norm += norm;
+        sum.image_error += weighted_distance2(image, irradiance_.apply(approx), receiver_weights_);
+        sum.image_norm += image_norm;
+      }
+    return true;
+  }
+  const StudySums& sums() const { return sums_; }
+
+ private:
+  const std::vector<float>& weights_;
+  const SourceIrradiance& irradiance_;
+  std::vector<float> receiver_weights_;
+  std::vector<std::vector<SurfaceBasis>> bases_;
+  StudySums sums_;
+};
+
+std::vector<BasisStudyRow> study_rows(const std::string& surface, const StudySums& sums,
+                                      const std::vector<std::uint32_t>& sizes) {
+  const char* kinds[3] = {"point", "sky", "all"};
+  const SurfaceBasisFamily order[4] = {SurfaceBasisFamily::SphericalHarmonics,
+                                       SurfaceBasisFamily::Haar, SurfaceBasisFamily::FourierCosine,
+                                       SurfaceBasisFamily::Pca};
+  std::vector<BasisStudyRow> rows;
+  for (int kind = 0; kind < 3; ++kind)
+    for (std::size_t s = 0; s < sizes.size(); ++s)
+      for (std::size_t f = 0; f < sums.size(); ++f) {
+        ErrorSums sum;
+        if (kind != 1) sum.add(sums[f][s][0]);
+        if (kind != 0) sum.add(sums[f][s][1]);
+        BasisStudyRow row;
+        row.surface = surface;
+        row.basis = surface_basis_name(order[f]);
+        row.lighting = kinds[kind];
+        row.terms = sizes[s];
+        row.radiance_error = ratio(sum.radiance_error, sum.radiance_norm);
+        row.image_error = ratio(sum.image_error, sum.image_norm);
+        rows.push_back(std::move(row));
+      }
+  return rows;
+}
+
 }  // namespace
 
 BasisStudyReport compare_surface_bases(const BasisStudyScene& study, const io::EnvMap& sky,
                                        const BasisStudySettings& settings, const Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
-  const Mesh& surface = study.surface;
-  if (surface.texcoords0.size() != surface.positions.size())
-    throw Error("shadowfield basis study: surface '" + study.name + "' has no TEXCOORD_0");
-  if (settings.sizes.empty()) throw Error("shadowfield basis study: no sizes to compare");
+  check_study(study, settings);
   const std::uint32_t largest = *std::max_element(settings.sizes.begin(), settings.sizes.end());
-
   Scene scene;
   scene.source = study.name;
-  scene.meshes = {surface, study.receiver};
+  scene.meshes = {study.surface, study.receiver};
   const EmbreeScene rays(scene, ctx);
 
-  ShadowfieldObject object;
-  object.positions = surface.positions;
-  object.normals = surface.normals;
-  object.indices = surface.indices;
-  object.albedo.assign(surface.positions.size(), glm::vec3(settings.albedo));
+  ShadowfieldObject object = study_object(study.surface, settings.albedo);
   ShadowfieldBasisSettings pca = settings.pca;
   pca.size = largest;
   const ShadowfieldBasisReport pca_report = bake_surface_basis(object, rays, pca, ctx);
-  const std::vector<float>& weights = object.vertex_weights;
   const BoundingSphere sphere = bounding_sphere(object.positions);
-
-  const std::vector<std::pair<SurfaceBasisFamily, SurfaceBasis>> families = {
-      {SurfaceBasisFamily::SphericalHarmonics,
-       sh_surface_basis(object.positions, sphere.centre, weights, largest)},
-      {SurfaceBasisFamily::Haar, haar_surface_basis(surface.texcoords0, weights, largest)},
-      {SurfaceBasisFamily::FourierCosine,
-       cosine_surface_basis(surface.texcoords0, weights, largest)},
-      {SurfaceBasisFamily::Pca, pca_surface_basis(object, largest)}};
 
   BasisStudyReport report;
   std::vector<TestRadiance> radiances = point_radiances(object, rays, sphere, settings, ctx);
   std::vector<TestRadiance> sky_lit =
-      sky_radiances(scene, surface.positions.size(), sky, settings, ctx, &report.sky_noise);
+      sky_radiances(scene, object.positions.size(), sky, settings, ctx, &report.sky_noise);
   radiances.insert(radiances.end(), sky_lit.begin(), sky_lit.end());
 
   ShadowfieldObject receiver;
   receiver.positions = study.receiver.positions;
   receiver.indices = study.receiver.indices;
-  const std::vector<float> receiver_weights = shadowfield_vertex_weights(receiver);
   const SourceIrradiance irradiance =
       source_irradiance(object, rays, study.receiver.positions, study.receiver.normals,
                         settings.receiver_directions, settings.seed, ctx);
+  ErrorAccumulator errors(study_families(object, study.surface.texcoords0, sphere.centre, largest),
+                          settings.sizes, object.vertex_weights, irradiance,
+                          shadowfield_vertex_weights(receiver));
+  for (const TestRadiance& r : radiances)
+    if (errors.add(r)) ++(r.sky ? report.sky_lightings : report.point_lightings);
 
-  // sums[family][size][sky?]
-  std::vector<std::vector<std::array<ErrorSums, 2>>> sums(
-      families.size(), std::vector<std::array<ErrorSums, 2>>(settings.sizes.size()));
-  std::vector<std::vector<SurfaceBasis>> bases(families.size());
-  for (std::size_t f = 0; f < families.size(); ++f)
-    for (std::uint32_t size : settings.sizes) bases[f].push_back(prefix(families[f].second, size));
-  for (const TestRadiance& r : radiances) {
-    const double norm = weighted_distance2(r.values, {}, weights);
-    if (!(norm > 0.0)) continue;  // unlit: no relative error to speak of
-    ++(r.sky ? report.sky_lightings : report.point_lightings);
-    const std::vector<double> image = irradiance.apply(r.values);
-    const double image_norm = weighted_distance2(image, {}, receiver_weights);
-    for (std::size_t f = 0; f < families.size(); ++f)
-      for (std::size_t s = 0; s < settings.sizes.size(); ++s) {
-        const std::vector<double> approx = approximated_radiance(bases[f][s], weights, r.values);
-        ErrorSums& sum = sums[f][s][r.sky ? 1 : 0];
-        sum.radiance_error += weighted_distance2(r.values, approx, weights);
-        sum.radiance_norm += norm;
-        sum.image_error += weighted_distance2(image, irradiance.apply(approx), receiver_weights);
-        sum.image_norm += image_norm;
-      }
-  }
-
-  const char* kinds[3] = {"point", "sky", "all"};
-  for (int kind = 0; kind < 3; ++kind)
-    for (std::size_t s = 0; s < settings.sizes.size(); ++s)
-      for (std::size_t f = 0; f < families.size(); ++f) {
-        ErrorSums sum;
-        if (kind != 1) sum.add(sums[f][s][0]);
-        if (kind != 0) sum.add(sums[f][s][1]);
-        BasisStudyRow row;
-        row.surface = study.name;
-        row.basis = surface_basis_name(families[f].first);
-        row.lighting = kinds[kind];
-        row.terms = settings.sizes[s];
-        row.radiance_error = ratio(sum.radiance_error, sum.radiance_norm);
-        row.image_error = ratio(sum.image_error, sum.image_norm);
-        report.rows.push_back(std::move(row));
-      }
-  report.surface_vertices = surface.positions.size();
+  report.rows = study_rows(study.name, errors.sums(), settings.sizes);
+  report.surface_vertices = object.positions.size();
   report.receiver_vertices = study.receiver.positions.size();
   report.pca_energy_kept = pca_report.energy_kept;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -369,6 +369,12 @@ TEST(Compare, GivesEveryFamilySizeAndLightingWithinBounds) {
 TEST(Compare, RefusesBadInput) {
   BasisStudyScene scene{"floor", make_study_floor(glm::vec2(0.0f), 1.0f, 0.0f, 4),
                         test::make_icosphere(0, 0.3f, glm::vec3(0, 0.4f, 0))};
+  BasisStudySettings no_terms;
+  no_terms.sizes = {4, 0};
+  EXPECT_NE(thrown_message([&] {
+              compare_surface_bases(scene, make_demo_sky(16), no_terms, {});
+            }).find("at least 1 term"),
+            std::string::npos);
   scene.surface.texcoords0.clear();
   EXPECT_NE(thrown_message([&] {
               compare_surface_bases(scene, make_demo_sky(16), {}, {});

@@ -157,7 +157,7 @@ struct BasisStudyReport {
 
 // Bakes the surface's PCA basis (the receiver blocking), builds the other families, lights the
 // surface with the test lights and the sky, and measures every family at every size. Throws
-// Error when the surface has no TEXCOORD_0 or a family cannot reach a size.
+// Error when the surface has no TEXCOORD_0, a size is 0 or a family cannot reach a size.
 BasisStudyReport compare_surface_bases(const BasisStudyScene& scene, const io::EnvMap& sky,
                                        const BasisStudySettings& settings, const Context& ctx);
 
