@@ -280,7 +280,7 @@ std::vector<double> approximated_radiance(const SurfaceBasis& basis,
   return out;
 }
 
-// ---- Source irradiance -------------------------------------------------------------------------
+// ---- Source irradiance --------------------------------------------------------------------------
 
 std::vector<double> SourceIrradiance::apply(const std::vector<double>& radiance) const {
   if (radiance.size() != sources)
@@ -370,7 +370,7 @@ SourceIrradiance source_irradiance(const ShadowfieldObject& source, const Embree
   return out;
 }
 
-// ---- The comparison ----------------------------------------------------------------------------
+// ---- The comparison -----------------------------------------------------------------------------
 
 Mesh make_study_floor(glm::vec2 centre, float half_size, float height, int side) {
   if (side < 2) throw Error("shadowfield basis study: a floor needs at least 2 x 2 vertices");

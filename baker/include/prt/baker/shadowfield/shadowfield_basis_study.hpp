@@ -26,8 +26,7 @@
 
 namespace prt::bake {
 
-// ---- The bases
-// -----------------------------------------------------------------------------------
+// ---- The bases ----------------------------------------------------------------------------------
 
 enum class SurfaceBasisFamily { SphericalHarmonics, Haar, FourierCosine, Pca };
 const char* surface_basis_name(SurfaceBasisFamily family);
@@ -85,7 +84,7 @@ std::vector<double> approximated_radiance(const SurfaceBasis& basis,
                                           const std::vector<float>& weights,
                                           const std::vector<double>& radiance);
 
-// ---- The light a source throws on a receiver ---------------------------------------------------
+// ---- The light a source throws on a receiver ----------------------------------------------------
 
 // E = G r: the irradiance at each receiver vertex from a source glowing with per-vertex radiance
 // r, as a sparse matrix. Per receiver vertex, `directions` cosine-weighted directions about its
@@ -108,7 +107,7 @@ SourceIrradiance source_irradiance(const ShadowfieldObject& source, const Embree
                                    std::uint32_t directions, std::uint32_t seed,
                                    const Context& ctx);
 
-// ---- The comparison ----------------------------------------------------------------------------
+// ---- The comparison -----------------------------------------------------------------------------
 
 // A surface whose radiance is approximated (its mesh's TEXCOORD_0 is the uv of Haar and cosine)
 // and the receiver it lights, both in one frame, the receiver also blocking the surface's light.
