@@ -10,6 +10,7 @@
 #include <prt/format/mesh_layout.h>
 #include <prt/format/pose_layout.h>
 #include <prt/format/sh_layout.h>
+#include <prt/format/shadowfield_layout.h>
 #include <prt/format/wavelet_layout.h>
 
 #include "cloth/cloth_section.h"
@@ -17,6 +18,7 @@
 #include "pose/pose_section.h"
 #include "reader_internal.h"
 #include "sh/sh_section.h"
+#include "shadowfield/shadowfield_section.h"
 #include "wavelet/wavelet_section.h"
 
 /* One row per kind: tag, layout version, domain, whether its element count is the domain's size,
@@ -51,6 +53,9 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_CLTH, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_MATERIAL, 1,
      0u, {0},
      "cloth fabrics (element = material)", "fabrics", prt_blob_check_clth},
+    {PRT_BLOB_TAG_SFLD, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_OBJECT, 1,
+     0u, {PRT_BLOB_TAG_VPOS, PRT_BLOB_TAG_VNRM},
+     "shadowfield object (element = object)", "objects", prt_blob_check_sfld},
 };
 /* clang-format on */
 

@@ -183,7 +183,9 @@ static prt_result load(prt_context* context, const void* data, size_t size,
   }
   r = check_and_decode(allocator, bytes, size, validation, DECODE_KEEP, &h, &sections, views, msg,
                        sizeof msg);
-  if (r == PRT_OK) r = prt_internal_attach_views(context, allocator, views, msg, sizeof msg);
+  if (r == PRT_OK)
+    r = prt_internal_attach_views(context, allocator, sections, h.section_count, views, msg,
+                                  sizeof msg);
   asset = r == PRT_OK ? (prt_asset*)prt_internal_alloc(allocator, sizeof *asset, 16) : NULL;
   if (!asset) {
     if (r == PRT_OK) {

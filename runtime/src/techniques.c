@@ -9,20 +9,27 @@ extern const prt_technique_entry prt_sh_technique_entry;      /* sh/sh_section.c
 extern const prt_technique_entry prt_wavelet_technique_entry; /* wavelet/wavelet_section.c */
 extern const prt_technique_entry prt_pose_technique_entry;    /* pose/pose_section.c */
 extern const prt_technique_entry prt_cloth_technique_entry;   /* cloth/cloth_section.c */
+/* shadowfield/shadowfield_section.c */
+extern const prt_technique_entry prt_shadowfield_technique_entry;
 
+/* One row per technique. */
+/* clang-format off */
 static const prt_technique_entry* const kTechniques[] = {
     &prt_sh_technique_entry,
     &prt_wavelet_technique_entry,
     &prt_pose_technique_entry,
     &prt_cloth_technique_entry,
+    &prt_shadowfield_technique_entry,
 };
+/* clang-format on */
 
 #define TECHNIQUE_COUNT (sizeof kTechniques / sizeof kTechniques[0])
 
 PRT_STATIC_ASSERT(PRT_TECHNIQUE_SH < PRT_INTERNAL_MAX_TECHNIQUES &&
                       PRT_TECHNIQUE_WAVELET < PRT_INTERNAL_MAX_TECHNIQUES &&
                       PRT_TECHNIQUE_POSE < PRT_INTERNAL_MAX_TECHNIQUES &&
-                      PRT_TECHNIQUE_CLOTH < PRT_INTERNAL_MAX_TECHNIQUES,
+                      PRT_TECHNIQUE_CLOTH < PRT_INTERNAL_MAX_TECHNIQUES &&
+                      PRT_TECHNIQUE_SHADOWFIELD < PRT_INTERNAL_MAX_TECHNIQUES,
                   technique_values_fit_a_bit_set);
 
 const prt_technique_entry* prt_internal_technique(prt_technique technique) {
@@ -51,6 +58,7 @@ void prt_internal_free_views(const prt_allocator* allocator,
 }
 
 prt_result prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
+                                     const prt_asset_section* sections, uint32_t section_count,
                                      void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
                                      size_t capacity) {
   size_t i;
@@ -58,11 +66,10 @@ prt_result prt_internal_attach_views(const prt_context* context, const prt_alloc
     const prt_technique_entry* t = kTechniques[i];
     prt_result r;
     if (!views[t->technique] || !t->attach) continue;
-    r = t->attach(context, allocator, views[t->technique]);
-    if (r != PRT_OK) {
+    r = t->attach(context, allocator, sections, section_count, views[t->technique], msg, capacity);
+    if (r == PRT_ERROR_OUT_OF_MEMORY)
       snprintf(msg, capacity, "out of memory for the '%s' section's runtime data", t->name);
-      return r;
-    }
+    if (r != PRT_OK) return r;
   }
   return PRT_OK;
 }

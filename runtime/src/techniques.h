@@ -18,9 +18,13 @@ typedef struct prt_technique_entry {
    * PRT_ERROR_CORRUPT with msg naming the field. */
   prt_result (*open)(const prt_asset_section* section, void* view, char* msg, size_t capacity);
   /* Optional (NULL: none): once the asset is loaded, may add runtime-owned data to its view from
-   * the context's allocator (e.g. a layout the context's kernels read faster): PRT_OK, also when
-   * it adds nothing (the view works as opened), or PRT_ERROR_OUT_OF_MEMORY. */
-  prt_result (*attach)(const prt_context* context, const prt_allocator* allocator, void* view);
+   * the context's allocator (e.g. a layout the context's kernels read faster, or the technique's
+   * data decoded together with the mesh sections among `sections`, all decoded): PRT_OK, also
+   * when it adds nothing (the view works as opened), PRT_ERROR_OUT_OF_MEMORY, or
+   * PRT_ERROR_CORRUPT with msg naming what does not match. */
+  prt_result (*attach)(const prt_context* context, const prt_allocator* allocator,
+                       const prt_asset_section* sections, uint32_t section_count, void* view,
+                       char* msg, size_t capacity);
   /* Optional: frees what attach added; called on every view before it is freed (views start
    * zeroed, so a view attach never saw holds nothing to free). */
   void (*release)(const prt_allocator* allocator, void* view);
@@ -41,9 +45,10 @@ prt_result prt_internal_open_views(const prt_allocator* allocator,
                                    int keep, void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
                                    size_t capacity);
 
-/* Runs every technique's attach hook on the views of a loaded asset; on failure msg names the
- * technique (the caller frees the views). */
+/* Runs every technique's attach hook on the views of a loaded asset, whose decoded sections are
+ * `sections`; on failure msg names the technique (the caller frees the views). */
 prt_result prt_internal_attach_views(const prt_context* context, const prt_allocator* allocator,
+                                     const prt_asset_section* sections, uint32_t section_count,
                                      void* views[PRT_INTERNAL_MAX_TECHNIQUES], char* msg,
                                      size_t capacity);
 

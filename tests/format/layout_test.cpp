@@ -273,6 +273,7 @@ TEST(SectionKinds, TableIsTheSpecs) {
       {PRT_BLOB_TAG('W', 'V', 'L', 'T'), 0, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('P', 'S', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('C', 'L', 'T', 'H'), 0, PRT_BLOB_DOMAIN_MATERIAL},
+      {PRT_BLOB_TAG('S', 'F', 'L', 'D'), 0, PRT_BLOB_DOMAIN_OBJECT},
   };
   EXPECT_EQ(prt_blob_kind_count(), sizeof spec / sizeof spec[0]);
   for (const Row& row : spec) {
@@ -287,9 +288,13 @@ TEST(SectionKinds, TableIsTheSpecs) {
   EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_TRIANGLE)->tag, PRT_BLOB_TAG_TRIS);
   EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_MATERIAL)->tag,
             PRT_BLOB_TAG('C', 'L', 'T', 'H'));
-  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_OBJECT), nullptr);
+  EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_OBJECT)->tag, PRT_BLOB_TAG('S', 'F', 'L', 'D'));
   EXPECT_EQ(prt_blob_domain_counter(PRT_BLOB_DOMAIN_NONE), nullptr);
   EXPECT_EQ(prt_blob_find_kind(PRT_BLOB_TAG_TRIS, 1)->depends_on[0], PRT_BLOB_TAG_VPOS);
+  const prt_blob_kind* sfld = prt_blob_find_kind(PRT_BLOB_TAG('S', 'F', 'L', 'D'), 1);
+  EXPECT_EQ(sfld->depends_on[0], PRT_BLOB_TAG_VPOS);
+  EXPECT_EQ(sfld->depends_on[1], PRT_BLOB_TAG_VNRM);
+  EXPECT_EQ(sfld->depends_on[2], 0u);
 }
 
 // Properties every future row must keep too.

@@ -3,7 +3,7 @@
 """A second, independent reader of prtkit blobs written from formats/SPEC.md alone (no code shared
 with the C reader), used as a cross-check: it validates a blob by the rules of SPEC.md §8 (quick
 checks, checksums, padding, contents of uncompressed known kinds including the SHTR (§7.1), WVLT
-(§7.2), PSTR (§7.3) and CLTH (§7.4) layouts; zstd frames are not decoded, the standard library has no zstd) and
+(§7.2), PSTR (§7.3), CLTH (§7.4) and SFLD (§7.5) layouts; zstd frames are not decoded, the standard library has no zstd) and
 prints the section table and the technique headers. It also holds a blob to the rules SPEC.md
 states for writers where a reader need not check them (PSTR: every vertex's weights sum to 65535,
 or are all 0), since what it reads are the writer's golden blobs; such failures say "WRITER".
@@ -16,8 +16,10 @@ import sys
 
 # (tag, layout version) -> element size; None = variable, the exact size is in the layout (§7).
 KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"VTAN", 1): 12, (b"TRIS", 1): 12,
-         (b"SHTR", 1): None, (b"WVLT", 1): None, (b"PSTR", 1): None, (b"CLTH", 1): None}
-# One element per VPOS vertex (§7 relations); CLTH counts its own domain and needs nothing.
+         (b"SHTR", 1): None, (b"WVLT", 1): None, (b"PSTR", 1): None, (b"CLTH", 1): None,
+         (b"SFLD", 1): None}
+# One element per VPOS vertex (§7 relations); CLTH counts its own domain and needs nothing, SFLD
+# counts its own and needs VPOS and VNRM.
 PER_VERTEX = (b"VNRM", b"VTAN", b"SHTR", b"WVLT", b"PSTR")
 
 
@@ -325,6 +327,80 @@ def read_clth(data, element_count):
                 view_phi=view_phi, bits=bits)
 
 
+FLT_MAX = 3.4028234663852886e38
+
+
+def read_sfld_shells(data, at, grid):
+    """One SFLD shell grid, SPEC.md §7.5; returns its point count S 6 F^2."""
+    cx, cy, cz, radius, inner, outer, shells, face = struct.unpack_from("<6f2I", data, at)
+    for what, x in (("centre", cx), ("centre", cy), ("centre", cz), ("radius", radius),
+                    ("inner", inner), ("outer", outer)):
+        require(finite(x), f"NON_FINITE: SFLD {grid} {what}")
+    require(radius > 0, f"CORRUPT: SFLD {grid} radius")
+    require(inner > 0, f"CORRUPT: SFLD {grid} inner")
+    require(1 <= shells <= 64, f"CORRUPT: SFLD {grid} shells")
+    require(outer == inner if shells == 1 else outer > inner, f"CORRUPT: SFLD {grid} outer")
+    require(radius * outer <= FLT_MAX, f"CORRUPT: SFLD {grid} radius x outer")
+    require(1 <= face <= 64, f"CORRUPT: SFLD {grid} face size")
+    return shells * 6 * face * face
+
+
+def read_sfld_floats(data, at, count, what, low=-FLT_MAX, high=FLT_MAX):
+    for (x,) in struct.iter_unpack("<f", data[at:at + 4 * count]):
+        require(finite(x), f"NON_FINITE: SFLD {what}")
+        require(low <= x <= high, f"CORRUPT: SFLD {what}")
+
+
+def read_sfld_block(data, at, rows, count, value_size, what):
+    """A quantised block: rows (offset, scale) pairs, values, zero padding to 4. Returns its end."""
+    for offset, scale in struct.iter_unpack("<2f", data[at:at + 8 * rows]):
+        require(finite(offset) and finite(scale), f"NON_FINITE: SFLD {what} offset or scale")
+        require(scale >= 0, f"CORRUPT: SFLD {what} scale")
+    end = at + 8 * rows + count * value_size
+    require(data[end:padded4(end)] == bytes(padded4(end) - end), f"CORRUPT: SFLD {what} padding")
+    return padded4(end)
+
+
+def read_sfld(data, element_count, vertex_count):
+    """SFLD, SPEC.md §7.5: header fields, shells, the exact size, the blocks' floats, padding."""
+    require(len(data) >= 128, "CORRUPT: SFLD header")
+    order, terms, glossy, v, n, g, bits, flags = struct.unpack_from("<8I", data)
+    require(2 <= order <= 6, "CORRUPT: SFLD order")
+    require(1 <= terms <= 8, "CORRUPT: SFLD terms")
+    require(glossy in (0, 1), "CORRUPT: SFLD glossy")
+    require(glossy or terms == 1, "CORRUPT: SFLD diffuse terms")
+    require(v >= 1 and v == vertex_count, "CORRUPT: SFLD vertices")
+    require(1 <= n <= 64 and n <= v, "CORRUPT: SFLD basis size")
+    require(4 <= g <= 64 if glossy else g == 0, "CORRUPT: SFLD BRDF grid")
+    require(bits in (8, 16), "CORRUPT: SFLD bits")
+    require(flags == 0, "CORRUPT: SFLD flags")
+    p_oof = read_sfld_shells(data, 32, "OOF")
+    p_srf = read_sfld_shells(data, 64, "SRF")
+    require(data[96:128] == bytes(32), "CORRUPT: SFLD reserved")
+    require(element_count == 1, "CORRUPT: SFLD element count")
+    n2, b = order * order, bits // 8
+
+    def q(rows, count):
+        return 8 * rows + padded4(count * b)
+    size = (128 + 12 * v + 4 * terms * g * g + q(terms * n2, v * terms * n2) + q(n2, p_oof * n2)
+            + q(n, n * v) + 4 * v + 4 * n * n + q(n * terms * n2, n * terms * p_srf * n2))
+    require(len(data) == size, "CORRUPT: SFLD size")
+    read_sfld_floats(data, 128, 3 * v, "albedo", 0.0, 1.0)
+    at = 128 + 12 * v
+    read_sfld_floats(data, at, terms * g * g, "g table")
+    at += 4 * terms * g * g
+    at = read_sfld_block(data, at, terms * n2, v * terms * n2, b, "transfer")
+    at = read_sfld_block(data, at, n2, p_oof * n2, b, "OOF")
+    at = read_sfld_block(data, at, n, n * v, b, "basis")
+    read_sfld_floats(data, at, v, "vertex weights", 0.0)
+    at += 4 * v
+    read_sfld_floats(data, at, n * n, "inverse normal matrix")
+    at += 4 * n * n
+    read_sfld_block(data, at, n * terms * n2, n * terms * p_srf * n2, b, "SRF")
+    return dict(order=order, terms=terms, glossy=glossy, vertices=v, basis=n, brdf_grid=g,
+                bits=bits, oof_points=p_oof, srf_points=p_srf)
+
+
 def read(blob):
     size = len(blob)
     require(size >= 4, "TRUNCATED: fewer than 4 bytes")
@@ -369,8 +445,9 @@ def read(blob):
         end = offset + stored
     require(total == align16(end), "CORRUPT: total_size is not the padded end")
     by_tag = {s["tag"]: s for s in sections if s["known"]}
-    for needy in (b"TRIS",) + PER_VERTEX:
+    for needy in (b"TRIS", b"SFLD") + PER_VERTEX:
         require(needy not in by_tag or b"VPOS" in by_tag, "CORRUPT: needs VPOS")
+    require(b"SFLD" not in by_tag or b"VNRM" in by_tag, "CORRUPT: SFLD needs VNRM")
     for per_vertex in PER_VERTEX:
         if per_vertex in by_tag:
             require(by_tag[per_vertex]["elements"] == by_tag[b"VPOS"]["elements"],
@@ -408,6 +485,8 @@ def read(blob):
             s["header"] = read_pstr(data, s["elements"])
         elif s["tag"] == b"CLTH":
             s["header"] = read_clth(data, s["elements"])
+        elif s["tag"] == b"SFLD":
+            s["header"] = read_sfld(data, s["elements"], by_tag[b"VPOS"]["elements"])
     require(blob[end:total] == bytes(total - end), "CORRUPT: final padding")
     return (major, minor), sections
 

@@ -33,6 +33,8 @@ TEST(Technique, EachTechniqueDescribesItself) {
        PRT_ELEMENT_DOMAIN_VERTEX},
       {PRT_TECHNIQUE_POSE, "pose", PRT_BLOB_TAG('P', 'S', 'T', 'R'), PRT_ELEMENT_DOMAIN_VERTEX},
       {PRT_TECHNIQUE_CLOTH, "cloth", PRT_BLOB_TAG('C', 'L', 'T', 'H'), PRT_ELEMENT_DOMAIN_MATERIAL},
+      {PRT_TECHNIQUE_SHADOWFIELD, "shadowfield", PRT_BLOB_TAG('S', 'F', 'L', 'D'),
+       PRT_ELEMENT_DOMAIN_OBJECT},
   };
   for (const Expected& e : expected) {
     prt_technique_info info = prt::sized<prt_technique_info>();
@@ -46,6 +48,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
   EXPECT_EQ(PRT_SECTION_WVLT, expected[1].tag);
   EXPECT_EQ(PRT_SECTION_PSTR, expected[2].tag);
   EXPECT_EQ(PRT_SECTION_CLTH, expected[3].tag);
+  EXPECT_EQ(PRT_SECTION_SFLD, expected[4].tag);
   // Every other value is not a technique of this runtime.
   int known = 0;
   for (uint32_t t = 0; t < 32; ++t) {
@@ -54,7 +57,7 @@ TEST(Technique, EachTechniqueDescribesItself) {
     EXPECT_TRUE(r == PRT_OK || r == PRT_ERROR_NOT_FOUND) << t;
     known += r == PRT_OK;
   }
-  EXPECT_EQ(known, 4);
+  EXPECT_EQ(known, 5);
   prt_technique_info info = prt::sized<prt_technique_info>();
   EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_NONE, &info), PRT_ERROR_NOT_FOUND);
   EXPECT_EQ(prt_technique_get_info(PRT_TECHNIQUE_SH, nullptr), PRT_ERROR_INVALID_ARGUMENT);

@@ -12,6 +12,7 @@
 #include "../cloth/cloth_exercise.h"
 #include "../pose/pose_exercise.h"
 #include "../sh/sh_exercise.h"
+#include "../shadowfield/shadowfield_exercise.h"
 #include "../wavelet/wavelet_exercise.h"
 
 /* Exercises every function of one technique on `asset` (loaded at `level`, holding the
@@ -28,6 +29,7 @@ static const prt_test_technique_exercise prt_test_technique_exercises[] = {
     {PRT_TECHNIQUE_WAVELET, prt_test_exercise_wavelet},
     {PRT_TECHNIQUE_POSE, prt_test_exercise_pose},
     {PRT_TECHNIQUE_CLOTH, prt_test_exercise_cloth},
+    {PRT_TECHNIQUE_SHADOWFIELD, prt_test_exercise_shadowfield},
 };
 
 #define PRT_TEST_TECHNIQUE_EXERCISE_COUNT \

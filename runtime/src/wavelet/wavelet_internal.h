@@ -28,7 +28,8 @@ typedef struct prt_wavelet_view {
 
 /* The technique entry's attach and release hooks (wavelet_tiles.c). */
 prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* allocator,
-                                    void* view);
+                                    const prt_asset_section* sections, uint32_t section_count,
+                                    void* view, char* msg, size_t capacity);
 void prt_wavelet_release_tiles(const prt_allocator* allocator, void* view);
 
 /* Fills *out for one tiled call from the prepared light and the skip mask (never NULL); 0 when a

@@ -202,7 +202,8 @@ static int fill_tiles(const prt_wavelet_rows* rows, uint32_t vertices, prt_wavel
 }
 
 prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_allocator* allocator,
-                                    void* view_memory) {
+                                    const prt_asset_section* sections, uint32_t section_count,
+                                    void* view_memory, char* msg, size_t capacity) {
   prt_wavelet_view* view = (prt_wavelet_view*)view_memory;
   const prt_wavelet_rows* rows = &view->rows;
   const uint32_t vertices = view->info.vertex_count;
@@ -213,6 +214,7 @@ prt_result prt_wavelet_attach_tiles(const prt_context* context, const prt_alloca
   fine_block* block;
   uint8_t* memory;
   int made;
+  (void)sections, (void)section_count, (void)msg, (void)capacity; /* needs only its own view */
   if (prt_internal_simd_isa(context) < PRT_SIMD_ISA_AVX2 || vertices == 0) return PRT_OK;
   memset(&header, 0, sizeof header);
   header.tiles = (vertices + PRT_WAVELET_TILE - 1u) / PRT_WAVELET_TILE;

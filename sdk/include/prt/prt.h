@@ -17,6 +17,7 @@
 #include <prt/prt_pose_asset.h>
 #include <prt/prt_sh.h>
 #include <prt/prt_sh_asset.h>
+#include <prt/prt_shadowfield_asset.h>
 #include <prt/prt_technique.h>
 #include <prt/prt_types.h>
 #include <prt/prt_version.h>

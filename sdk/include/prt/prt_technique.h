@@ -5,7 +5,8 @@
  * A technique is one precomputed-radiance-transfer method with its own section kind, headers
  * (prt_<t>.h for its maths, prt_<t>_asset.h for its section) and shading functions. Its section
  * stores one record per element of a domain: a vertex (`sh`, `wavelet`, `pose`), a triangle, a
- * material (tables shaded per pixel: `cloth`) or an object (fields combined across instances).
+ * material (tables shaded per pixel: `cloth`) or an object (fields combined across instances:
+ * `shadowfield`).
  * Code that handles every technique the same way (a tool listing a blob, a fuzzer, a viewer) loops
  * over prt_asset_techniques() and asks prt_technique_get_info() instead of naming techniques.
  *
@@ -26,7 +27,9 @@ typedef enum prt_technique {
   PRT_TECHNIQUE_SH = 1,      /* per-vertex SH transfer (prt_sh.h, prt_sh_asset.h) */
   PRT_TECHNIQUE_WAVELET = 2, /* per-vertex Haar wavelet transfer (prt_wavelet*.h) */
   PRT_TECHNIQUE_POSE = 3,    /* per-vertex SH transfer of a skinned character (prt_pose_asset.h) */
-  PRT_TECHNIQUE_CLOTH = 4    /* per-pixel woven cloth from per-fabric tables (prt_cloth*.h) */
+  PRT_TECHNIQUE_CLOTH = 4,   /* per-pixel woven cloth from per-fabric tables (prt_cloth*.h) */
+  PRT_TECHNIQUE_SHADOWFIELD = 5 /* rigid objects' shadow and radiance fields
+                                 * (prt_shadowfield_asset.h) */
 } prt_technique;
 
 /* What one element of a section is (formats/SPEC.md, section kinds). */
