@@ -1,0 +1,60 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the runtime: what the shadowfield GL backend (shadowfield_gl.c) and its compute
+ * shader (shadowfield_gl_glsl.c) share: the layout of an instance's record in the frame buffer,
+ * in 32-bit words (a float, or a uint stored by its bits), which the shader reads by these
+ * offsets, and the shader's stages. */
+#ifndef PRT_RUNTIME_SHADOWFIELD_GL_INTERNAL_H
+#define PRT_RUNTIME_SHADOWFIELD_GL_INTERNAL_H
+
+#include "shadowfield_scene.h"
+
+/* The record of one instance: a header, then one pair block per other instance that affects it.
+ * Offsets marked (u) are uints; buffer offsets count floats. */
+#define PRT_SF_GL_VERTICES 0u     /* (u) the object's vertex count */
+#define PRT_SF_GL_TERMS 1u        /* (u) BRDF terms K */
+#define PRT_SF_GL_GLOSSY 2u       /* (u) 1: g read from the g table */
+#define PRT_SF_GL_BRDF_GRID 3u    /* (u) G */
+#define PRT_SF_GL_POSITIONS 4u    /* (u) offsets in the object buffer */
+#define PRT_SF_GL_NORMALS 5u      /* (u) */
+#define PRT_SF_GL_ALBEDO 6u       /* (u) */
+#define PRT_SF_GL_TRANSFER 7u     /* (u) */
+#define PRT_SF_GL_G_TABLE 8u      /* (u) */
+#define PRT_SF_GL_INCIDENT 9u     /* (u) the instance's passes in the incident buffer */
+#define PRT_SF_GL_OUTPUT 10u      /* (u) the instance's first float in the radiance buffer */
+#define PRT_SF_GL_PAIR_COUNT 11u  /* (u) */
+#define PRT_SF_GL_ROTATION 12u    /* 9 floats, row-major */
+#define PRT_SF_GL_TRANSLATION 21u /* 3 */
+#define PRT_SF_GL_SCALE 24u
+#define PRT_SF_GL_EYE 25u   /* 3 */
+#define PRT_SF_GL_LIGHT 28u /* the light in the instance's frame, [3 i + c] */
+#define PRT_SF_GL_PRODUCT (PRT_SF_GL_LIGHT + 3u * PRT_SF_MAX_COEFFS) /* light_product, 3 n^4 */
+#define PRT_SF_GL_HEADER (PRT_SF_GL_PRODUCT + 3u * PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS)
+
+/* A pair block, from its first word. A grid is centre (3), radius, inner, outer, shells (u),
+ * face size (u). */
+#define PRT_SF_GL_OCCLUDES 0u     /* (u) */
+#define PRT_SF_GL_LIGHTS 1u       /* (u) */
+#define PRT_SF_GL_TO_OTHER 2u     /* 9 */
+#define PRT_SF_GL_OFFSET 11u      /* 3 */
+#define PRT_SF_GL_OOF_GRID 14u    /* 8 */
+#define PRT_SF_GL_OOF 22u         /* (u) the other's OOF in the object buffer */
+#define PRT_SF_GL_SRF_GRID 23u    /* 8 */
+#define PRT_SF_GL_FIELD 31u       /* (u) the other's source field in the field buffer */
+#define PRT_SF_GL_FIELD_PLANE 32u /* (u) floats per colour plane of that field */
+#define PRT_SF_GL_SH_ROTATION 33u /* PRT_SF_ROTATION_FLOATS */
+#define PRT_SF_GL_PAIR_FLOATS (PRT_SF_GL_SH_ROTATION + PRT_SF_ROTATION_FLOATS)
+#define PRT_SF_GL_GRID_FLOATS 8u
+
+/* The shader's stages (its `stage` uniform). */
+#define PRT_SF_GL_STAGE_DIRECT 0u
+#define PRT_SF_GL_STAGE_BOUNCE 1u
+#define PRT_SF_GL_STAGE_OUTPUT 2u
+
+/* Vertices per work group. */
+#define PRT_SF_GL_LOCAL_SIZE 64u
+
+/* The compute shader's body; it follows a header the backend writes: the #version line, ORDER,
+ * LOCAL_SIZE, MAX_TERMS and every PRT_SF_GL_* offset above without its prefix. */
+extern const char prt_sf_gl_shader_source[];
+
+#endif /* PRT_RUNTIME_SHADOWFIELD_GL_INTERNAL_H */
