@@ -58,9 +58,19 @@ enum {
   BUFFER_INCIDENT = 3, /* every instance's light per pass, vertex and term */
   BUFFER_RADIANCE = 4, /* every instance's outgoing radiance */
   BUFFER_FRAME = 5,    /* every instance's record of the frame */
-  BUFFER_COUNT = 6
+  BUFFER_SCRATCH = 6,  /* each invocation's SH vectors (shadowfield_gl_glsl.c) */
+  BUFFER_COUNT = 7
 };
-enum { UNIFORM_RECORD = 0, UNIFORM_STAGE = 1, UNIFORM_PASS = 2 };
+enum {
+  UNIFORM_RECORD = 0,
+  UNIFORM_STAGE = 1,
+  UNIFORM_PASS = 2,
+  UNIFORM_FIRST_VERTEX = 3,
+  UNIFORM_ORDER = 4
+};
+
+/* Vertices per dispatch: each has its scratch rows, so this bounds the scratch buffer. */
+#define CHUNK_VERTICES 16384u
 
 /* Where an object's arrays start in the object buffer (floats). */
 typedef struct object_offsets {
@@ -95,12 +105,9 @@ static void put_uint(float* words, uint32_t at, uint32_t value) {
 /* ---- create ------------------------------------------------------------------------------- */
 
 static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
-  uint32_t max_terms = 1u;
-  for (uint32_t o = 0; o < s->object_count; ++o)
-    if (s->scene->objects[o]->terms > max_terms) max_terms = s->scene->objects[o]->terms;
   char header[2048];
   snprintf(header, sizeof header,
-           "#version 430 core\n#define ORDER %u\n#define LOCAL_SIZE %u\n#define MAX_TERMS %u\n"
+           "#version 430 core\n#define LOCAL_SIZE %u\n"
            "#define VERTICES %uu\n#define TERMS %uu\n#define GLOSSY %uu\n#define BRDF_GRID %uu\n"
            "#define POSITIONS %uu\n#define NORMALS %uu\n#define ALBEDO %uu\n#define TRANSFER %uu\n"
            "#define G_TABLE %uu\n#define INCIDENT %uu\n#define OUTPUT %uu\n"
@@ -110,16 +117,19 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            "#define OFFSET %uu\n#define OOF_GRID %uu\n#define OOF %uu\n#define SRF_GRID %uu\n"
            "#define FIELD %uu\n#define FIELD_PLANE %uu\n#define SH_ROTATION %uu\n"
            "#define PAIR_FLOATS %uu\n",
-           s->scene->order, PRT_SF_GL_LOCAL_SIZE, max_terms, PRT_SF_GL_VERTICES, PRT_SF_GL_TERMS,
-           PRT_SF_GL_GLOSSY, PRT_SF_GL_BRDF_GRID, PRT_SF_GL_POSITIONS, PRT_SF_GL_NORMALS,
-           PRT_SF_GL_ALBEDO, PRT_SF_GL_TRANSFER, PRT_SF_GL_G_TABLE, PRT_SF_GL_INCIDENT,
-           PRT_SF_GL_OUTPUT, PRT_SF_GL_PAIR_COUNT, PRT_SF_GL_ROTATION, PRT_SF_GL_TRANSLATION,
-           PRT_SF_GL_SCALE, PRT_SF_GL_EYE, PRT_SF_GL_LIGHT, PRT_SF_GL_PRODUCT, PRT_SF_GL_HEADER,
-           PRT_SF_GL_OCCLUDES, PRT_SF_GL_LIGHTS, PRT_SF_GL_TO_OTHER, PRT_SF_GL_OFFSET,
-           PRT_SF_GL_OOF_GRID, PRT_SF_GL_OOF, PRT_SF_GL_SRF_GRID, PRT_SF_GL_FIELD,
-           PRT_SF_GL_FIELD_PLANE, PRT_SF_GL_SH_ROTATION, PRT_SF_GL_PAIR_FLOATS);
+           PRT_SF_GL_LOCAL_SIZE, PRT_SF_GL_VERTICES, PRT_SF_GL_TERMS, PRT_SF_GL_GLOSSY,
+           PRT_SF_GL_BRDF_GRID, PRT_SF_GL_POSITIONS, PRT_SF_GL_NORMALS, PRT_SF_GL_ALBEDO,
+           PRT_SF_GL_TRANSFER, PRT_SF_GL_G_TABLE, PRT_SF_GL_INCIDENT, PRT_SF_GL_OUTPUT,
+           PRT_SF_GL_PAIR_COUNT, PRT_SF_GL_ROTATION, PRT_SF_GL_TRANSLATION, PRT_SF_GL_SCALE,
+           PRT_SF_GL_EYE, PRT_SF_GL_LIGHT, PRT_SF_GL_PRODUCT, PRT_SF_GL_HEADER, PRT_SF_GL_OCCLUDES,
+           PRT_SF_GL_LIGHTS, PRT_SF_GL_TO_OTHER, PRT_SF_GL_OFFSET, PRT_SF_GL_OOF_GRID,
+           PRT_SF_GL_OOF, PRT_SF_GL_SRF_GRID, PRT_SF_GL_FIELD, PRT_SF_GL_FIELD_PLANE,
+           PRT_SF_GL_SH_ROTATION, PRT_SF_GL_PAIR_FLOATS);
   const prt_GLchar* sources[2] = {header, prt_sf_gl_shader_source};
-  return prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
+  const prt_result r =
+      prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
+  if (r == PRT_OK) s->gl.ProgramUniform1ui(s->program, UNIFORM_ORDER, s->scene->order);
+  return r;
 }
 
 static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64_t start) {
@@ -143,7 +153,7 @@ static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64
 /* Lays out every buffer; the sizes in bytes (at least 4 each) in bytes[] by buffer. */
 static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
   const prt_shadowfield_scene* scene = s->scene;
-  uint64_t objects = 0u, fields = 0u, incident = 0u, radiance = 0u;
+  uint64_t objects = 0u, fields = 0u, incident = 0u, radiance = 0u, most_vertices = 0u;
   for (uint32_t o = 0; o < s->object_count; ++o)
     objects = object_floats(scene->objects[o], &s->objects[o], objects);
   for (uint32_t i = 0; i < s->instance_count; ++i) {
@@ -153,8 +163,12 @@ static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
     s->instances[i].radiance_vertex = (uint32_t)radiance;
     incident += instance->incident_floats;
     if (instance->field) fields += instance->field_floats;
-    radiance += scene->objects[instance->object]->vertex_count;
+    const uint32_t vertices = scene->objects[instance->object]->vertex_count;
+    radiance += vertices;
+    if (vertices > most_vertices) most_vertices = vertices;
   }
+  const uint64_t invocations =
+      (most_vertices < CHUNK_VERTICES ? most_vertices : CHUNK_VERTICES) + PRT_SF_GL_LOCAL_SIZE;
   s->radiance_vertices = (uint32_t)radiance;
   bytes[BUFFER_OBJECTS] = 4u * objects;
   bytes[BUFFER_GAUNT] = 4u * (scene->order * scene->order + 1u + 2u * (uint64_t)scene->gaunt.count);
@@ -162,6 +176,7 @@ static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
   bytes[BUFFER_INCIDENT] = 4u * incident;
   bytes[BUFFER_RADIANCE] = 12u * radiance;
   bytes[BUFFER_FRAME] = 4u * (uint64_t)s->instance_count * PRT_SF_GL_HEADER;
+  bytes[BUFFER_SCRATCH] = 4u * invocations * PRT_SF_GL_SCRATCH_FLOATS(scene->order);
   for (int b = 0; b < BUFFER_COUNT; ++b)
     if (bytes[b] == 0u) bytes[b] = 4u; /* empty parts still get valid buffers */
 }
@@ -280,8 +295,8 @@ prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader
     r = prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "%s: out of memory", FUNCTION_CREATE);
   } else {
     lay_out(s, bytes);
-    static const char* const kNames[BUFFER_COUNT] = {"objects",  "gaunt",    "fields",
-                                                     "incident", "radiance", "frame"};
+    static const char* const kNames[BUFFER_COUNT] = {"objects",  "gaunt", "fields", "incident",
+                                                     "radiance", "frame", "scratch"};
     r = prt_gl_check_block_sizes(context, &s->gl, FUNCTION_CREATE, bytes, kNames, BUFFER_COUNT);
   }
   if (r == PRT_OK) r = compile_program(context, s);
@@ -415,10 +430,15 @@ static void run_stage(const prt_gl_shadowfield* s, uint32_t stage, uint32_t pass
     const uint32_t vertices = prt_shadowfield_instance_vertex_count(s->scene, i);
     if (vertices == 0u) continue;
     gl->ProgramUniform1ui(s->program, UNIFORM_RECORD, s->instances[i].record);
-    gl->DispatchCompute((vertices + PRT_SF_GL_LOCAL_SIZE - 1u) / PRT_SF_GL_LOCAL_SIZE, 1, 1);
+    for (uint32_t first = 0; first < vertices; first += CHUNK_VERTICES) {
+      const uint32_t chunk = vertices - first < CHUNK_VERTICES ? vertices - first : CHUNK_VERTICES;
+      gl->ProgramUniform1ui(s->program, UNIFORM_FIRST_VERTEX, first);
+      gl->DispatchCompute((chunk + PRT_SF_GL_LOCAL_SIZE - 1u) / PRT_SF_GL_LOCAL_SIZE, 1, 1);
+      /* The next dispatch reuses the scratch rows (and a later stage reads these writes). */
+      gl->MemoryBarrier(PRT_GL_SHADER_STORAGE_BARRIER_BIT);
+    }
   }
-  gl->MemoryBarrier(PRT_GL_SHADER_STORAGE_BARRIER_BIT | PRT_GL_BUFFER_UPDATE_BARRIER_BIT |
-                    PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT | PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }
 
 /* Between pass - 1 and pass: each source's radiance of pass - 1 read back, projected on its

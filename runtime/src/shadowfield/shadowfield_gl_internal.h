@@ -52,9 +52,12 @@
 
 /* Vertices per work group. */
 #define PRT_SF_GL_LOCAL_SIZE 64u
+/* Scratch floats per invocation: 7 rows of order^2 (shadowfield_gl_glsl.c) and a lookup's 8
+ * indices and 8 weights. */
+#define PRT_SF_GL_SCRATCH_FLOATS(order) (7u * (order) * (order) + 16u)
 
-/* The compute shader's body; it follows a header the backend writes: the #version line, ORDER,
- * LOCAL_SIZE, MAX_TERMS and every PRT_SF_GL_* offset above without its prefix. */
+/* The compute shader's body; it follows a header the backend writes: the #version line,
+ * LOCAL_SIZE and every PRT_SF_GL_* record offset above without its prefix. */
 extern const char prt_sf_gl_shader_source[];
 
 #endif /* PRT_RUNTIME_SHADOWFIELD_GL_INTERNAL_H */
