@@ -145,7 +145,9 @@ PRT_API prt_result prt_shadowfield_output(const prt_shadowfield_scene* scene, ui
  * frames. The GL calls need the GL context current, as prt_gl.h says; create and shade record
  * failures in the scene's context (shade, like prt_shadowfield_shade, changes the scene and
  * needs exclusive use of it), read and the output queries write no context. After a GL shade the
- * scene's CPU stages (gather, project, output) need prepare again. */
+ * scene's CPU stages (gather, project, output) need prepare again. GL state: shade uses the
+ * current program and the SSBO bindings 0 to 6, read the generic SSBO binding; both leave them
+ * 0. */
 typedef struct prt_gl_shadowfield prt_gl_shadowfield;
 
 /* The buffers and program for `scene` (which must outlive it). PRT_ERROR_INVALID_ARGUMENT for

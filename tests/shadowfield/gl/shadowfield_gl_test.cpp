@@ -241,7 +241,16 @@ TEST(ShadowfieldGl, TheOutputBufferHoldsEveryInstanceInOrder) {
   GlShadowfieldPtr shader = create(busy.scene.scene, context.gl);
   ASSERT_TRUE(shader);
   const auto light = test_light(4);
+  prt_test::leave_gl_error_pending();  // an application's earlier mistake changes nothing
+  (void)prt_test::take_gl_error();
   const auto on_gl = shade_gl(shader.get(), busy.scene.scene, light, kNearEye, 1);
+  prt_test::expect_gl_state_restored("prt_gl_shadowfield_shade and read");
+  for (unsigned binding = 4; binding < 7; ++binding) {
+    int value = -1;
+    prt_test::gl_function<prt_test::gl_names::GetIntegeriVFn>("glGetIntegeri_v")(
+        prt_test::gl_names::kGlShaderStorageBufferBinding, binding, &value);
+    EXPECT_EQ(value, 0) << "indexed SSBO binding " << binding;
+  }
   const uint32_t buffer = prt_gl_shadowfield_output_buffer(shader.get());
   ASSERT_NE(buffer, 0u);
   EXPECT_EQ(prt_gl_shadowfield_output_first(shader.get(), 0), 0u);
