@@ -3,8 +3,8 @@
  * per-vertex work of a frame in a compute shader (shadowfield_gl_glsl.c): the direct light, the
  * bounces and the outgoing radiance. The CPU keeps the small work: the frame's preparation (the
  * light in each instance's frame, the pairs and their rotations, prt_shadowfield_prepare) and,
- * between two passes, each source's basis weights and the field it casts (shadowfield_eval.c),
- * which need the whole previous pass. */
+ * between two passes, each source's basis weights (shadowfield_eval.c), a sum over the whole
+ * previous pass read back; the field a source casts from them is GL's again. */
 #include <prt/prt_shadowfield.h>
 
 #include "../internal.h"
@@ -74,7 +74,7 @@ enum {
 
 /* Where an object's arrays start in the object buffer (floats). */
 typedef struct object_offsets {
-  uint32_t positions, normals, albedo, transfer, g_table, oof;
+  uint32_t positions, normals, albedo, transfer, g_table, oof, srf;
 } object_offsets;
 
 /* Where an instance's arrays start: incident and field (floats), radiance (vertices), and its
@@ -116,7 +116,8 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            "#define HEADER %uu\n#define OCCLUDES %uu\n#define LIGHTS %uu\n#define TO_OTHER %uu\n"
            "#define OFFSET %uu\n#define OOF_GRID %uu\n#define OOF %uu\n#define SRF_GRID %uu\n"
            "#define FIELD %uu\n#define FIELD_PLANE %uu\n#define SH_ROTATION %uu\n"
-           "#define PAIR_FLOATS %uu\n",
+           "#define PAIR_FLOATS %uu\n#define SRF %uu\n#define BASIS %uu\n#define OWN_FIELD %uu\n"
+           "#define FIELD_POINTS %uu\n#define WEIGHTS %uu\n",
            PRT_SF_GL_LOCAL_SIZE, PRT_SF_GL_VERTICES, PRT_SF_GL_TERMS, PRT_SF_GL_GLOSSY,
            PRT_SF_GL_BRDF_GRID, PRT_SF_GL_POSITIONS, PRT_SF_GL_NORMALS, PRT_SF_GL_ALBEDO,
            PRT_SF_GL_TRANSFER, PRT_SF_GL_G_TABLE, PRT_SF_GL_INCIDENT, PRT_SF_GL_OUTPUT,
@@ -124,12 +125,18 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            PRT_SF_GL_EYE, PRT_SF_GL_LIGHT, PRT_SF_GL_PRODUCT, PRT_SF_GL_HEADER, PRT_SF_GL_OCCLUDES,
            PRT_SF_GL_LIGHTS, PRT_SF_GL_TO_OTHER, PRT_SF_GL_OFFSET, PRT_SF_GL_OOF_GRID,
            PRT_SF_GL_OOF, PRT_SF_GL_SRF_GRID, PRT_SF_GL_FIELD, PRT_SF_GL_FIELD_PLANE,
-           PRT_SF_GL_SH_ROTATION, PRT_SF_GL_PAIR_FLOATS);
+           PRT_SF_GL_SH_ROTATION, PRT_SF_GL_PAIR_FLOATS, PRT_SF_GL_SRF, PRT_SF_GL_BASIS,
+           PRT_SF_GL_OWN_FIELD, PRT_SF_GL_FIELD_POINTS, PRT_SF_GL_WEIGHTS);
   const prt_GLchar* sources[2] = {header, prt_sf_gl_shader_source};
   const prt_result r =
       prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
   if (r == PRT_OK) s->gl.ProgramUniform1ui(s->program, UNIFORM_ORDER, s->scene->order);
   return r;
+}
+
+static uint64_t srf_floats(const prt_sf_object* o) {
+  return (uint64_t)o->basis_size * o->terms * prt_sf_point_count(&o->srf_shells) * o->order *
+         o->order;
 }
 
 static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64_t start) {
@@ -147,6 +154,8 @@ static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64
   if (o->glossy) next += (uint64_t)o->terms * o->brdf_grid * o->brdf_grid;
   at->oof = (uint32_t)next;
   next += prt_sf_point_count(&o->oof_shells) * n2;
+  at->srf = (uint32_t)next;
+  next += srf_floats(o);
   return next;
 }
 
@@ -201,6 +210,7 @@ static void upload_objects(const prt_gl_shadowfield* s) {
       upload(gl, at->g_table, object->g_table,
              (uint64_t)object->terms * object->brdf_grid * object->brdf_grid);
     upload(gl, at->oof, object->oof, prt_sf_point_count(&object->oof_shells) * n2);
+    if (object->basis_size) upload(gl, at->srf, object->srf, srf_floats(object));
   }
 }
 
@@ -374,12 +384,27 @@ static void write_header(const prt_gl_shadowfield* s, uint32_t i, float* words) 
   put_uint(words, PRT_SF_GL_INCIDENT, s->instances[i].incident);
   put_uint(words, PRT_SF_GL_OUTPUT, 3u * s->instances[i].radiance_vertex);
   put_uint(words, PRT_SF_GL_PAIR_COUNT, instance->pair_count);
+  put_uint(words, PRT_SF_GL_SRF, at->srf);
+  put_uint(words, PRT_SF_GL_BASIS, instance->field ? object->basis_size : 0u);
+  put_uint(words, PRT_SF_GL_OWN_FIELD, s->instances[i].field);
+  put_uint(words, PRT_SF_GL_FIELD_POINTS,
+           instance->field ? (uint32_t)prt_sf_point_count(&object->srf_shells) : 0u);
+  put_uint(words, PRT_SF_GL_WEIGHTS,
+           PRT_SF_GL_HEADER + instance->pair_count * PRT_SF_GL_PAIR_FLOATS);
   memcpy(words + PRT_SF_GL_ROTATION, instance->rotation, sizeof instance->rotation);
   memcpy(words + PRT_SF_GL_TRANSLATION, instance->translation, sizeof instance->translation);
   words[PRT_SF_GL_SCALE] = instance->scale;
   memcpy(words + PRT_SF_GL_EYE, scene->eye, sizeof scene->eye);
   memcpy(words + PRT_SF_GL_LIGHT, instance->light, (size_t)3u * n2 * sizeof(float));
   memcpy(words + PRT_SF_GL_PRODUCT, instance->light_product, (size_t)3u * n2 * n2 * sizeof(float));
+}
+
+/* The basis weights at the end of a source's record (set between passes). */
+static size_t weight_floats(const prt_shadowfield_scene* scene, uint32_t i) {
+  const prt_sf_instance* instance = &scene->instances[i];
+  if (!instance->field) return 0u;
+  const prt_sf_object* object = scene->objects[instance->object];
+  return (size_t)object->basis_size * object->terms * 3u;
 }
 
 static int reserve_frame(prt_gl_shadowfield* s, size_t floats) {
@@ -398,7 +423,8 @@ static prt_result upload_frame(prt_gl_shadowfield* s) {
   const prt_shadowfield_scene* scene = s->scene;
   size_t floats = 0u;
   for (uint32_t i = 0; i < s->instance_count; ++i)
-    floats += PRT_SF_GL_HEADER + (size_t)scene->instances[i].pair_count * PRT_SF_GL_PAIR_FLOATS;
+    floats += PRT_SF_GL_HEADER + (size_t)scene->instances[i].pair_count * PRT_SF_GL_PAIR_FLOATS +
+              weight_floats(scene, i);
   if (!reserve_frame(s, floats)) return PRT_ERROR_OUT_OF_MEMORY;
   size_t at = 0u;
   for (uint32_t i = 0; i < s->instance_count; ++i) {
@@ -408,6 +434,8 @@ static prt_result upload_frame(prt_gl_shadowfield* s) {
     at += PRT_SF_GL_HEADER;
     for (uint32_t q = 0; q < instance->pair_count; ++q, at += PRT_SF_GL_PAIR_FLOATS)
       write_pair(s, &scene->pairs[instance->pair_first + q], s->frame + at);
+    memset(s->frame + at, 0, weight_floats(scene, i) * sizeof(float));
+    at += weight_floats(scene, i);
   }
   const prt_gl_functions* gl = &s->gl;
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_FRAME]);
@@ -421,31 +449,36 @@ static prt_result upload_frame(prt_gl_shadowfield* s) {
   return PRT_OK;
 }
 
-/* One stage over every vertex of every instance, then a barrier for what reads it next. */
-static void run_stage(const prt_gl_shadowfield* s, uint32_t stage, uint32_t pass) {
+/* Invocations [0, count) of the bound stage on instance i's record, in chunks (each chunk's
+ * invocations have their own scratch rows, which the next chunk reuses). */
+static void dispatch(const prt_gl_shadowfield* s, uint32_t i, uint32_t count) {
   const prt_gl_functions* gl = &s->gl;
-  gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, stage);
-  gl->ProgramUniform1ui(s->program, UNIFORM_PASS, pass);
-  for (uint32_t i = 0; i < s->instance_count; ++i) {
-    const uint32_t vertices = prt_shadowfield_instance_vertex_count(s->scene, i);
-    if (vertices == 0u) continue;
-    gl->ProgramUniform1ui(s->program, UNIFORM_RECORD, s->instances[i].record);
-    for (uint32_t first = 0; first < vertices; first += CHUNK_VERTICES) {
-      const uint32_t chunk = vertices - first < CHUNK_VERTICES ? vertices - first : CHUNK_VERTICES;
-      gl->ProgramUniform1ui(s->program, UNIFORM_FIRST_VERTEX, first);
-      gl->DispatchCompute((chunk + PRT_SF_GL_LOCAL_SIZE - 1u) / PRT_SF_GL_LOCAL_SIZE, 1, 1);
-      /* The next dispatch reuses the scratch rows (and a later stage reads these writes). */
-      gl->MemoryBarrier(PRT_GL_SHADER_STORAGE_BARRIER_BIT);
-    }
+  gl->ProgramUniform1ui(s->program, UNIFORM_RECORD, s->instances[i].record);
+  for (uint32_t first = 0; first < count; first += CHUNK_VERTICES) {
+    const uint32_t chunk = count - first < CHUNK_VERTICES ? count - first : CHUNK_VERTICES;
+    gl->ProgramUniform1ui(s->program, UNIFORM_FIRST_VERTEX, first);
+    gl->DispatchCompute((chunk + PRT_SF_GL_LOCAL_SIZE - 1u) / PRT_SF_GL_LOCAL_SIZE, 1, 1);
+    /* The next dispatch reuses the scratch rows; a later stage reads these writes. */
+    gl->MemoryBarrier(PRT_GL_SHADER_STORAGE_BARRIER_BIT);
   }
-  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT | PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }
 
-/* Between pass - 1 and pass: each source's radiance of pass - 1 read back, projected on its
- * basis and its field cast on the CPU (shadowfield_eval.c), the field uploaded. */
+/* One stage over every vertex of every instance. */
+static void run_stage(const prt_gl_shadowfield* s, uint32_t stage, uint32_t pass) {
+  s->gl.ProgramUniform1ui(s->program, UNIFORM_STAGE, stage);
+  s->gl.ProgramUniform1ui(s->program, UNIFORM_PASS, pass);
+  for (uint32_t i = 0; i < s->instance_count; ++i)
+    dispatch(s, i, prt_shadowfield_instance_vertex_count(s->scene, i));
+}
+
+/* Between pass - 1 and pass: each source's radiance of pass - 1 read back and projected on its
+ * basis on the CPU (shadowfield_eval.c), the weights uploaded into its record, and the field it
+ * casts from them computed on GL. */
 static void project_sources(const prt_gl_shadowfield* s, uint32_t pass) {
   const prt_gl_functions* gl = &s->gl;
   const prt_shadowfield_scene* scene = s->scene;
+  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_CAST);
   for (uint32_t i = 0; i < s->instance_count; ++i) {
     const prt_sf_instance* source = &scene->instances[i];
     if (!source->is_source || !source->field) continue;
@@ -456,11 +489,14 @@ static void project_sources(const prt_gl_shadowfield* s, uint32_t pass) {
     gl->GetBufferSubData(PRT_GL_SHADER_STORAGE_BUFFER,
                          (prt_GLintptr)(4u * (s->instances[i].incident + first)),
                          (prt_GLsizeiptr)(4u * pass_floats), source->incident + first);
-    prt_sf_project_instance(scene, pass - 1u, i);
-    gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_FIELDS]);
-    upload(gl, s->instances[i].field, source->field, source->field_floats);
+    prt_sf_project_weights(scene, pass - 1u, i);
+    gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_FRAME]);
+    upload(gl,
+           s->instances[i].record + PRT_SF_GL_HEADER + source->pair_count * PRT_SF_GL_PAIR_FLOATS,
+           source->weights, weight_floats(scene, i));
+    gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+    dispatch(s, i, (uint32_t)(prt_sf_field_points(scene, i) * scene->order * scene->order));
   }
-  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
 }
 
 static void bind_buffers(const prt_gl_shadowfield* s, int bind) {
@@ -516,6 +552,8 @@ prt_result prt_gl_shadowfield_shade(prt_gl_shadowfield* shader, const float* lig
     run_stage(shader, PRT_SF_GL_STAGE_BOUNCE, pass);
   }
   run_stage(shader, PRT_SF_GL_STAGE_OUTPUT, scene->bounces);
+  /* For what reads the output next: vertex fetch, copies, reads. */
+  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT | PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
   gl->UseProgram(0);
   bind_buffers(shader, 0);
   /* The CPU's buffers do not hold this frame: its stages must be prepared again. */

@@ -3,8 +3,9 @@
  * of one instance, in one of three stages, each the scalar evaluation's (shadowfield_eval.c)
  * step for that vertex: the direct light (OOF reads, rotations and triple products, then the
  * transfer dot), a bounce (SRF reads of the sources' fields, rotated, then the transfer dot) and
- * the outgoing radiance (g table, passes summed, albedo). The instance's record (its header and
- * pairs, shadowfield_gl_internal.h) is read from the frame buffer at `record`.
+ * the outgoing radiance (g table, passes summed, albedo); and, one invocation per SRF point and
+ * coefficient, the field a source casts from its basis weights. The instance's record (its header
+ * and pairs, shadowfield_gl_internal.h) is read from the frame buffer at `record`.
  *
  * Each invocation keeps its SH vectors in its own rows of a scratch buffer and the loops run to
  * uniform bounds: llvmpipe turns private arrays indexed at run time into chains of selects and
@@ -15,7 +16,7 @@ const char prt_sf_gl_shader_source[] =
     "layout(local_size_x = LOCAL_SIZE) in;\n"
     "layout(std430, binding = 0) readonly restrict buffer Objects { float data[]; };\n"
     "layout(std430, binding = 1) readonly restrict buffer Gaunt { uint gaunt[]; };\n"
-    "layout(std430, binding = 2) readonly restrict buffer Fields { float fields[]; };\n"
+    "layout(std430, binding = 2) restrict buffer Fields { float fields[]; };\n"
     "layout(std430, binding = 3) restrict buffer Incident { float incident[]; };\n"
     "layout(std430, binding = 4) writeonly restrict buffer Radiance { float radiance[]; };\n"
     "layout(std430, binding = 5) readonly restrict buffer Frame { float frame[]; };\n"
@@ -333,10 +334,29 @@ const char prt_sf_gl_shader_source[] =
     "  radiance[o + 2u] = data[a + 2u] * sum.z;\n"
     "}\n"
     "\n"
+    "/* ---- cast: field_c(e) = sum_ik w_ikc SRF_ik(e), e = point n2 + coefficient ---- */\n"
+    "void cast_field(uint e) {\n"
+    "  uint basis = uword(BASIS), terms = uword(TERMS), weights = uword(WEIGHTS);\n"
+    "  uint plane = uword(FIELD_POINTS) * n2, srf = uword(SRF);\n"
+    "  vec3 sum = vec3(0.0);\n"
+    "  for (uint ik = 0u; ik < basis * terms; ++ik)\n"
+    "    sum += data[srf + ik * plane + e] *\n"
+    "           vec3(word(weights + 3u * ik), word(weights + 3u * ik + 1u),\n"
+    "                word(weights + 3u * ik + 2u));\n"
+    "  uint own = uword(OWN_FIELD) + e;\n"
+    "  fields[own] = sum.x;\n"
+    "  fields[own + plane] = sum.y;\n"
+    "  fields[own + 2u * plane] = sum.z;\n"
+    "}\n"
+    "\n"
     "void main() {\n"
-    "  uint v = first_vertex + gl_GlobalInvocationID.x;\n"
-    "  if (v >= uword(VERTICES)) return;\n"
     "  n2 = order * order;\n"
+    "  uint v = first_vertex + gl_GlobalInvocationID.x;\n"
+    "  if (stage == 3u) {\n"
+    "    if (v < uword(FIELD_POINTS) * n2) cast_field(v);\n"
+    "    return;\n"
+    "  }\n"
+    "  if (v >= uword(VERTICES)) return;\n"
     "  row = gl_GlobalInvocationID.x * (7u * n2 + 16u);\n"
     "  if (stage == 2u) shade_output(v); else gather(v);\n"
     "}\n";
