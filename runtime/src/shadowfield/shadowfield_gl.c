@@ -3,8 +3,8 @@
  * per-vertex work of a frame in a compute shader (shadowfield_gl_glsl.c): the direct light, the
  * bounces and the outgoing radiance. The CPU keeps the small work: the frame's preparation (the
  * light in each instance's frame, the pairs and their rotations, prt_shadowfield_prepare) and,
- * between two passes, each source's basis weights (shadowfield_eval.c), a sum over the whole
- * previous pass read back; the field a source casts from them is GL's again. */
+ * between two passes, nothing: each source's basis projection and the field it casts are
+ * shader stages too, so a frame reads nothing back. */
 #include <prt/prt_shadowfield.h>
 
 #include "../internal.h"
@@ -75,6 +75,7 @@ enum {
 /* Where an object's arrays start in the object buffer (floats). */
 typedef struct object_offsets {
   uint32_t positions, normals, albedo, transfer, g_table, oof, srf;
+  uint32_t basis, vertex_weights, basis_inverse;
 } object_offsets;
 
 /* Where an instance's arrays start: incident and field (floats), radiance (vertices), and its
@@ -117,7 +118,8 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            "#define OFFSET %uu\n#define OOF_GRID %uu\n#define OOF %uu\n#define SRF_GRID %uu\n"
            "#define FIELD %uu\n#define FIELD_PLANE %uu\n#define SH_ROTATION %uu\n"
            "#define PAIR_FLOATS %uu\n#define SRF %uu\n#define BASIS %uu\n#define OWN_FIELD %uu\n"
-           "#define FIELD_POINTS %uu\n#define WEIGHTS %uu\n",
+           "#define FIELD_POINTS %uu\n#define BASIS_VALUES %uu\n"
+           "#define VERTEX_WEIGHTS %uu\n#define BASIS_INVERSE %uu\n",
            PRT_SF_GL_LOCAL_SIZE, PRT_SF_GL_VERTICES, PRT_SF_GL_TERMS, PRT_SF_GL_GLOSSY,
            PRT_SF_GL_BRDF_GRID, PRT_SF_GL_POSITIONS, PRT_SF_GL_NORMALS, PRT_SF_GL_ALBEDO,
            PRT_SF_GL_TRANSFER, PRT_SF_GL_G_TABLE, PRT_SF_GL_INCIDENT, PRT_SF_GL_OUTPUT,
@@ -126,7 +128,8 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            PRT_SF_GL_LIGHTS, PRT_SF_GL_TO_OTHER, PRT_SF_GL_OFFSET, PRT_SF_GL_OOF_GRID,
            PRT_SF_GL_OOF, PRT_SF_GL_SRF_GRID, PRT_SF_GL_FIELD, PRT_SF_GL_FIELD_PLANE,
            PRT_SF_GL_SH_ROTATION, PRT_SF_GL_PAIR_FLOATS, PRT_SF_GL_SRF, PRT_SF_GL_BASIS,
-           PRT_SF_GL_OWN_FIELD, PRT_SF_GL_FIELD_POINTS, PRT_SF_GL_WEIGHTS);
+           PRT_SF_GL_OWN_FIELD, PRT_SF_GL_FIELD_POINTS, PRT_SF_GL_BASIS_VALUES,
+           PRT_SF_GL_VERTEX_WEIGHTS, PRT_SF_GL_BASIS_INVERSE);
   const prt_GLchar* sources[2] = {header, prt_sf_gl_shader_source};
   const prt_result r =
       prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
@@ -156,6 +159,12 @@ static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64
   next += prt_sf_point_count(&o->oof_shells) * n2;
   at->srf = (uint32_t)next;
   next += srf_floats(o);
+  at->basis = (uint32_t)next;
+  next += (uint64_t)o->basis_size * v;
+  at->vertex_weights = (uint32_t)next;
+  if (o->basis_size) next += v;
+  at->basis_inverse = (uint32_t)next;
+  next += (uint64_t)o->basis_size * o->basis_size;
   return next;
 }
 
@@ -163,8 +172,13 @@ static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64
 static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
   const prt_shadowfield_scene* scene = s->scene;
   uint64_t objects = 0u, fields = 0u, incident = 0u, radiance = 0u, most_vertices = 0u;
-  for (uint32_t o = 0; o < s->object_count; ++o)
-    objects = object_floats(scene->objects[o], &s->objects[o], objects);
+  uint64_t most_weights = 0u; /* a projection and its weights, in the scratch rows */
+  for (uint32_t o = 0; o < s->object_count; ++o) {
+    const prt_sf_object* object = scene->objects[o];
+    objects = object_floats(object, &s->objects[o], objects);
+    const uint64_t weights = 2u * 3u * (uint64_t)object->basis_size * object->terms;
+    if (weights > most_weights) most_weights = weights;
+  }
   for (uint32_t i = 0; i < s->instance_count; ++i) {
     const prt_sf_instance* instance = &scene->instances[i];
     s->instances[i].incident = (uint32_t)incident;
@@ -186,6 +200,7 @@ static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
   bytes[BUFFER_RADIANCE] = 12u * radiance;
   bytes[BUFFER_FRAME] = 4u * (uint64_t)s->instance_count * PRT_SF_GL_HEADER;
   bytes[BUFFER_SCRATCH] = 4u * invocations * PRT_SF_GL_SCRATCH_FLOATS(scene->order);
+  if (bytes[BUFFER_SCRATCH] < 4u * most_weights) bytes[BUFFER_SCRATCH] = 4u * most_weights;
   for (int b = 0; b < BUFFER_COUNT; ++b)
     if (bytes[b] == 0u) bytes[b] = 4u; /* empty parts still get valid buffers */
 }
@@ -210,7 +225,12 @@ static void upload_objects(const prt_gl_shadowfield* s) {
       upload(gl, at->g_table, object->g_table,
              (uint64_t)object->terms * object->brdf_grid * object->brdf_grid);
     upload(gl, at->oof, object->oof, prt_sf_point_count(&object->oof_shells) * n2);
-    if (object->basis_size) upload(gl, at->srf, object->srf, srf_floats(object));
+    if (!object->basis_size) continue;
+    upload(gl, at->srf, object->srf, srf_floats(object));
+    upload(gl, at->basis, object->basis, (uint64_t)object->basis_size * v);
+    upload(gl, at->vertex_weights, object->vertex_weights, v);
+    upload(gl, at->basis_inverse, object->basis_inverse,
+           (uint64_t)object->basis_size * object->basis_size);
   }
 }
 
@@ -389,22 +409,15 @@ static void write_header(const prt_gl_shadowfield* s, uint32_t i, float* words) 
   put_uint(words, PRT_SF_GL_OWN_FIELD, s->instances[i].field);
   put_uint(words, PRT_SF_GL_FIELD_POINTS,
            instance->field ? (uint32_t)prt_sf_point_count(&object->srf_shells) : 0u);
-  put_uint(words, PRT_SF_GL_WEIGHTS,
-           PRT_SF_GL_HEADER + instance->pair_count * PRT_SF_GL_PAIR_FLOATS);
+  put_uint(words, PRT_SF_GL_BASIS_VALUES, at->basis);
+  put_uint(words, PRT_SF_GL_VERTEX_WEIGHTS, at->vertex_weights);
+  put_uint(words, PRT_SF_GL_BASIS_INVERSE, at->basis_inverse);
   memcpy(words + PRT_SF_GL_ROTATION, instance->rotation, sizeof instance->rotation);
   memcpy(words + PRT_SF_GL_TRANSLATION, instance->translation, sizeof instance->translation);
   words[PRT_SF_GL_SCALE] = instance->scale;
   memcpy(words + PRT_SF_GL_EYE, scene->eye, sizeof scene->eye);
   memcpy(words + PRT_SF_GL_LIGHT, instance->light, (size_t)3u * n2 * sizeof(float));
   memcpy(words + PRT_SF_GL_PRODUCT, instance->light_product, (size_t)3u * n2 * n2 * sizeof(float));
-}
-
-/* The basis weights at the end of a source's record (set between passes). */
-static size_t weight_floats(const prt_shadowfield_scene* scene, uint32_t i) {
-  const prt_sf_instance* instance = &scene->instances[i];
-  if (!instance->field) return 0u;
-  const prt_sf_object* object = scene->objects[instance->object];
-  return (size_t)object->basis_size * object->terms * 3u;
 }
 
 static int reserve_frame(prt_gl_shadowfield* s, size_t floats) {
@@ -423,8 +436,7 @@ static prt_result upload_frame(prt_gl_shadowfield* s) {
   const prt_shadowfield_scene* scene = s->scene;
   size_t floats = 0u;
   for (uint32_t i = 0; i < s->instance_count; ++i)
-    floats += PRT_SF_GL_HEADER + (size_t)scene->instances[i].pair_count * PRT_SF_GL_PAIR_FLOATS +
-              weight_floats(scene, i);
+    floats += PRT_SF_GL_HEADER + (size_t)scene->instances[i].pair_count * PRT_SF_GL_PAIR_FLOATS;
   if (!reserve_frame(s, floats)) return PRT_ERROR_OUT_OF_MEMORY;
   size_t at = 0u;
   for (uint32_t i = 0; i < s->instance_count; ++i) {
@@ -434,8 +446,6 @@ static prt_result upload_frame(prt_gl_shadowfield* s) {
     at += PRT_SF_GL_HEADER;
     for (uint32_t q = 0; q < instance->pair_count; ++q, at += PRT_SF_GL_PAIR_FLOATS)
       write_pair(s, &scene->pairs[instance->pair_first + q], s->frame + at);
-    memset(s->frame + at, 0, weight_floats(scene, i) * sizeof(float));
-    at += weight_floats(scene, i);
   }
   const prt_gl_functions* gl = &s->gl;
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_FRAME]);
@@ -471,30 +481,23 @@ static void run_stage(const prt_gl_shadowfield* s, uint32_t stage, uint32_t pass
     dispatch(s, i, prt_shadowfield_instance_vertex_count(s->scene, i));
 }
 
-/* Between pass - 1 and pass: each source's radiance of pass - 1 read back and projected on its
- * basis on the CPU (shadowfield_eval.c), the weights uploaded into its record, and the field it
- * casts from them computed on GL. */
+/* Between pass - 1 and pass: each source's radiance of pass - 1 projected on its basis, then
+ * the field it casts from the weights, one source after another (the weights are in the
+ * scratch rows). */
 static void project_sources(const prt_gl_shadowfield* s, uint32_t pass) {
   const prt_gl_functions* gl = &s->gl;
   const prt_shadowfield_scene* scene = s->scene;
-  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT);
-  gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_CAST);
+  gl->ProgramUniform1ui(s->program, UNIFORM_PASS, pass - 1u);
   for (uint32_t i = 0; i < s->instance_count; ++i) {
     const prt_sf_instance* source = &scene->instances[i];
     if (!source->is_source || !source->field) continue;
     const prt_sf_object* object = scene->objects[source->object];
-    const size_t pass_floats = (size_t)object->vertex_count * object->terms * 3u;
-    const size_t first = (size_t)(pass - 1u) * pass_floats;
-    gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_INCIDENT]);
-    gl->GetBufferSubData(PRT_GL_SHADER_STORAGE_BUFFER,
-                         (prt_GLintptr)(4u * (s->instances[i].incident + first)),
-                         (prt_GLsizeiptr)(4u * pass_floats), source->incident + first);
-    prt_sf_project_weights(scene, pass - 1u, i);
-    gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_FRAME]);
-    upload(gl,
-           s->instances[i].record + PRT_SF_GL_HEADER + source->pair_count * PRT_SF_GL_PAIR_FLOATS,
-           source->weights, weight_floats(scene, i));
-    gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+    const uint32_t weights = object->basis_size * object->terms * 3u;
+    gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_PROJECT);
+    dispatch(s, i, weights);
+    gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_WEIGHTS);
+    dispatch(s, i, weights);
+    gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_CAST);
     dispatch(s, i, (uint32_t)(prt_sf_field_points(scene, i) * scene->order * scene->order));
   }
 }

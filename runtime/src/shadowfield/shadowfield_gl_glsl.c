@@ -3,8 +3,10 @@
  * of one instance, in one of three stages, each the scalar evaluation's (shadowfield_eval.c)
  * step for that vertex: the direct light (OOF reads, rotations and triple products, then the
  * transfer dot), a bounce (SRF reads of the sources' fields, rotated, then the transfer dot) and
- * the outgoing radiance (g table, passes summed, albedo); and, one invocation per SRF point and
- * coefficient, the field a source casts from its basis weights. The instance's record (its header
+ * the outgoing radiance (g table, passes summed, albedo); and a source's projection on its basis
+ * (one invocation per basis function, term and colour: B W r, then A^-1 of that), kept at the
+ * start of the scratch buffer, and the field it casts from those weights (one invocation per SRF
+ * point and coefficient). The instance's record (its header
  * and pairs, shadowfield_gl_internal.h) is read from the frame buffer at `record`.
  *
  * Each invocation keeps its SH vectors in its own rows of a scratch buffer and the loops run to
@@ -334,15 +336,36 @@ const char prt_sf_gl_shader_source[] =
     "  radiance[o + 2u] = data[a + 2u] * sum.z;\n"
     "}\n"
     "\n"
+    "/* ---- project: (B W r)_mkc in scratch[e], then w = A^-1 (B W r) after them ---- */\n"
+    "void project(uint e) {\n"
+    "  uint vertices = uword(VERTICES), width = 3u * uword(TERMS), m = e / width;\n"
+    "  uint basis = uword(BASIS_VALUES) + m * vertices, w = uword(VERTEX_WEIGHTS);\n"
+    "  uint albedo = uword(ALBEDO) + e % 3u;\n"
+    "  uint l = uword(INCIDENT) + pass_index * vertices * width + e % width;\n"
+    "  float sum = 0.0;\n"
+    "  for (uint v = 0u; v < vertices; ++v)\n"
+    "    sum += data[basis + v] * data[w + v] * data[albedo + 3u * v] * incident[l + v * width];\n"
+    "  scratch[e] = sum;\n"
+    "}\n"
+    "\n"
+    "void basis_weights(uint e) {\n"
+    "  uint size = uword(BASIS), width = 3u * uword(TERMS), i = e / width;\n"
+    "  uint inverse = uword(BASIS_INVERSE) + i * size;\n"
+    "  float sum = 0.0;\n"
+    "  for (uint m = 0u; m < size; ++m) sum += data[inverse + m] * scratch[m * width + e % "
+    "width];\n"
+    "  scratch[size * width + e] = sum;\n"
+    "}\n"
+    "\n"
     "/* ---- cast: field_c(e) = sum_ik w_ikc SRF_ik(e), e = point n2 + coefficient ---- */\n"
     "void cast_field(uint e) {\n"
-    "  uint basis = uword(BASIS), terms = uword(TERMS), weights = uword(WEIGHTS);\n"
+    "  uint basis = uword(BASIS), terms = uword(TERMS), weights = basis * terms * 3u;\n"
     "  uint plane = uword(FIELD_POINTS) * n2, srf = uword(SRF);\n"
     "  vec3 sum = vec3(0.0);\n"
     "  for (uint ik = 0u; ik < basis * terms; ++ik)\n"
     "    sum += data[srf + ik * plane + e] *\n"
-    "           vec3(word(weights + 3u * ik), word(weights + 3u * ik + 1u),\n"
-    "                word(weights + 3u * ik + 2u));\n"
+    "           vec3(scratch[weights + 3u * ik], scratch[weights + 3u * ik + 1u],\n"
+    "                scratch[weights + 3u * ik + 2u]);\n"
     "  uint own = uword(OWN_FIELD) + e;\n"
     "  fields[own] = sum.x;\n"
     "  fields[own + plane] = sum.y;\n"
@@ -354,6 +377,11 @@ const char prt_sf_gl_shader_source[] =
     "  uint v = first_vertex + gl_GlobalInvocationID.x;\n"
     "  if (stage == 3u) {\n"
     "    if (v < uword(FIELD_POINTS) * n2) cast_field(v);\n"
+    "    return;\n"
+    "  }\n"
+    "  if (stage >= 4u) {\n"
+    "    if (v >= uword(BASIS) * uword(TERMS) * 3u) return;\n"
+    "    if (stage == 4u) project(v); else basis_weights(v);\n"
     "    return;\n"
     "  }\n"
     "  if (v >= uword(VERTICES)) return;\n"

@@ -26,13 +26,15 @@
 #define PRT_SF_GL_TRANSLATION 21u /* 3 */
 #define PRT_SF_GL_SCALE 24u
 #define PRT_SF_GL_EYE 25u /* 3 */
-/* A source's field, cast on GL from its basis weights: */
-#define PRT_SF_GL_SRF 28u          /* (u) the object's SRF in the object buffer */
-#define PRT_SF_GL_BASIS 29u        /* (u) basis functions N (0: no field) */
-#define PRT_SF_GL_OWN_FIELD 30u    /* (u) the instance's field in the field buffer */
-#define PRT_SF_GL_FIELD_POINTS 31u /* (u) SRF points */
-#define PRT_SF_GL_WEIGHTS 32u      /* (u) the weights w_ikc ([(i K + k) 3 + c]) in this record */
-#define PRT_SF_GL_LIGHT 36u        /* the light in the instance's frame, [3 i + c] */
+/* A source's basis projection and the field it casts from it: */
+#define PRT_SF_GL_SRF 28u            /* (u) the object's SRF in the object buffer */
+#define PRT_SF_GL_BASIS 29u          /* (u) basis functions N (0: no field) */
+#define PRT_SF_GL_OWN_FIELD 30u      /* (u) the instance's field in the field buffer */
+#define PRT_SF_GL_FIELD_POINTS 31u   /* (u) SRF points */
+#define PRT_SF_GL_BASIS_VALUES 32u   /* (u) B (N x V) in the object buffer */
+#define PRT_SF_GL_VERTEX_WEIGHTS 33u /* (u) W (V) */
+#define PRT_SF_GL_BASIS_INVERSE 34u  /* (u) A^-1 (N x N) */
+#define PRT_SF_GL_LIGHT 36u          /* the light in the instance's frame, [3 i + c] */
 #define PRT_SF_GL_PRODUCT (PRT_SF_GL_LIGHT + 3u * PRT_SF_MAX_COEFFS) /* light_product, 3 n^4 */
 #define PRT_SF_GL_HEADER (PRT_SF_GL_PRODUCT + 3u * PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS)
 
@@ -55,7 +57,9 @@
 #define PRT_SF_GL_STAGE_DIRECT 0u
 #define PRT_SF_GL_STAGE_BOUNCE 1u
 #define PRT_SF_GL_STAGE_OUTPUT 2u
-#define PRT_SF_GL_STAGE_CAST 3u /* one invocation per SRF point and coefficient */
+#define PRT_SF_GL_STAGE_CAST 3u    /* one invocation per SRF point and coefficient */
+#define PRT_SF_GL_STAGE_PROJECT 4u /* one invocation per basis function, term and colour */
+#define PRT_SF_GL_STAGE_WEIGHTS 5u /* the same */
 
 /* Vertices per work group. */
 #define PRT_SF_GL_LOCAL_SIZE 64u

@@ -137,9 +137,10 @@ PRT_API prt_result prt_shadowfield_output(const prt_shadowfield_scene* scene, ui
 
 /* ---- The GL backend (prt/prt_gl.h) ----------------------------------------------------------
  * The frame's per-vertex work (the direct light through the blockers' occlusion fields, the
- * bounces through the sources' radiance fields, the outgoing radiance) in a compute shader, the
- * preparation and, between two passes, each source's basis projection on the CPU. The output is
- * one GL buffer (SSBO) of RGB floats per vertex, the instances one after another.
+ * bounces through the sources' radiance fields, the outgoing radiance) and, between two passes,
+ * each source's basis projection and the field it casts, in a compute shader; the preparation
+ * (prt_shadowfield_prepare) on the CPU. A frame reads nothing back. The output is one GL buffer
+ * (SSBO) of RGB floats per vertex, the instances one after another.
  *
  * Create it after adding the scene's objects and instances; transforms may change between
  * frames. The GL calls need the GL context current, as prt_gl.h says; create and shade record
