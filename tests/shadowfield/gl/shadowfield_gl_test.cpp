@@ -186,6 +186,37 @@ TEST(ShadowfieldGl, TheSmallestAndLargestOrdersAgreeWithScalar) {
   }
 }
 
+// The eye at a vertex (its view direction falls back to the normal) and far away.
+TEST(ShadowfieldGl, AnEyeAtAVertexOrFarAwayAgreesWithScalar) {
+  PRT_REQUIRE_GL(context);
+  SyntheticObject patch = make_patch(4, 5);
+  make_glossy(patch);
+  TestScene scene(1);
+  scene.add_instance(scene.add_object(patch),
+                     make_transform(identity_rotation(), 0.0f, 0.0f, 0.0f));
+  GlShadowfieldPtr shader = create(scene.scene, context.gl);
+  ASSERT_TRUE(shader);
+  const auto light = test_light(4);
+  const float far_eye[3] = {3e4f, 1e5f, -2e4f};
+  const float* vertex_7 = &patch.positions[3 * 7];
+  for (const float* eye : {vertex_7, far_eye}) {
+    const auto cpu = scene.shade(light, eye, 0);
+    const auto on_gl = shade_gl(shader.get(), scene.scene, light, eye, 0);
+    EXPECT_LT(relative_difference(on_gl, cpu), kTolerance);
+  }
+}
+
+// Instances that interpenetrate: receivers inside the other's innermost shell read that shell.
+TEST(ShadowfieldGl, InterpenetratingInstancesAgreeWithScalar) {
+  PRT_REQUIRE_GL(context);
+  GlScene busy(4, true);
+  float tilt[9];
+  axis_rotation(kAxis, 1.1f, tilt);
+  const prt_shadowfield_transform inside = make_transform(tilt, 0.05f, 0.02f, -0.03f, 1.0f);
+  ASSERT_EQ(prt_shadowfield_scene_set_transform(busy.scene.scene, 2, &inside), PRT_OK);
+  EXPECT_LT(agreement(busy.scene, context.gl, test_light(4, 0.3f), kNearEye), kTolerance);
+}
+
 // More vertices than one dispatch takes (the backend splits an instance into chunks).
 TEST(ShadowfieldGl, AnInstanceLargerThanADispatchAgreesWithScalar) {
   PRT_REQUIRE_GL(context);
