@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* The GL backend of technique `shadowfield` (prt/prt_shadowfield.h, prt_gl_shadowfield_*): the
  * per-vertex work of a frame in a compute shader (shadowfield_gl_glsl.c): the direct light, the
- * bounces and the outgoing radiance. The CPU keeps the small work: the frame's preparation (the
- * light in each instance's frame, the pairs and their rotations, prt_shadowfield_prepare) and,
- * between two passes, nothing: each source's basis projection and the field it casts are
- * shader stages too, so a frame reads nothing back. */
+ * bounces and the outgoing radiance. This file creates the program and the buffers (the objects
+ * uploaded once); shadowfield_gl_frame.c runs a frame. The CPU keeps the small work: the frame's
+ * preparation (the light in each instance's frame, the pairs and their rotations,
+ * prt_shadowfield_prepare) and, between two passes, nothing: each source's basis projection and the
+ * field it casts are shader stages too, so a frame reads nothing back. */
 #include <prt/prt_shadowfield.h>
 
 #include "../internal.h"
@@ -48,60 +49,6 @@ prt_result prt_gl_shadowfield_read(prt_gl_shadowfield* shader, uint32_t instance
 #include "../gl_common.h"
 
 #define FUNCTION_CREATE "prt_gl_shadowfield_create"
-#define FUNCTION_SHADE "prt_gl_shadowfield_shade"
-
-/* The buffers, by their binding in the shader. */
-enum {
-  BUFFER_OBJECTS = 0,  /* every object's vertices, transfer, g table and OOF */
-  BUFFER_GAUNT = 1,    /* the triple-product tensor */
-  BUFFER_FIELDS = 2,   /* every source's field of the last projected pass */
-  BUFFER_INCIDENT = 3, /* every instance's light per pass, vertex and term */
-  BUFFER_RADIANCE = 4, /* every instance's outgoing radiance */
-  BUFFER_FRAME = 5,    /* every instance's record of the frame */
-  BUFFER_SCRATCH = 6,  /* each invocation's SH vectors (shadowfield_gl_glsl.c) */
-  BUFFER_COUNT = 7
-};
-enum {
-  UNIFORM_RECORD = 0,
-  UNIFORM_STAGE = 1,
-  UNIFORM_PASS = 2,
-  UNIFORM_FIRST_VERTEX = 3,
-  UNIFORM_ORDER = 4
-};
-
-/* Vertices per dispatch: each has its scratch rows, so this bounds the scratch buffer. */
-#define CHUNK_VERTICES 16384u
-
-/* Where an object's arrays start in the object buffer (floats). */
-typedef struct object_offsets {
-  uint32_t positions, normals, albedo, transfer, g_table, oof, srf;
-  uint32_t basis, vertex_weights, basis_inverse;
-} object_offsets;
-
-/* Where an instance's arrays start: incident and field (floats), radiance (vertices), and its
- * record in the frame buffer (floats, set per frame). */
-typedef struct instance_offsets {
-  uint32_t incident, field, radiance_vertex, record;
-} instance_offsets;
-
-struct prt_gl_shadowfield {
-  prt_allocator allocator; /* the scene's context's */
-  prt_gl_functions gl;
-  prt_shadowfield_scene* scene;
-  uint32_t object_count, instance_count; /* the scene's when created */
-  prt_GLuint program;
-  prt_GLuint buffers[BUFFER_COUNT];
-  object_offsets* objects;
-  instance_offsets* instances;
-  uint32_t radiance_vertices;
-  float* frame;               /* the records, uploaded to BUFFER_FRAME */
-  size_t frame_capacity;      /* floats in `frame` */
-  size_t frame_buffer_floats; /* floats in BUFFER_FRAME */
-};
-
-static void put_uint(float* words, uint32_t at, uint32_t value) {
-  memcpy(words + at, &value, sizeof value);
-}
 
 /* ---- create ------------------------------------------------------------------------------- */
 
@@ -133,7 +80,7 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
   const prt_GLchar* sources[2] = {header, prt_sf_gl_shader_source};
   const prt_result r =
       prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
-  if (r == PRT_OK) s->gl.ProgramUniform1ui(s->program, UNIFORM_ORDER, s->scene->order);
+  if (r == PRT_OK) s->gl.ProgramUniform1ui(s->program, PRT_SF_GL_UNIFORM_ORDER, s->scene->order);
   return r;
 }
 
@@ -142,7 +89,7 @@ static uint64_t srf_floats(const prt_sf_object* o) {
          o->order;
 }
 
-static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64_t start) {
+static uint64_t object_floats(const prt_sf_object* o, prt_sf_gl_object* at, uint64_t start) {
   const uint64_t n2 = (uint64_t)o->order * o->order, v = o->vertex_count;
   uint64_t next = start;
   at->positions = (uint32_t)next;
@@ -169,7 +116,7 @@ static uint64_t object_floats(const prt_sf_object* o, object_offsets* at, uint64
 }
 
 /* Lays out every buffer; the sizes in bytes (at least 4 each) in bytes[] by buffer. */
-static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
+static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[PRT_SF_GL_BUFFER_COUNT]) {
   const prt_shadowfield_scene* scene = s->scene;
   uint64_t objects = 0u, fields = 0u, incident = 0u, radiance = 0u, most_vertices = 0u;
   uint64_t most_weights = 0u; /* a projection and its weights, in the scratch rows */
@@ -191,21 +138,25 @@ static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[BUFFER_COUNT]) {
     if (vertices > most_vertices) most_vertices = vertices;
   }
   const uint64_t invocations =
-      (most_vertices < CHUNK_VERTICES ? most_vertices : CHUNK_VERTICES) + PRT_SF_GL_LOCAL_SIZE;
+      (most_vertices < PRT_SF_GL_CHUNK_VERTICES ? most_vertices : PRT_SF_GL_CHUNK_VERTICES) +
+      PRT_SF_GL_LOCAL_SIZE;
   s->radiance_vertices = (uint32_t)radiance;
-  bytes[BUFFER_OBJECTS] = 4u * objects;
-  bytes[BUFFER_GAUNT] = 4u * (scene->order * scene->order + 1u + 2u * (uint64_t)scene->gaunt.count);
-  bytes[BUFFER_FIELDS] = 4u * fields;
-  bytes[BUFFER_INCIDENT] = 4u * incident;
-  bytes[BUFFER_RADIANCE] = 12u * radiance;
-  bytes[BUFFER_FRAME] = 4u * (uint64_t)s->instance_count * PRT_SF_GL_HEADER;
-  bytes[BUFFER_SCRATCH] = 4u * invocations * PRT_SF_GL_SCRATCH_FLOATS(scene->order);
-  if (bytes[BUFFER_SCRATCH] < 4u * most_weights) bytes[BUFFER_SCRATCH] = 4u * most_weights;
-  for (int b = 0; b < BUFFER_COUNT; ++b)
+  bytes[PRT_SF_GL_BUFFER_OBJECTS] = 4u * objects;
+  bytes[PRT_SF_GL_BUFFER_GAUNT] =
+      4u * (scene->order * scene->order + 1u + 2u * (uint64_t)scene->gaunt.count);
+  bytes[PRT_SF_GL_BUFFER_FIELDS] = 4u * fields;
+  bytes[PRT_SF_GL_BUFFER_INCIDENT] = 4u * incident;
+  bytes[PRT_SF_GL_BUFFER_RADIANCE] = 12u * radiance;
+  bytes[PRT_SF_GL_BUFFER_FRAME] = 4u * (uint64_t)s->instance_count * PRT_SF_GL_HEADER;
+  bytes[PRT_SF_GL_BUFFER_SCRATCH] = 4u * invocations * PRT_SF_GL_SCRATCH_FLOATS(scene->order);
+  if (bytes[PRT_SF_GL_BUFFER_SCRATCH] < 4u * most_weights)
+    bytes[PRT_SF_GL_BUFFER_SCRATCH] = 4u * most_weights;
+  for (int b = 0; b < PRT_SF_GL_BUFFER_COUNT; ++b)
     if (bytes[b] == 0u) bytes[b] = 4u; /* empty parts still get valid buffers */
 }
 
-static void upload(const prt_gl_functions* gl, uint32_t at, const float* values, uint64_t count) {
+void prt_sf_gl_upload(const prt_gl_functions* gl, uint32_t at, const float* values,
+                      uint64_t count) {
   if (count)
     gl->BufferSubData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLintptr)(4u * (uint64_t)at),
                       (prt_GLsizeiptr)(4u * count), values);
@@ -215,22 +166,22 @@ static void upload_objects(const prt_gl_shadowfield* s) {
   const prt_gl_functions* gl = &s->gl;
   for (uint32_t o = 0; o < s->object_count; ++o) {
     const prt_sf_object* object = s->scene->objects[o];
-    const object_offsets* at = &s->objects[o];
+    const prt_sf_gl_object* at = &s->objects[o];
     const uint64_t n2 = (uint64_t)object->order * object->order, v = object->vertex_count;
-    upload(gl, at->positions, object->positions, 3u * v);
-    upload(gl, at->normals, object->normals, 3u * v);
-    upload(gl, at->albedo, object->albedo, 3u * v);
-    upload(gl, at->transfer, object->transfer, v * object->terms * n2);
+    prt_sf_gl_upload(gl, at->positions, object->positions, 3u * v);
+    prt_sf_gl_upload(gl, at->normals, object->normals, 3u * v);
+    prt_sf_gl_upload(gl, at->albedo, object->albedo, 3u * v);
+    prt_sf_gl_upload(gl, at->transfer, object->transfer, v * object->terms * n2);
     if (object->glossy)
-      upload(gl, at->g_table, object->g_table,
-             (uint64_t)object->terms * object->brdf_grid * object->brdf_grid);
-    upload(gl, at->oof, object->oof, prt_sf_point_count(&object->oof_shells) * n2);
+      prt_sf_gl_upload(gl, at->g_table, object->g_table,
+                       (uint64_t)object->terms * object->brdf_grid * object->brdf_grid);
+    prt_sf_gl_upload(gl, at->oof, object->oof, prt_sf_point_count(&object->oof_shells) * n2);
     if (!object->basis_size) continue;
-    upload(gl, at->srf, object->srf, srf_floats(object));
-    upload(gl, at->basis, object->basis, (uint64_t)object->basis_size * v);
-    upload(gl, at->vertex_weights, object->vertex_weights, v);
-    upload(gl, at->basis_inverse, object->basis_inverse,
-           (uint64_t)object->basis_size * object->basis_size);
+    prt_sf_gl_upload(gl, at->srf, object->srf, srf_floats(object));
+    prt_sf_gl_upload(gl, at->basis, object->basis, (uint64_t)object->basis_size * v);
+    prt_sf_gl_upload(gl, at->vertex_weights, object->vertex_weights, v);
+    prt_sf_gl_upload(gl, at->basis_inverse, object->basis_inverse,
+                     (uint64_t)object->basis_size * object->basis_size);
   }
 }
 
@@ -254,23 +205,24 @@ static prt_result upload_gaunt(prt_context* context, prt_gl_shadowfield* s, uint
 }
 
 static prt_result create_buffers(prt_context* context, prt_gl_shadowfield* s,
-                                 const uint64_t bytes[BUFFER_COUNT]) {
+                                 const uint64_t bytes[PRT_SF_GL_BUFFER_COUNT]) {
   const prt_gl_functions* gl = &s->gl;
   prt_result r = PRT_OK;
   prt_gl_drain_errors(gl);
-  gl->GenBuffers(BUFFER_COUNT, s->buffers);
+  gl->GenBuffers(PRT_SF_GL_BUFFER_COUNT, s->buffers);
   uint64_t total = 0u;
-  for (int b = 0; b < BUFFER_COUNT; ++b) {
+  for (int b = 0; b < PRT_SF_GL_BUFFER_COUNT; ++b) {
     gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[b]);
-    gl->BufferData(
-        PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)bytes[b], NULL,
-        b == BUFFER_OBJECTS || b == BUFFER_GAUNT ? PRT_GL_STATIC_DRAW : PRT_GL_DYNAMIC_COPY);
-    if (b == BUFFER_OBJECTS) upload_objects(s);
-    if (b == BUFFER_GAUNT && r == PRT_OK) r = upload_gaunt(context, s, bytes[b]);
+    gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)bytes[b], NULL,
+                   b == PRT_SF_GL_BUFFER_OBJECTS || b == PRT_SF_GL_BUFFER_GAUNT
+                       ? PRT_GL_STATIC_DRAW
+                       : PRT_GL_DYNAMIC_COPY);
+    if (b == PRT_SF_GL_BUFFER_OBJECTS) upload_objects(s);
+    if (b == PRT_SF_GL_BUFFER_GAUNT && r == PRT_OK) r = upload_gaunt(context, s, bytes[b]);
     total += bytes[b];
   }
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
-  s->frame_buffer_floats = (size_t)(bytes[BUFFER_FRAME] / 4u);
+  s->frame_buffer_floats = (size_t)(bytes[PRT_SF_GL_BUFFER_FRAME] / 4u);
   if (r != PRT_OK) return r;
   return prt_gl_check_upload(context, gl, FUNCTION_CREATE, total);
 }
@@ -317,17 +269,18 @@ prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader
   s->object_count = scene->object_count;
   s->instance_count = scene->instance_count;
   s->objects =
-      (object_offsets*)allocate_zeroed(&s->allocator, s->object_count * sizeof(object_offsets));
-  s->instances = (instance_offsets*)allocate_zeroed(&s->allocator,
-                                                    s->instance_count * sizeof(instance_offsets));
-  uint64_t bytes[BUFFER_COUNT];
+      (prt_sf_gl_object*)allocate_zeroed(&s->allocator, s->object_count * sizeof(prt_sf_gl_object));
+  s->instances = (prt_sf_gl_instance*)allocate_zeroed(
+      &s->allocator, s->instance_count * sizeof(prt_sf_gl_instance));
+  uint64_t bytes[PRT_SF_GL_BUFFER_COUNT];
   if (!s->objects || !s->instances) {
     r = prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "%s: out of memory", FUNCTION_CREATE);
   } else {
     lay_out(s, bytes);
-    static const char* const kNames[BUFFER_COUNT] = {"objects",  "gaunt", "fields", "incident",
-                                                     "radiance", "frame", "scratch"};
-    r = prt_gl_check_block_sizes(context, &s->gl, FUNCTION_CREATE, bytes, kNames, BUFFER_COUNT);
+    static const char* const kNames[PRT_SF_GL_BUFFER_COUNT] = {
+        "objects", "gaunt", "fields", "incident", "radiance", "frame", "scratch"};
+    r = prt_gl_check_block_sizes(context, &s->gl, FUNCTION_CREATE, bytes, kNames,
+                                 PRT_SF_GL_BUFFER_COUNT);
   }
   if (r == PRT_OK) r = compile_program(context, s);
   if (r == PRT_OK) r = create_buffers(context, s, bytes);
@@ -341,250 +294,19 @@ prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader
 
 void prt_gl_shadowfield_destroy(prt_gl_shadowfield* shader) {
   if (!shader) return;
-  if (shader->buffers[0]) shader->gl.DeleteBuffers(BUFFER_COUNT, shader->buffers);
+  if (shader->buffers[0]) shader->gl.DeleteBuffers(PRT_SF_GL_BUFFER_COUNT, shader->buffers);
   if (shader->program) shader->gl.DeleteProgram(shader->program);
   prt_allocator allocator = shader->allocator;
   if (shader->frame) prt_internal_free(&allocator, shader->frame, shader->frame_capacity * 4u);
   if (shader->objects)
-    prt_internal_free(&allocator, shader->objects,
-                      (shader->object_count ? shader->object_count * sizeof(object_offsets) : 1u));
+    prt_internal_free(
+        &allocator, shader->objects,
+        (shader->object_count ? shader->object_count * sizeof(prt_sf_gl_object) : 1u));
   if (shader->instances)
     prt_internal_free(
         &allocator, shader->instances,
-        (shader->instance_count ? shader->instance_count * sizeof(instance_offsets) : 1u));
+        (shader->instance_count ? shader->instance_count * sizeof(prt_sf_gl_instance) : 1u));
   prt_internal_free(&allocator, shader, sizeof *shader);
-}
-
-/* ---- per frame ---------------------------------------------------------------------------- */
-
-static void put_grid(float* words, uint32_t at, const prt_sf_shells* grid) {
-  memcpy(words + at, grid->centre, sizeof grid->centre);
-  words[at + 3u] = grid->radius;
-  words[at + 4u] = grid->inner;
-  words[at + 5u] = grid->outer;
-  put_uint(words, at + 6u, grid->shells);
-  put_uint(words, at + 7u, grid->face_size);
-}
-
-static void write_pair(const prt_gl_shadowfield* s, const prt_sf_pair* pair, float* words) {
-  const prt_shadowfield_scene* scene = s->scene;
-  const prt_sf_instance* other = &scene->instances[pair->other];
-  const prt_sf_object* object = scene->objects[other->object];
-  const uint32_t n2 = scene->order * scene->order;
-  put_uint(words, PRT_SF_GL_OCCLUDES, pair->occludes);
-  put_uint(words, PRT_SF_GL_LIGHTS, pair->lights && other->field ? 1u : 0u);
-  memcpy(words + PRT_SF_GL_TO_OTHER, pair->to_other, sizeof pair->to_other);
-  memcpy(words + PRT_SF_GL_OFFSET, pair->offset, sizeof pair->offset);
-  put_grid(words, PRT_SF_GL_OOF_GRID, &object->oof_shells);
-  put_uint(words, PRT_SF_GL_OOF, s->objects[other->object].oof);
-  put_grid(words, PRT_SF_GL_SRF_GRID, &object->srf_shells);
-  put_uint(words, PRT_SF_GL_FIELD, s->instances[pair->other].field);
-  put_uint(words, PRT_SF_GL_FIELD_PLANE,
-           object->basis_size ? (uint32_t)(prt_sf_point_count(&object->srf_shells) * n2) : 0u);
-  memcpy(words + PRT_SF_GL_SH_ROTATION, pair->sh_rotation, sizeof pair->sh_rotation);
-}
-
-/* The header of instance i's record: its object, buffers, placement and prepared light. */
-static void write_header(const prt_gl_shadowfield* s, uint32_t i, float* words) {
-  const prt_shadowfield_scene* scene = s->scene;
-  const prt_sf_instance* instance = &scene->instances[i];
-  const prt_sf_object* object = scene->objects[instance->object];
-  const object_offsets* at = &s->objects[instance->object];
-  const uint32_t n2 = scene->order * scene->order;
-  memset(words, 0, PRT_SF_GL_HEADER * sizeof(float));
-  put_uint(words, PRT_SF_GL_VERTICES, object->vertex_count);
-  put_uint(words, PRT_SF_GL_TERMS, object->terms);
-  put_uint(words, PRT_SF_GL_GLOSSY, object->glossy);
-  put_uint(words, PRT_SF_GL_BRDF_GRID, object->brdf_grid);
-  put_uint(words, PRT_SF_GL_POSITIONS, at->positions);
-  put_uint(words, PRT_SF_GL_NORMALS, at->normals);
-  put_uint(words, PRT_SF_GL_ALBEDO, at->albedo);
-  put_uint(words, PRT_SF_GL_TRANSFER, at->transfer);
-  put_uint(words, PRT_SF_GL_G_TABLE, at->g_table);
-  put_uint(words, PRT_SF_GL_INCIDENT, s->instances[i].incident);
-  put_uint(words, PRT_SF_GL_OUTPUT, 3u * s->instances[i].radiance_vertex);
-  put_uint(words, PRT_SF_GL_PAIR_COUNT, instance->pair_count);
-  put_uint(words, PRT_SF_GL_SRF, at->srf);
-  put_uint(words, PRT_SF_GL_BASIS, instance->field ? object->basis_size : 0u);
-  put_uint(words, PRT_SF_GL_OWN_FIELD, s->instances[i].field);
-  put_uint(words, PRT_SF_GL_FIELD_POINTS,
-           instance->field ? (uint32_t)prt_sf_point_count(&object->srf_shells) : 0u);
-  put_uint(words, PRT_SF_GL_BASIS_VALUES, at->basis);
-  put_uint(words, PRT_SF_GL_VERTEX_WEIGHTS, at->vertex_weights);
-  put_uint(words, PRT_SF_GL_BASIS_INVERSE, at->basis_inverse);
-  memcpy(words + PRT_SF_GL_ROTATION, instance->rotation, sizeof instance->rotation);
-  memcpy(words + PRT_SF_GL_TRANSLATION, instance->translation, sizeof instance->translation);
-  words[PRT_SF_GL_SCALE] = instance->scale;
-  memcpy(words + PRT_SF_GL_EYE, scene->eye, sizeof scene->eye);
-  memcpy(words + PRT_SF_GL_LIGHT, instance->light, (size_t)3u * n2 * sizeof(float));
-  memcpy(words + PRT_SF_GL_PRODUCT, instance->light_product, (size_t)3u * n2 * n2 * sizeof(float));
-}
-
-static int reserve_frame(prt_gl_shadowfield* s, size_t floats) {
-  if (floats > s->frame_capacity) {
-    float* frame = (float*)prt_internal_alloc(&s->allocator, floats * sizeof(float), 16);
-    if (!frame) return 0;
-    if (s->frame) prt_internal_free(&s->allocator, s->frame, s->frame_capacity * sizeof(float));
-    s->frame = frame;
-    s->frame_capacity = floats;
-  }
-  return 1;
-}
-
-/* Every instance's record of the prepared frame, uploaded to BUFFER_FRAME. */
-static prt_result upload_frame(prt_gl_shadowfield* s) {
-  const prt_shadowfield_scene* scene = s->scene;
-  size_t floats = 0u;
-  for (uint32_t i = 0; i < s->instance_count; ++i)
-    floats += PRT_SF_GL_HEADER + (size_t)scene->instances[i].pair_count * PRT_SF_GL_PAIR_FLOATS;
-  if (!reserve_frame(s, floats)) return PRT_ERROR_OUT_OF_MEMORY;
-  size_t at = 0u;
-  for (uint32_t i = 0; i < s->instance_count; ++i) {
-    const prt_sf_instance* instance = &scene->instances[i];
-    s->instances[i].record = (uint32_t)at;
-    write_header(s, i, s->frame + at);
-    at += PRT_SF_GL_HEADER;
-    for (uint32_t q = 0; q < instance->pair_count; ++q, at += PRT_SF_GL_PAIR_FLOATS)
-      write_pair(s, &scene->pairs[instance->pair_first + q], s->frame + at);
-  }
-  const prt_gl_functions* gl = &s->gl;
-  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[BUFFER_FRAME]);
-  if (floats > s->frame_buffer_floats) {
-    gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)(floats * sizeof(float)), NULL,
-                   PRT_GL_DYNAMIC_DRAW);
-    s->frame_buffer_floats = floats;
-  }
-  upload(gl, 0u, s->frame, floats);
-  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
-  return PRT_OK;
-}
-
-/* Invocations [0, count) of the bound stage on instance i's record, in chunks (each chunk's
- * invocations have their own scratch rows, which the next chunk reuses). */
-static void dispatch(const prt_gl_shadowfield* s, uint32_t i, uint32_t count) {
-  const prt_gl_functions* gl = &s->gl;
-  gl->ProgramUniform1ui(s->program, UNIFORM_RECORD, s->instances[i].record);
-  for (uint32_t first = 0; first < count; first += CHUNK_VERTICES) {
-    const uint32_t chunk = count - first < CHUNK_VERTICES ? count - first : CHUNK_VERTICES;
-    gl->ProgramUniform1ui(s->program, UNIFORM_FIRST_VERTEX, first);
-    gl->DispatchCompute((chunk + PRT_SF_GL_LOCAL_SIZE - 1u) / PRT_SF_GL_LOCAL_SIZE, 1, 1);
-    /* The next dispatch reuses the scratch rows; a later stage reads these writes. */
-    gl->MemoryBarrier(PRT_GL_SHADER_STORAGE_BARRIER_BIT);
-  }
-}
-
-/* One stage over every vertex of every instance. */
-static void run_stage(const prt_gl_shadowfield* s, uint32_t stage, uint32_t pass) {
-  s->gl.ProgramUniform1ui(s->program, UNIFORM_STAGE, stage);
-  s->gl.ProgramUniform1ui(s->program, UNIFORM_PASS, pass);
-  for (uint32_t i = 0; i < s->instance_count; ++i)
-    dispatch(s, i, prt_shadowfield_instance_vertex_count(s->scene, i));
-}
-
-/* Between pass - 1 and pass: each source's radiance of pass - 1 projected on its basis, then
- * the field it casts from the weights, one source after another (the weights are in the
- * scratch rows). */
-static void project_sources(const prt_gl_shadowfield* s, uint32_t pass) {
-  const prt_gl_functions* gl = &s->gl;
-  const prt_shadowfield_scene* scene = s->scene;
-  gl->ProgramUniform1ui(s->program, UNIFORM_PASS, pass - 1u);
-  for (uint32_t i = 0; i < s->instance_count; ++i) {
-    const prt_sf_instance* source = &scene->instances[i];
-    if (!source->is_source || !source->field) continue;
-    const prt_sf_object* object = scene->objects[source->object];
-    const uint32_t weights = object->basis_size * object->terms * 3u;
-    gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_PROJECT);
-    dispatch(s, i, weights);
-    gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_WEIGHTS);
-    dispatch(s, i, weights);
-    gl->ProgramUniform1ui(s->program, UNIFORM_STAGE, PRT_SF_GL_STAGE_CAST);
-    dispatch(s, i, (uint32_t)(prt_sf_field_points(scene, i) * scene->order * scene->order));
-  }
-}
-
-static void bind_buffers(const prt_gl_shadowfield* s, int bind) {
-  for (uint32_t b = 0; b < BUFFER_COUNT; ++b)
-    s->gl.BindBufferBase(PRT_GL_SHADER_STORAGE_BUFFER, b, bind ? s->buffers[b] : 0u);
-}
-
-/* The settings for prt_shadowfield_prepare: a GL backend asked for becomes AUTO there (the
- * preparation is the CPU's); a CPU or SIMD one is refused. Others go to prepare as they are, so
- * that it refuses them as it does for prt_shadowfield_shade. */
-static prt_result prepare_settings(prt_context* context, const prt_shadowfield_settings* settings,
-                                   prt_shadowfield_settings* copy,
-                                   const prt_shadowfield_settings** out) {
-  *out = settings;
-  if (!settings || !prt_internal_struct_size_ok(settings, sizeof *settings)) return PRT_OK;
-  if (settings->backend == PRT_BACKEND_CPU || settings->backend == PRT_BACKEND_SIMD)
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "%s: settings ask for a CPU backend (use prt_shadowfield_shade)",
-                             FUNCTION_SHADE);
-  if (settings->backend == PRT_BACKEND_GL) {
-    *copy = *settings;
-    copy->backend = PRT_BACKEND_AUTO;
-    *out = copy;
-  }
-  return PRT_OK;
-}
-
-prt_result prt_gl_shadowfield_shade(prt_gl_shadowfield* shader, const float* light_sh_rgb,
-                                    const float eye[3], const prt_shadowfield_settings* settings) {
-  if (!shader) return PRT_ERROR_INVALID_ARGUMENT;
-  prt_shadowfield_scene* scene = shader->scene;
-  if (scene->instance_count != shader->instance_count ||
-      scene->object_count != shader->object_count)
-    return prt_internal_fail(scene->context, PRT_ERROR_INVALID_OPERATION,
-                             "%s: the scene gained objects or instances since the create call",
-                             FUNCTION_SHADE);
-  prt_shadowfield_settings copy;
-  const prt_shadowfield_settings* cpu_settings;
-  prt_result r = prepare_settings(scene->context, settings, &copy, &cpu_settings);
-  if (r == PRT_OK) r = prt_shadowfield_prepare(scene, light_sh_rgb, eye, cpu_settings);
-  if (r != PRT_OK) return r;
-  if (upload_frame(shader) != PRT_OK) {
-    scene->prepared = 0u;
-    return prt_internal_fail(scene->context, PRT_ERROR_OUT_OF_MEMORY, "%s: out of memory",
-                             FUNCTION_SHADE);
-  }
-  const prt_gl_functions* gl = &shader->gl;
-  bind_buffers(shader, 1);
-  gl->UseProgram(shader->program);
-  run_stage(shader, PRT_SF_GL_STAGE_DIRECT, 0u);
-  for (uint32_t pass = 1; pass <= scene->bounces; ++pass) {
-    project_sources(shader, pass);
-    run_stage(shader, PRT_SF_GL_STAGE_BOUNCE, pass);
-  }
-  run_stage(shader, PRT_SF_GL_STAGE_OUTPUT, scene->bounces);
-  /* For what reads the output next: vertex fetch, copies, reads. */
-  gl->MemoryBarrier(PRT_GL_BUFFER_UPDATE_BARRIER_BIT | PRT_GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
-  gl->UseProgram(0);
-  bind_buffers(shader, 0);
-  /* The CPU's buffers do not hold this frame: its stages must be prepared again. */
-  scene->prepared = 0u;
-  return PRT_OK;
-}
-
-uint32_t prt_gl_shadowfield_output_buffer(const prt_gl_shadowfield* shader) {
-  return shader ? shader->buffers[BUFFER_RADIANCE] : 0u;
-}
-
-uint32_t prt_gl_shadowfield_output_first(const prt_gl_shadowfield* shader, uint32_t instance) {
-  if (!shader || instance >= shader->instance_count) return 0u;
-  return shader->instances[instance].radiance_vertex;
-}
-
-prt_result prt_gl_shadowfield_read(prt_gl_shadowfield* shader, uint32_t instance,
-                                   uint32_t first_vertex, uint32_t vertex_count, float* out_rgb) {
-  if (!shader || instance >= shader->instance_count || (!out_rgb && vertex_count > 0u))
-    return PRT_ERROR_INVALID_ARGUMENT;
-  const uint32_t vertices = prt_shadowfield_instance_vertex_count(shader->scene, instance);
-  if (first_vertex > vertices || vertex_count > vertices - first_vertex)
-    return PRT_ERROR_INVALID_ARGUMENT;
-  if (vertex_count > 0u)
-    prt_gl_read_radiance(&shader->gl, shader->buffers[BUFFER_RADIANCE],
-                         shader->instances[instance].radiance_vertex + first_vertex, vertex_count,
-                         out_rgb);
-  return PRT_OK;
 }
 
 #endif /* PRT_HAS_GL */

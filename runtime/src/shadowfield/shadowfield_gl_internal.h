@@ -71,4 +71,60 @@
  * LOCAL_SIZE and every PRT_SF_GL_* record offset above without its prefix. */
 extern const char prt_sf_gl_shader_source[];
 
+/* ---- What the backend's two files share (shadowfield_gl.c creates, shadowfield_gl_frame.c
+ * runs a frame). ---- */
+#include "../gl_functions.h"
+
+/* The buffers, by their binding in the shader. */
+enum {
+  PRT_SF_GL_BUFFER_OBJECTS = 0,  /* every object's vertices, transfer, g table and OOF */
+  PRT_SF_GL_BUFFER_GAUNT = 1,    /* the triple-product tensor */
+  PRT_SF_GL_BUFFER_FIELDS = 2,   /* every source's field of the last projected pass */
+  PRT_SF_GL_BUFFER_INCIDENT = 3, /* every instance's light per pass, vertex and term */
+  PRT_SF_GL_BUFFER_RADIANCE = 4, /* every instance's outgoing radiance */
+  PRT_SF_GL_BUFFER_FRAME = 5,    /* every instance's record of the frame */
+  PRT_SF_GL_BUFFER_SCRATCH = 6,  /* each invocation's SH vectors (shadowfield_gl_glsl.c) */
+  PRT_SF_GL_BUFFER_COUNT = 7
+};
+enum {
+  PRT_SF_GL_UNIFORM_RECORD = 0,
+  PRT_SF_GL_UNIFORM_STAGE = 1,
+  PRT_SF_GL_UNIFORM_PASS = 2,
+  PRT_SF_GL_UNIFORM_FIRST_VERTEX = 3,
+  PRT_SF_GL_UNIFORM_ORDER = 4
+};
+
+/* Vertices per dispatch: each has its scratch rows, so this bounds the scratch buffer. */
+#define PRT_SF_GL_CHUNK_VERTICES 16384u
+
+/* Where an object's arrays start in the object buffer (floats). */
+typedef struct prt_sf_gl_object {
+  uint32_t positions, normals, albedo, transfer, g_table, oof, srf;
+  uint32_t basis, vertex_weights, basis_inverse;
+} prt_sf_gl_object;
+
+/* Where an instance's arrays start: incident and field (floats), radiance (vertices), and its
+ * record in the frame buffer (floats, set per frame). */
+typedef struct prt_sf_gl_instance {
+  uint32_t incident, field, radiance_vertex, record;
+} prt_sf_gl_instance;
+
+struct prt_gl_shadowfield {
+  prt_allocator allocator; /* the scene's context's */
+  prt_gl_functions gl;
+  prt_shadowfield_scene* scene;
+  uint32_t object_count, instance_count; /* the scene's when created */
+  prt_GLuint program;
+  prt_GLuint buffers[PRT_SF_GL_BUFFER_COUNT];
+  prt_sf_gl_object* objects;
+  prt_sf_gl_instance* instances;
+  uint32_t radiance_vertices;
+  float* frame;               /* the records, uploaded to PRT_SF_GL_BUFFER_FRAME */
+  size_t frame_capacity;      /* floats in `frame` */
+  size_t frame_buffer_floats; /* floats in PRT_SF_GL_BUFFER_FRAME */
+};
+
+/* glBufferSubData of `count` floats at float `at` of the buffer bound to the SSBO target. */
+void prt_sf_gl_upload(const prt_gl_functions* gl, uint32_t at, const float* values, uint64_t count);
+
 #endif /* PRT_RUNTIME_SHADOWFIELD_GL_INTERNAL_H */
