@@ -8,6 +8,7 @@
 #include <prt/prt_shadowfield_asset.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -33,6 +34,25 @@ Scene with_albedo(const Scene& scene, const glm::vec3& albedo) {
   out.materials.push_back(material);
   for (Mesh& mesh : out.meshes) mesh.material = static_cast<int>(out.materials.size() - 1);
   return out;
+}
+
+// --inner and --outer, named as the command spells them (the stages name their settings).
+void check_shells_options(double inner, double outer) {
+  if (!std::isfinite(inner) || inner <= 0.0)
+    throw Error(format("--inner: %g must be finite and > 0", inner));
+  if (!std::isfinite(outer) || outer < inner)
+    throw Error(format("--outer: %g must be finite and at least --inner (%g)", outer, inner));
+}
+
+// --brdf parsed and checked; every error names the flag.
+SurfaceBrdf parse_brdf_option(const std::string& text) {
+  try {
+    return parse_surface_brdf(text);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    if (message.rfind("--brdf", 0) == 0) throw;
+    throw Error("--brdf: " + message);
+  }
 }
 
 nlohmann::json block_json(const QuantizedShadowfieldBlock& block) {
@@ -83,8 +103,9 @@ class ShadowfieldBake final : public TechniqueBake {
     settings_.fields.inner = settings_.srf.inner = static_cast<float>(inner_);
     settings_.fields.outer = settings_.srf.outer = static_cast<float>(outer_);
     settings_.fields.seed = settings_.srf.seed = input.seed;
+    check_shells_options(inner_, outer_);
     check_shadowfield_bake_settings(settings_);
-    surface_ = parse_surface_brdf(brdf_);
+    surface_ = parse_brdf_option(brdf_);
     const ShadowfieldMaterial material = shadowfield_material_of(surface_, settings_.brdf);
     const auto start = std::chrono::steady_clock::now();
     result_ = input.albedo.empty()
