@@ -4,6 +4,7 @@
 #pragma once
 
 #include <prt/prt.h>
+#include <prt/prt.hpp>
 
 #include <memory>
 #include <string>
@@ -29,9 +30,22 @@ ShadowfieldMaterial shadowfield_material_of(const SurfaceBrdf& brdf,
 prt_shadowfield_transform shadowfield_transform(const glm::mat3& rotation,
                                                 const glm::vec3& translation);
 
-// The runtime's outgoing radiance (vertex-major RGB) of the asset's object placed alone at
-// `transform`, under `light_rgb` (world SH, the asset's order, coefficient-major RGB), towards
-// `eye`, with 0 bounces, on the CPU backend. Throws Error naming the failing call.
+// A runtime scene of one object placed alone (its own context), shaded with 0 bounces on the CPU
+// backend. Throws Error naming the failing call.
+class LoneShadowfieldScene {
+ public:
+  LoneShadowfieldScene(const prt_asset* asset, const prt_shadowfield_transform& transform);
+  // Outgoing radiance (vertex-major RGB) under `light_rgb` (world SH, the asset's order,
+  // coefficient-major RGB) towards `eye`.
+  void shade(const std::vector<float>& light_rgb, const glm::vec3& eye, std::vector<float>* rgb);
+
+ private:
+  prt::ContextPtr context_;
+  std::unique_ptr<prt_shadowfield_scene, void (*)(prt_shadowfield_scene*)> scene_;
+  std::uint32_t vertices_ = 0;
+};
+
+// LoneShadowfieldScene's radiance, once.
 std::vector<float> shade_lone_shadowfield(const prt_asset* asset,
                                           const prt_shadowfield_transform& transform,
                                           const std::vector<float>& light_rgb,

@@ -96,29 +96,42 @@ prt_shadowfield_transform shadowfield_transform(const glm::mat3& rotation,
   return t;
 }
 
-std::vector<float> shade_lone_shadowfield(const prt_asset* asset,
-                                          const prt_shadowfield_transform& transform,
-                                          const std::vector<float>& light_rgb,
-                                          const glm::vec3& eye) {
+LoneShadowfieldScene::LoneShadowfieldScene(const prt_asset* asset,
+                                           const prt_shadowfield_transform& transform)
+    : scene_(nullptr, prt_shadowfield_scene_destroy) {
   auto [context, made] = prt::create_context();
   check_call(made, "prt_context_create");
+  context_ = std::move(context);
   prt_shadowfield_scene* raw = nullptr;
-  check_call(prt_shadowfield_scene_create(context.get(), 1, &raw), "prt_shadowfield_scene_create");
-  const std::unique_ptr<prt_shadowfield_scene, void (*)(prt_shadowfield_scene*)> scene(
-      raw, prt_shadowfield_scene_destroy);
+  check_call(prt_shadowfield_scene_create(context_.get(), 1, &raw), "prt_shadowfield_scene_create");
+  scene_.reset(raw);
   std::uint32_t object = 0, instance = 0;
   check_call(prt_shadowfield_scene_add_object(raw, asset, &object),
              "prt_shadowfield_scene_add_object");
   check_call(prt_shadowfield_scene_add_instance(raw, object, &transform, &instance),
              "prt_shadowfield_scene_add_instance");
-  std::vector<float> rgb(std::size_t(3) * prt_shadowfield_instance_vertex_count(raw, instance));
+  vertices_ = prt_shadowfield_instance_vertex_count(raw, instance);
+}
+
+void LoneShadowfieldScene::shade(const std::vector<float>& light_rgb, const glm::vec3& eye,
+                                 std::vector<float>* rgb) {
+  rgb->resize(std::size_t(3) * vertices_);
   prt_shadowfield_settings settings{};
   settings.struct_size = sizeof settings;
   settings.backend = PRT_BACKEND_CPU;
-  float* const out[] = {rgb.data()};
+  float* const out[] = {rgb->data()};
   const float eye_xyz[3] = {eye.x, eye.y, eye.z};
-  check_call(prt_shadowfield_shade(raw, light_rgb.data(), eye_xyz, &settings, out),
+  check_call(prt_shadowfield_shade(scene_.get(), light_rgb.data(), eye_xyz, &settings, out),
              "prt_shadowfield_shade");
+}
+
+std::vector<float> shade_lone_shadowfield(const prt_asset* asset,
+                                          const prt_shadowfield_transform& transform,
+                                          const std::vector<float>& light_rgb,
+                                          const glm::vec3& eye) {
+  LoneShadowfieldScene scene(asset, transform);
+  std::vector<float> rgb;
+  scene.shade(light_rgb, eye, &rgb);
   return rgb;
 }
 
