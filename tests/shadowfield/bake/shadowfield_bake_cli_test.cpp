@@ -112,6 +112,26 @@ TEST(ShadowfieldBakeCommand, BadOptionsAreRefusedByName) {
   }
 }
 
+// A mesh without faces, one of zero area and a NaN albedo: refused by name, no blob.
+TEST(ShadowfieldBakeCommand, DegenerateInputIsRefused) {
+  const fs::path empty = temp_dir() / "empty.obj", flat = temp_dir() / "flat.obj";
+  std::ofstream(empty) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  std::ofstream(flat) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nvn 0 1 0\nf 1//1 2//1 3//1\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {quoted(empty), "no faces"},
+      {quoted(flat) + " --basis 1", "no surface area"},
+      {quoted(PRT_QUAD_SCENE) + " --albedo nan,0,0", "--albedo"}};
+  for (const auto& [arguments, message] : cases) {
+    const fs::path blob = temp_dir() / "bad.prtk";
+    const CommandResult r =
+        run_bake("bake shadowfield " + arguments +
+                 " --field-rays 16 --transfer-rays 16 --srf-rays 16 -o " + quoted(blob));
+    EXPECT_NE(r.exit_code, 0) << arguments;
+    EXPECT_NE(r.output.find(message), std::string::npos) << arguments << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(blob)) << arguments;
+  }
+}
+
 TEST(ShadowfieldBakeCommand, HelpListsShadowfieldFlagsOnly) {
   const CommandResult help = run_bake("bake shadowfield --help");
   ASSERT_EQ(help.exit_code, 0) << help.output;
