@@ -44,17 +44,6 @@ void check_shells_options(double inner, double outer) {
     throw Error(format("--outer: %g must be finite and at least --inner (%g)", outer, inner));
 }
 
-// --brdf parsed and checked; every error names the flag.
-SurfaceBrdf parse_brdf_option(const std::string& text) {
-  try {
-    return parse_surface_brdf(text);
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    if (message.rfind("--brdf", 0) == 0) throw;
-    throw Error("--brdf: " + message);
-  }
-}
-
 nlohmann::json block_json(const QuantizedShadowfieldBlock& block) {
   return {{"values", block.q.size()},
           {"rows", block.offsets.size()},
@@ -260,6 +249,16 @@ ShadowfieldMaterial shadowfield_material_of(const SurfaceBrdf& brdf,
       break;
   }
   return make_shadowfield_material(description, options);
+}
+
+SurfaceBrdf parse_brdf_option(const std::string& text) {
+  try {
+    return parse_surface_brdf(text);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    if (message.rfind("--brdf", 0) == 0) throw;
+    throw Error("--brdf: " + message);
+  }
 }
 
 const Technique& shadowfield_technique() {

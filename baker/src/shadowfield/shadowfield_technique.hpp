@@ -21,8 +21,11 @@ namespace prt::bake {
 // prt-bake trade shadowfield (shadowfield_trade.cpp).
 std::unique_ptr<TechniqueTrade> make_shadowfield_trade();
 
-// The material a --brdf text ("lambert", "phong:N[,ks[,kd]]", "ggx:A[,F0]") bakes to, separated
-// with `options` when glossy. Throws Error naming the flag on a bad text.
+// The --brdf flag's text ("lambert", "phong:N[,ks[,kd]]", "ggx:A[,F0]") parsed and checked;
+// every Error names the flag.
+SurfaceBrdf parse_brdf_option(const std::string& text);
+
+// The material a parsed --brdf bakes to: diffuse, or the model separated with `options`.
 ShadowfieldMaterial shadowfield_material_of(const SurfaceBrdf& brdf,
                                             const SeparableBrdfOptions& options);
 

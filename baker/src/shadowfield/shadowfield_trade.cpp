@@ -100,7 +100,7 @@ void check_settings(const SfTradeSettings& o) {
   for (int bits : o.bits) {
     if (bits != 8 && bits != 16) throw Error("--bits: " + std::to_string(bits) + " is not 8 or 16");
   }
-  parse_surface_brdf(o.brdf);
+  parse_brdf_option(o.brdf);
 }
 
 // The object's turns: evenly spread over a full turn about +Y.
@@ -266,7 +266,7 @@ class ShadowfieldTrade final : public TechniqueTrade {
   void check(const TradeInput&) const override { check_settings(o_); }
 
   void prepare(const Scene& scene, const TradeInput& input, const Context& ctx) override {
-    surface_ = parse_surface_brdf(o_.brdf);
+    surface_ = parse_brdf_option(o_.brdf);
     settings_ = sweep_settings(o_, surface_.model != SurfaceBrdf::Model::Lambert);
     std::uint32_t max_order = 0;
     for (const Setting& s : settings_) max_order = std::max(max_order, s.order);
