@@ -60,7 +60,8 @@ TEST_F(ShadowfieldTradeCli, DiffuseSweepImprovesWithOrderAndRepeatsItself) {
 }
 
 TEST_F(ShadowfieldTradeCli, GlossySweepImprovesWithTerms) {
-  extra_arguments_ = " --brdf phong:10,0.5,0.3 --terms 1,4 --base-terms 4 --orders 4 --brdf-grid 16";
+  extra_arguments_ =
+      " --brdf phong:10,0.5,0.3 --terms 1,4 --base-terms 4 --orders 4 --brdf-grid 16";
   const Table a = run_trade("glossy", 2, false);
   ASSERT_FALSE(a.empty());
   const auto [sweeps, error] = swept(a, key_of);
@@ -82,6 +83,18 @@ TEST_F(ShadowfieldTradeCli, BadSweepsFailByName) {
     EXPECT_NE(r.exit_code, 0) << option;
     EXPECT_NE(r.output.find(flag), std::string::npos) << option << "\n" << r.output;
   }
+}
+
+// --help lists the sweep's flags and the shared ones with this trade's defaults.
+TEST_F(ShadowfieldTradeCli, HelpListsTheSweepFlags) {
+  const CommandResult help = run_bake("trade shadowfield --help", dir_ / "help.log");
+  ASSERT_EQ(help.exit_code, 0) << help.output;
+  for (const char* flag :
+       {"--brdf", "--orders", "--terms", "--rays", "--bits", "--base-order", "--base-terms",
+        "--base-rays", "--base-bits", "--rotations", "--brdf-grid", "--env", "--out-dir",
+        "--cache-dir", "1073741824]=1024", "--frames INT=10", "--albedo", "--seed"})
+    EXPECT_NE(help.output.find(flag), std::string::npos) << flag << "\n" << help.output;
+  EXPECT_EQ(help.output.find("--dering"), std::string::npos) << help.output;
 }
 
 }  // namespace
