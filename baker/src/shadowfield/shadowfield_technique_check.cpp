@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ constexpr double kFloatSlack = 1e-5;
 
 void check_call(prt_result result, const char* what) {
   if (result != PRT_OK) throw Error(std::string(what) + " failed: " + prt_result_string(result));
+}
+
+// How far a reader's offset + scale q of the transfer's row can be from the float value: half a
+// step, and the float rounding of a value as large as the row's largest.
+double dequantised_error(const QuantizedShadowfield& quantized, std::size_t row) {
+  const double offset = quantized.transfer.offsets[row], scale = quantized.transfer.scales[row];
+  const double largest =
+      std::max(std::abs(offset), std::abs(offset + scale * double((1u << quantized.bits) - 1u)));
+  return 0.5 * scale + 2.0 * std::numeric_limits<float>::epsilon() * largest;
 }
 
 // The outgoing direction towards `eye` from `position` in the tangent frame of `normal`, unit;
@@ -156,7 +166,7 @@ std::vector<double> shade_float_shadowfield(const ShadowfieldObject& object,
           const double l = light_rgb[3 * i + c];
           sum += double(t[i]) * l;
           magnitude += std::abs(double(t[i]) * l);
-          if (quantized) step += 0.5 * quantized->transfer.scales[k * n2 + i] * std::abs(l);
+          if (quantized) step += dequantised_error(*quantized, k * n2 + i) * std::abs(l);
         }
         const double a = object.albedo[v][c];
         rgb[3 * v + c] += a * g * sum;
@@ -221,7 +231,7 @@ ShadowfieldBlobCheck check_shadowfield_blob(const std::vector<std::uint8_t>& blo
     return check;
   }
   check.passed = true;
-  check.message = format("shaded %zu values by the runtime, max error %.3g (%.2f of the bound)",
+  check.message = format("shaded %zu values by the runtime, max error %.3g (%.3f of the bound)",
                          compared, check.max_abs_error, check.max_budget_ratio);
   return check;
 }
