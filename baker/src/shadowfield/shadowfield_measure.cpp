@@ -48,6 +48,12 @@ std::vector<glm::vec3> object_values(const ShadowfieldSceneDescription& descript
   return out;
 }
 
+double mean_radiance(const std::vector<glm::vec3>& values) {
+  double sum = 0.0;
+  for (const glm::vec3& v : values) sum += double(v.x) + double(v.y) + double(v.z);
+  return values.empty() ? 0.0 : sum / (3.0 * double(values.size()));
+}
+
 double relative_bias(const std::vector<glm::vec3>& estimate,
                      const std::vector<glm::vec3>& reference) {
   double difference = 0.0, total = 0.0;
@@ -235,6 +241,8 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
       row.reference_noise = reference.relative_rmse;
       row.nrmse = io::relative_rmse(runtime[b], reference.radiance);
       row.bias = relative_bias(runtime[b], reference.radiance);
+      row.runtime_mean = mean_radiance(runtime[b]);
+      row.reference_mean = mean_radiance(reference.radiance);
       for (std::size_t o = 0; o < description.objects.size(); ++o) {
         const std::vector<glm::vec3> ours =
             object_values(description, placed.first_vertex, runtime[b], o);
@@ -255,15 +263,16 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
 std::string shadowfield_measure_markdown(const ShadowfieldSceneDescription& description,
                                          const std::vector<ShadowfieldMeasureRow>& rows) {
   std::ostringstream md;
-  md << "| time (s) | bounces | NRMSE % | bias % | ref. noise %";
+  md << "| time (s) | bounces | NRMSE % | bias % | ref. noise % | mean runtime | mean ref.";
   for (const ShadowfieldSceneObject& object : description.objects)
     md << " | " << object.name << " %";
-  md << " | runtime (ms) | reference (s) |\n| ---: | ---: | ---: | ---: | ---:";
+  md << " | runtime (ms) | reference (s) |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---:";
   for (std::size_t o = 0; o < description.objects.size(); ++o) md << " | ---:";
   md << " | ---: | ---: |\n";
   for (const ShadowfieldMeasureRow& row : rows) {
     md << format("| %g | %u | %.2f | %+.2f | %.2f", double(row.time), row.bounces, 100 * row.nrmse,
                  100 * row.bias, 100 * row.reference_noise);
+    md << format(" | %.4g | %.4g", row.runtime_mean, row.reference_mean);
     for (const double e : row.object_nrmse) md << format(" | %.2f", 100 * e);
     md << format(" | %.1f | %.1f |\n", 1e3 * row.seconds_runtime, row.seconds_reference);
   }

@@ -59,7 +59,10 @@ struct ShadowfieldMeasureRow {
   // relative RMSE over every instance's vertices and the three channels (io::relative_rmse),
   // and the relative bias sum(runtime - reference) / sum(reference).
   double nrmse = 0.0, bias = 0.0;
-  double reference_noise = 0.0;      // the reference's own relative RMSE estimate
+  double reference_noise = 0.0;  // the reference's own relative RMSE estimate
+  // Mean radiance over every vertex and channel: how much light each side has, so the light
+  // each side's bounces add can be compared across rows.
+  double runtime_mean = 0.0, reference_mean = 0.0;
   std::vector<double> object_nrmse;  // per object, over the vertices of all its instances
   double seconds_runtime = 0.0;      // the runtime's frame through every bounce asked for
   double seconds_reference = 0.0;
