@@ -249,6 +249,7 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
         const std::vector<glm::vec3> theirs =
             object_values(description, placed.first_vertex, reference.radiance, o);
         row.object_nrmse.push_back(ours.empty() ? 0.0 : io::relative_rmse(ours, theirs));
+        row.object_bias.push_back(relative_bias(ours, theirs));
       }
       ctx.info(
           format("t = %g s, %u bounces: NRMSE %.2f %%, bias %+.2f %% (reference noise %.2f %%)",
@@ -265,7 +266,7 @@ std::string shadowfield_measure_markdown(const ShadowfieldSceneDescription& desc
   std::ostringstream md;
   md << "| time (s) | bounces | NRMSE % | bias % | ref. noise % | mean runtime | mean ref.";
   for (const ShadowfieldSceneObject& object : description.objects)
-    md << " | " << object.name << " %";
+    md << " | " << object.name << " NRMSE (bias) %";
   md << " | runtime (ms) | reference (s) |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---:";
   for (std::size_t o = 0; o < description.objects.size(); ++o) md << " | ---:";
   md << " | ---: | ---: |\n";
@@ -273,7 +274,8 @@ std::string shadowfield_measure_markdown(const ShadowfieldSceneDescription& desc
     md << format("| %g | %u | %.2f | %+.2f | %.2f", double(row.time), row.bounces, 100 * row.nrmse,
                  100 * row.bias, 100 * row.reference_noise);
     md << format(" | %.4g | %.4g", row.runtime_mean, row.reference_mean);
-    for (const double e : row.object_nrmse) md << format(" | %.2f", 100 * e);
+    for (std::size_t o = 0; o < row.object_nrmse.size(); ++o)
+      md << format(" | %.2f (%+.1f)", 100 * row.object_nrmse[o], 100 * row.object_bias[o]);
     md << format(" | %.1f | %.1f |\n", 1e3 * row.seconds_runtime, row.seconds_reference);
   }
   return md.str();

@@ -130,7 +130,7 @@ TEST_F(ShadowfieldMeasureCommands, TheMeasureCommandWritesOneRowPerBounceCount) 
   const std::string text = prt_test::read_text(table);
   EXPECT_NE(text.find("| 0 | 0 |"), std::string::npos) << text;
   EXPECT_NE(text.find("| 0 | 2 |"), std::string::npos) << text;
-  EXPECT_NE(text.find("| floor %"), std::string::npos) << text;
+  EXPECT_NE(text.find("| floor NRMSE (bias) %"), std::string::npos) << text;
 }
 
 TEST(ShadowfieldMeasureCommandErrors, AMissingSceneFailsWithoutWriting) {

@@ -64,6 +64,7 @@ struct ShadowfieldMeasureRow {
   // each side's bounces add can be compared across rows.
   double runtime_mean = 0.0, reference_mean = 0.0;
   std::vector<double> object_nrmse;  // per object, over the vertices of all its instances
+  std::vector<double> object_bias;   // per object, as bias
   double seconds_runtime = 0.0;      // the runtime's frame through every bounce asked for
   double seconds_reference = 0.0;
 };
@@ -86,7 +87,7 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
     const std::vector<std::vector<std::uint8_t>>& blobs, const io::EnvMap& env,
     const ShadowfieldMeasureSettings& settings, const Context& ctx);
 
-// The rows as a markdown table (one column per object's NRMSE, named after the objects).
+// The rows as a markdown table (one column per object: its NRMSE and bias, by its name).
 std::string shadowfield_measure_markdown(const ShadowfieldSceneDescription& description,
                                          const std::vector<ShadowfieldMeasureRow>& rows);
 
