@@ -4,6 +4,8 @@
 // falling on the same floor vertices.
 #include <gtest/gtest.h>
 
+#include <prt/prt_shadowfield.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -124,6 +126,42 @@ TEST_F(ShadowfieldMeasure, TheDarkestFloorVerticesCoincide) {
   const double shared = double(common.size()) / double(count);
   std::printf("darkest %zu floor vertices: %zu in common (%.3f)\n", count, common.size(), shared);
   EXPECT_GT(shared, 0.4);  // measured about 0.64
+}
+
+TEST_F(ShadowfieldMeasure, BadSettingsAreRefused) {
+  const auto refused = [](ShadowfieldMeasureSettings settings) {
+    EXPECT_THROW(measure_shadowfield_scene(*scene_, *blobs_, *sky_, settings, Context{}), Error);
+  };
+  ShadowfieldMeasureSettings settings;
+  settings.times = {};
+  refused(settings);
+  settings = {};
+  settings.bounces = {};
+  refused(settings);
+  settings = {};
+  settings.bounces = {PRT_SHADOWFIELD_MAX_BOUNCES + 1};
+  refused(settings);
+  settings = {};
+  settings.times = {std::nanf("")};
+  refused(settings);
+  settings = {};
+  settings.spp = 1;
+  refused(settings);
+}
+
+TEST_F(ShadowfieldMeasure, BlobsThatAreNotTheObjectsAreRefused) {
+  const EnvSh sh = project_env_sh(*sky_, 4);
+  const auto shade = [&](const std::vector<std::vector<std::uint8_t>>& blobs) {
+    return shade_shadowfield_scene(*scene_, blobs, sh.to_float(), sh.order, 0.0f, {0},
+                                   scene_->camera.eye);
+  };
+  EXPECT_THROW(shade({(*blobs_)[0]}), Error);                // one blob short
+  EXPECT_THROW(shade({(*blobs_)[1], (*blobs_)[0]}), Error);  // swapped: vertex counts differ
+  EXPECT_THROW(shade({(*blobs_)[0], std::vector<std::uint8_t>(64, 0)}), Error);  // not a blob
+  const EnvSh low = project_env_sh(*sky_, 2);  // below the blobs' order
+  EXPECT_THROW(shade_shadowfield_scene(*scene_, *blobs_, low.to_float(), low.order, 0.0f, {0},
+                                       scene_->camera.eye),
+               Error);
 }
 
 }  // namespace
