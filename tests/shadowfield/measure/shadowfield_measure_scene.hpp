@@ -34,8 +34,20 @@ inline ShadowfieldPath still_at(glm::vec3 translation) {
   return path;
 }
 
+// From (0.2, -0.1) to (-0.3, 0.2) turning 60 degrees about +Y in 2 s, and back in 2 s.
+inline ShadowfieldPath sliding_and_turning() {
+  ShadowfieldPath path;
+  path.duration = 4.0f;
+  const glm::quat turned = glm::angleAxis(glm::radians(60.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  path.keyframes.push_back(
+      {0.0f,
+       {glm::vec3(0.2f, kShadowfieldRestGap, -0.1f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f), 1.0f}});
+  path.keyframes.push_back({2.0f, {glm::vec3(-0.3f, kShadowfieldRestGap, 0.2f), turned, 1.0f}});
+  return path;
+}
+
 // Floor 2 m square at y = 0; a 0.6 m box resting on it off centre (its bottom at y = 0 in its
-// frame, lifted by the rest gap).
+// frame, lifted by the rest gap), moving on a short path.
 inline ShadowfieldSceneDescription box_on_floor() {
   ShadowfieldSceneDescription scene;
   scene.name = "box on floor";
@@ -43,7 +55,7 @@ inline ShadowfieldSceneDescription box_on_floor() {
   scene.objects.push_back(
       white_object("box", make_box_mesh(0, glm::vec3(0.0f, 0.3f, 0.0f), 0.3f, 0.0f, 4)));
   scene.instances.push_back({0, still_at(glm::vec3(0.0f))});
-  scene.instances.push_back({1, still_at(glm::vec3(0.2f, kShadowfieldRestGap, -0.1f))});
+  scene.instances.push_back({1, sliding_and_turning()});
   scene.camera = {{0.0f, 2.0f, 3.0f}, {0.0f, 0.3f, 0.0f}};
   scene.env = kShadowfieldBuiltinSky;
   return scene;

@@ -49,14 +49,15 @@ class ShadowfieldMeasure : public ::testing::Test {
     delete sky_;
   }
 
-  // The runtime through each pass of `bounces`, at t = 0.
-  static std::vector<std::vector<glm::vec3>> runtime(const std::vector<std::uint32_t>& bounces) {
+  // The runtime through each pass of `bounces`, at `time`.
+  static std::vector<std::vector<glm::vec3>> runtime(const std::vector<std::uint32_t>& bounces,
+                                                     float time = 0.0f) {
     const EnvSh sh = project_env_sh(*sky_, 4);
-    return shade_shadowfield_scene(*scene_, *blobs_, sh.to_float(), sh.order, 0.0f, bounces,
+    return shade_shadowfield_scene(*scene_, *blobs_, sh.to_float(), sh.order, time, bounces,
                                    scene_->camera.eye);
   }
-  static std::vector<glm::vec3> reference(int bounces) {
-    return render_shadowfield_reference(*scene_, *sky_, 0.0f, bounces, kSpp, scene_->camera.eye,
+  static std::vector<glm::vec3> reference(int bounces, float time = 0.0f) {
+    return render_shadowfield_reference(*scene_, *sky_, time, bounces, kSpp, scene_->camera.eye,
                                         Context{})
         .radiance;
   }
@@ -114,18 +115,31 @@ std::vector<std::size_t> darkest(const std::vector<glm::vec3>& values, std::size
   return order;
 }
 
+// The share of the `count` darkest floor vertices two radiances have in common.
+double darkest_in_common(const std::vector<glm::vec3>& a_all, const std::vector<glm::vec3>& b_all,
+                         std::size_t floor_vertices, std::size_t count) {
+  const std::vector<glm::vec3> a(a_all.begin(), a_all.begin() + floor_vertices);
+  const std::vector<glm::vec3> b(b_all.begin(), b_all.begin() + floor_vertices);
+  const std::vector<std::size_t> dark_a = darkest(a, count), dark_b = darkest(b, count);
+  std::vector<std::size_t> common;
+  std::set_intersection(dark_a.begin(), dark_a.end(), dark_b.begin(), dark_b.end(),
+                        std::back_inserter(common));
+  return double(common.size()) / double(count);
+}
+
 TEST_F(ShadowfieldMeasure, TheDarkestFloorVerticesCoincide) {
   const std::size_t floor_vertices = scene_->objects[0].mesh.vertex_count();
-  const std::vector<glm::vec3> ours_all = runtime({0})[0], theirs_all = reference(0);
-  const std::vector<glm::vec3> ours(ours_all.begin(), ours_all.begin() + floor_vertices);
-  const std::vector<glm::vec3> theirs(theirs_all.begin(), theirs_all.begin() + floor_vertices);
   const std::size_t count = floor_vertices / 20;
-  const std::vector<std::size_t> a = darkest(ours, count), b = darkest(theirs, count);
-  std::vector<std::size_t> common;
-  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
-  const double shared = double(common.size()) / double(count);
-  std::printf("darkest %zu floor vertices: %zu in common (%.3f)\n", count, common.size(), shared);
+  // Between two keyframes, so both sides must interpolate the path (slide and turn) alike.
+  const float time = 1.3f;
+  const std::vector<glm::vec3> theirs = reference(0, time);
+  const double shared = darkest_in_common(runtime({0}, time)[0], theirs, floor_vertices, count);
+  // The runtime at another time has its shadow elsewhere: the agreement is the placement's.
+  const double elsewhere = darkest_in_common(runtime({0}, 0.0f)[0], theirs, floor_vertices, count);
+  std::printf("darkest %zu floor vertices in common: %.3f at the same time, %.3f at t = 0\n", count,
+              shared, elsewhere);
   EXPECT_GT(shared, 0.4);  // measured about 0.64
+  EXPECT_LT(elsewhere, shared);
 }
 
 TEST_F(ShadowfieldMeasure, BadSettingsAreRefused) {
