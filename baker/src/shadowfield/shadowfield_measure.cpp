@@ -36,6 +36,67 @@ prt_shadowfield_transform runtime_transform(const ShadowfieldPlacement& placemen
   return t;
 }
 
+// The blobs loaded into a runtime scene with the description's instances placed at `time`.
+struct RuntimeScene {
+  std::vector<trade::RuntimeAsset> assets;
+  prt::ContextPtr context;
+  std::unique_ptr<prt_shadowfield_scene, void (*)(prt_shadowfield_scene*)> scene{
+      nullptr, prt_shadowfield_scene_destroy};
+
+  RuntimeScene(const ShadowfieldSceneDescription& description,
+               const std::vector<std::vector<std::uint8_t>>& blobs, float time) {
+    if (blobs.size() != description.objects.size())
+      throw Error("shadowfield shade: " + std::to_string(blobs.size()) + " blobs for " +
+                  std::to_string(description.objects.size()) + " objects");
+    for (const std::vector<std::uint8_t>& blob : blobs)
+      assets.push_back(trade::load_runtime_asset(blob));
+    auto [made_context, made] = prt::create_context();
+    trade::check_runtime(made, "prt_context_create");
+    context = std::move(made_context);
+    prt_shadowfield_scene* raw = nullptr;
+    trade::check_runtime(prt_shadowfield_scene_create(
+                             context.get(), std::uint32_t(description.instances.size()), &raw),
+                         "prt_shadowfield_scene_create");
+    scene.reset(raw);
+    for (std::size_t o = 0; o < assets.size(); ++o) {
+      std::uint32_t id = 0;
+      trade::check_runtime(prt_shadowfield_scene_add_object(raw, assets[o].asset.get(), &id),
+                           "adding object " + description.objects[o].name);
+    }
+    for (const ShadowfieldInstance& instance : description.instances)
+      add(description, instance, time);
+  }
+
+  void add(const ShadowfieldSceneDescription& description, const ShadowfieldInstance& instance,
+           float time) {
+    const prt_shadowfield_transform t = runtime_transform(instance.path.at(time));
+    const ShadowfieldSceneObject& object = description.objects.at(instance.object);
+    std::uint32_t id = 0;
+    trade::check_runtime(
+        prt_shadowfield_scene_add_instance(scene.get(), std::uint32_t(instance.object), &t, &id),
+        "adding an instance of " + object.name);
+    const std::uint32_t count = prt_shadowfield_instance_vertex_count(scene.get(), id);
+    if (count != object.mesh.vertex_count())
+      throw Error("shadowfield shade: the blob of " + object.name + " has " +
+                  std::to_string(count) + " vertices, its object " +
+                  std::to_string(object.mesh.vertex_count()));
+  }
+};
+
+// Every instance's outgoing radiance through pass `pass`, instances in order.
+std::vector<glm::vec3> runtime_output(const prt_shadowfield_scene* scene, std::uint32_t pass) {
+  std::vector<glm::vec3> radiance;
+  for (std::uint32_t i = 0; i < prt_shadowfield_scene_instance_count(scene); ++i) {
+    const std::uint32_t count = prt_shadowfield_instance_vertex_count(scene, i);
+    std::vector<float> rgb(std::size_t(count) * 3);
+    trade::check_runtime(prt_shadowfield_output(scene, i, pass, 0, count, rgb.data()),
+                         "prt_shadowfield_output");
+    for (std::uint32_t v = 0; v < count; ++v)
+      radiance.emplace_back(rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2]);
+  }
+  return radiance;
+}
+
 // The instances' vertices of `object`, gathered from a whole-scene per-vertex array.
 std::vector<glm::vec3> object_values(const ShadowfieldSceneDescription& description,
                                      const std::vector<std::size_t>& first_vertex,
@@ -147,68 +208,28 @@ std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
     const std::vector<std::vector<std::uint8_t>>& blobs, const std::vector<float>& light_sh,
     std::uint32_t light_order, float time, const std::vector<std::uint32_t>& bounces,
     const glm::vec3& eye, double* seconds) {
-  if (blobs.size() != description.objects.size())
-    throw Error("shadowfield shade: " + std::to_string(blobs.size()) + " blobs for " +
-                std::to_string(description.objects.size()) + " objects");
-  std::vector<trade::RuntimeAsset> assets;
-  for (const std::vector<std::uint8_t>& blob : blobs)
-    assets.push_back(trade::load_runtime_asset(blob));
-  auto [context, made] = prt::create_context();
-  trade::check_runtime(made, "prt_context_create");
-  prt_shadowfield_scene* raw = nullptr;
-  trade::check_runtime(prt_shadowfield_scene_create(
-                           context.get(), std::uint32_t(description.instances.size()), &raw),
-                       "prt_shadowfield_scene_create");
-  std::unique_ptr<prt_shadowfield_scene, void (*)(prt_shadowfield_scene*)> scene(
-      raw, prt_shadowfield_scene_destroy);
-  for (std::size_t o = 0; o < assets.size(); ++o) {
-    std::uint32_t id = 0;
-    trade::check_runtime(prt_shadowfield_scene_add_object(scene.get(), assets[o].asset.get(), &id),
-                         "adding object " + description.objects[o].name);
-  }
-  for (const ShadowfieldInstance& instance : description.instances) {
-    const prt_shadowfield_transform t = runtime_transform(instance.path.at(time));
-    std::uint32_t id = 0;
-    trade::check_runtime(
-        prt_shadowfield_scene_add_instance(scene.get(), std::uint32_t(instance.object), &t, &id),
-        "adding an instance of " + description.objects.at(instance.object).name);
-    const std::size_t expected = description.objects[instance.object].mesh.vertex_count();
-    if (prt_shadowfield_instance_vertex_count(scene.get(), id) != expected)
-      throw Error("shadowfield shade: the blob of " + description.objects[instance.object].name +
-                  " has " + std::to_string(prt_shadowfield_instance_vertex_count(scene.get(), id)) +
-                  " vertices, its object " + std::to_string(expected));
-  }
-  const std::uint32_t order = prt_shadowfield_scene_order(scene.get());
-  if (order > light_order)
+  if (bounces.empty()) throw Error("shadowfield shade: no bounce count");
+  const RuntimeScene runtime(description, blobs, time);
+  prt_shadowfield_scene* scene = runtime.scene.get();
+  const std::uint32_t order = prt_shadowfield_scene_order(scene);
+  if (order > light_order || light_sh.size() < std::size_t(order) * order * 3)
     throw Error("shadowfield shade: the light's SH order is below the blobs'");
   // The light's leading order^2 coefficients (coefficient-major RGB).
   const std::vector<float> light(light_sh.begin(),
                                  light_sh.begin() + std::size_t(order) * order * 3);
-  const std::uint32_t most = *std::max_element(bounces.begin(), bounces.end());
   prt_shadowfield_settings settings{};
   settings.struct_size = sizeof settings;
-  settings.bounces = most;
+  settings.bounces = *std::max_element(bounces.begin(), bounces.end());
   settings.backend = PRT_BACKEND_CPU;
   const float eye_xyz[3] = {eye.x, eye.y, eye.z};
+  const std::vector<float*> no_output(description.instances.size(), nullptr);
   const auto start = std::chrono::steady_clock::now();
   trade::check_runtime(
-      prt_shadowfield_shade(scene.get(), light.data(), eye_xyz, &settings,
-                            std::vector<float*>(description.instances.size(), nullptr).data()),
+      prt_shadowfield_shade(scene, light.data(), eye_xyz, &settings, no_output.data()),
       "prt_shadowfield_shade");
   if (seconds) *seconds = seconds_since(start);
   std::vector<std::vector<glm::vec3>> out;
-  for (const std::uint32_t b : bounces) {
-    std::vector<glm::vec3> radiance;
-    for (std::uint32_t i = 0; i < description.instances.size(); ++i) {
-      const std::uint32_t count = prt_shadowfield_instance_vertex_count(scene.get(), i);
-      std::vector<float> rgb(std::size_t(count) * 3);
-      trade::check_runtime(prt_shadowfield_output(scene.get(), i, b, 0, count, rgb.data()),
-                           "prt_shadowfield_output");
-      for (std::uint32_t v = 0; v < count; ++v)
-        radiance.emplace_back(rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2]);
-    }
-    out.push_back(std::move(radiance));
-  }
+  for (const std::uint32_t b : bounces) out.push_back(runtime_output(scene, b));
   return out;
 }
 
