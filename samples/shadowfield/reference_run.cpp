@@ -64,7 +64,13 @@ void ReferenceRun::start(const std::string& tool, const std::vector<std::string>
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  const int failed = posix_spawn(&pid_, tool.c_str(), &actions, nullptr, argv.data(), environ);
+  // A group of its own, so that cancelling ends whatever the tool started too.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  const int failed = posix_spawnp(&pid_, tool.c_str(), &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   started_ = ended_ = now_seconds();
   if (failed != 0) {
@@ -78,7 +84,7 @@ void ReferenceRun::start(const std::string& tool, const std::vector<std::string>
 
 void ReferenceRun::cancel() {
   if (pid_ > 0) {
-    kill(pid_, SIGTERM);
+    kill(-pid_, SIGTERM);
     int status = 0;
     waitpid(pid_, &status, 0);
   }

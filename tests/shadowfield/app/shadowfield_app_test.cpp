@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -217,18 +218,23 @@ TEST(ShadowfieldApp, BouncesAddLight) {
   EXPECT_LE(darker, kWidth * kHeight / 1000);
 }
 
-// A stand-in for prt-bake: it records its arguments and the scene file it was given, and
-// writes radiance 0.5 for every vertex, so that the picture's reference side is known.
-std::string fake_reference_tool(std::size_t vertices) {
+// A stand-in for prt-bake: it records its arguments (appended to NAME-calls.txt, then
+// "finished" when it ends) and the scene file it was given, and writes radiance 0.5 for every
+// vertex, so that the picture's reference side is known. With `slow_first`, its first run
+// sleeps long enough that only a cancellation ends it in a test's time.
+std::string fake_reference_tool(const std::string& name, std::size_t vertices,
+                                bool slow_first = false) {
   std::vector<glm::vec3> grey(vertices, glm::vec3(0.5f));
   const std::string npy = scratch().file("grey.npy");
   prt::io::write_npy_vec3(npy, grey);
-  const std::string tool = scratch().write(
-      "fake-prt-bake",
-      "#!/bin/sh\necho \"$@\" > " + scratch().file("reference-args.txt") + "\ncp \"$2\" " +
-          scratch().file("reference-scene.json") +
-          "\nwhile [ $# -gt 1 ]; do [ \"$1\" = -o ] && out=$2; shift; done\necho 50%\ncp " + npy +
-          " \"$out\"\n");
+  const std::string calls = scratch().file(name + "-calls.txt");
+  const std::string marker = scratch().file(name + "-slept");
+  std::string script = "#!/bin/sh\necho \"$@\" >> " + calls + "\ncp \"$2\" " +
+                       scratch().file(name + "-scene.json") + "\n";
+  if (slow_first) script += "if [ ! -e " + marker + " ]; then touch " + marker + "; sleep 60; fi\n";
+  script += "while [ $# -gt 1 ]; do [ \"$1\" = -o ] && out=$2; shift; done\necho 50%\ncp " + npy +
+            " \"$out\"\necho finished >> " + calls + "\n";
+  const std::string tool = scratch().write(name + "-prt-bake", script);
   std::filesystem::permissions(tool, std::filesystem::perms::owner_exec,
                                std::filesystem::perm_options::add);
   return tool;
@@ -238,19 +244,19 @@ TEST(ShadowfieldApp, TheReferenceIsAskedForThePlacementShownAndDrawnBeside) {
   const bake::ShadowfieldSceneFile file =
       bake::read_shadowfield_scene_json(scene_dir() + "/scene.json");
   const bake::ShadowfieldSceneDescription scene = bake::make_shadowfield_scene("procedural", "");
-  const std::string tool = fake_reference_tool(scene.instanced_vertex_count());
+  const std::string tool = fake_reference_tool("side", scene.instanced_vertex_count());
   const prt_test::CommandResult run =
       app("side", "--time 5.5 --bounces 2 --reference-spp 32 --compare side --reference-tool " +
                       prt_test::shell_quote(tool));
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string args = prt_test::read_bytes(scratch().file("reference-args.txt"));
+  const std::string args = prt_test::read_bytes(scratch().file("side-calls.txt"));
   EXPECT_EQ(args.rfind("shadowfield-reference ", 0), 0u) << args;
   EXPECT_NE(args.find("--bounces 2 "), std::string::npos) << args;
   EXPECT_NE(args.find("--spp 32 "), std::string::npos) << args;
   EXPECT_NE(args.find("--eye "), std::string::npos) << args;
   // The scene file it was given stands every instance where the baker's path puts it then.
   const bake::ShadowfieldSceneFile placed =
-      bake::read_shadowfield_scene_json(scratch().file("reference-scene.json"));
+      bake::read_shadowfield_scene_json(scratch().file("side-scene.json"));
   ASSERT_EQ(placed.instances.size(), file.instances.size());
   for (std::size_t i = 0; i < file.instances.size(); ++i) {
     const bake::ShadowfieldPlacement want = file.instances[i].path.at(5.5f);
@@ -270,6 +276,47 @@ TEST(ShadowfieldApp, TheReferenceIsAskedForThePlacementShownAndDrawnBeside) {
   EXPECT_EQ(grey[0], grey[1]);
   EXPECT_EQ(grey[1], grey[2]);
   EXPECT_NE(run.output.find("vs the reference"), std::string::npos) << run.output;
+}
+
+TEST(ShadowfieldApp, MovingSomethingCancelsTheReferenceInProgress) {
+  const bake::ShadowfieldSceneDescription scene = bake::make_shadowfield_scene("procedural", "");
+  const std::string tool = fake_reference_tool("cancel", scene.instanced_vertex_count(), true);
+  // Where the sphere is in the side-by-side view (its left half), from a run without reference.
+  const prt_test::CommandResult aim = app("aim", "--compare side --reference-tool /nonexistent");
+  const OnScreen sphere = on_screen(aim.output, 1);
+  ASSERT_FALSE(std::isnan(sphere.radius)) << aim.output;
+  std::ostringstream script;
+  script << "2 move " << sphere.centre_x << " " << sphere.centre_y << "\n3 press left\n4 move "
+         << sphere.centre_x - 10 << " " << sphere.centre_y << "\n5 release left\n";
+  const std::string path = scratch().write("cancel.txt", script.str());
+  const auto start = std::chrono::steady_clock::now();
+  const prt_test::CommandResult run =
+      app("cancel", "--compare side --frames 8 --reference-tool " + prt_test::shell_quote(tool) +
+                        " --input-script " + prt_test::shell_quote(path));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The first run (which would sleep a minute) was killed when the drag began; the second,
+  // asked for after the release, finished and is what the app compared with.
+  const std::string calls = prt_test::read_bytes(scratch().file("cancel-calls.txt"));
+  std::size_t runs = 0, finished = 0;
+  for (std::size_t at = calls.find("shadowfield-reference"); at != std::string::npos;
+       at = calls.find("shadowfield-reference", at + 1))
+    ++runs;
+  for (std::size_t at = calls.find("finished"); at != std::string::npos;
+       at = calls.find("finished", at + 1))
+    ++finished;
+  EXPECT_EQ(runs, 2u) << calls;
+  EXPECT_EQ(finished, 1u) << calls;
+  EXPECT_LT(seconds, 30.0);
+  EXPECT_NE(run.output.find("vs the reference"), std::string::npos) << run.output;
+}
+
+TEST(ShadowfieldApp, AReferenceToolThatCannotRunIsReported) {
+  const prt_test::CommandResult run =
+      app("no_tool", "--compare split --reference-tool " + scratch().file("no-such-tool"));
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("no-such-tool"), std::string::npos) << run.output;
 }
 
 TEST(ShadowfieldApp, ABadSceneFolderIsRefusedWithAClearMessage) {
