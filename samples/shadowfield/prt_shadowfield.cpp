@@ -222,6 +222,10 @@ class ShadowfieldApp : public prt::sample::SampleApp {
                 scene_.path.c_str(), scene_.objects.size(), scene_.instances.size(),
                 world_->vertex_count(), world_->order(),
                 workers_ ? prt_workers_thread_count(workers_) : 1u);
+    if (scene_.env != "builtin:sky" && sample.environments().size() == 1 &&
+        sample.environments().current_path() == (scratch_dir() / "sky.hdr").string())
+      std::printf("%s: the scene is lit by %s; without --env MAP the built-in sky lights it\n",
+                  scene_.path.c_str(), scene_.env.c_str());
     place();
     sample.set_scene_bounds(world_->lo(), world_->hi(), true);
     sample.meter_exposure();
@@ -235,6 +239,8 @@ class ShadowfieldApp : public prt::sample::SampleApp {
     previous_ = now;
     place();
     prepare_light(sample);
+    if (!camera_set_ && !camera_given) aim_camera(sample);
+    camera_set_ = true;
     const float aspect = runtime_aspect(sample);
     eye_ = sample.camera().camera(aspect).eye;
     shade(sample);
@@ -336,7 +342,13 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   unsigned threads_ = 0;
   double time_ = 0.0, time_step_ = 0.0, frame_ms_ = 0.0;
   float speed_ = 1.0f, divider_ = 0.5f, error_scale_ = 0.25f;
-  bool paused_ = false, printed_positions_ = false;
+  bool paused_ = false, printed_positions_ = false, camera_set_ = false;
+
+ public:
+  // --yaw, --pitch or --zoom was given: the scene file's camera is not used.
+  bool camera_given = false;
+
+ private:
   Compare mode_ = Compare::Single;
   std::chrono::steady_clock::time_point previous_;
 
@@ -382,6 +394,21 @@ class ShadowfieldApp : public prt::sample::SampleApp {
       placements_[i].translation += offsets_[i];
     }
     world_->place(placements_);
+  }
+
+  // The orbit camera looking from where the scene file's camera does, as far from the scene's
+  // centre as its eye is from its target (the framework sets the camera after start()).
+  void aim_camera(prt::sample::Sample& sample) const {
+    const glm::vec3 d = scene_.eye - scene_.target;
+    const float length = glm::length(d);
+    if (!(length > 0.0f)) return;
+    const float degrees = 180.0f / 3.14159265f;
+    prt::sample::OrbitCamera& camera = sample.camera();
+    camera.set_yaw_pitch(std::atan2(d.x, d.z) * degrees, std::asin(d.y / length) * degrees);
+    const float aspect = runtime_aspect(sample);
+    const float framed =
+        glm::length(camera.camera(aspect).eye - 0.5f * (world_->lo() + world_->hi()));
+    if (framed > 0.0f) camera.set_zoom(camera.zoom() * length / framed);
   }
 
   void prepare_light(prt::sample::Sample& sample) {
@@ -735,10 +762,13 @@ int main(int argc, char** argv) {
   int status = 1;
   try {
     std::vector<std::string> args = prt::shadowfield_app::with_sky(argc, argv);
+    prt::shadowfield_app::ShadowfieldApp app;
+    for (const std::string& a : args)
+      for (const char* option : {"--yaw", "--pitch", "--zoom"})
+        if (a.rfind(option, 0) == 0) app.camera_given = true;
     std::vector<char*> pointers;
     for (std::string& a : args) pointers.push_back(a.data());
     pointers.push_back(nullptr);
-    prt::shadowfield_app::ShadowfieldApp app;
     status = prt::sample::run_sample(
         "prt-shadowfield",
         "prt-shadowfield: rigid objects baked alone (technique shadowfield), moving, shadowing "
