@@ -319,6 +319,42 @@ TEST(ShadowfieldApp, AReferenceToolThatCannotRunIsReported) {
   EXPECT_NE(run.output.find("no-such-tool"), std::string::npos) << run.output;
 }
 
+TEST(ShadowfieldApp, TheSplitScreenShowsTheReferenceRightOfTheDivider) {
+  const bake::ShadowfieldSceneDescription scene = bake::make_shadowfield_scene("procedural", "");
+  const std::string tool = fake_reference_tool("split", scene.instanced_vertex_count());
+  const prt_test::CommandResult single = app("single", "--bounces 0");
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  const prt_test::CommandResult split =
+      app("split", "--bounces 0 --compare split --divider 0.5 --reference-tool " +
+                       prt_test::shell_quote(tool));
+  ASSERT_EQ(split.exit_code, 0) << split.output;
+  const prt_test::Picture a = picture("single"), b = picture("split");
+  // Each object: left of the divider the runtime's picture, right of it the grey reference.
+  for (int instance = 1; instance <= 3; ++instance) {
+    const OnScreen s = on_screen(split.output, instance);
+    ASSERT_FALSE(std::isnan(s.radius)) << split.output;
+    const int x = int(s.centre_x), y = int(s.centre_y);
+    if (std::abs(x - kWidth / 2) < 3) continue;
+    const std::array<int, 3> shown = b.at(x, y);
+    if (x < kWidth / 2) {
+      EXPECT_EQ(shown, a.at(x, y)) << instance;
+    } else {
+      EXPECT_EQ(shown[0], shown[1]) << instance;
+      EXPECT_EQ(shown[1], shown[2]) << instance;
+    }
+  }
+}
+
+TEST(ShadowfieldApp, MovesOfInstancesTheSceneHasNotAreRefused) {
+  const prt_test::CommandResult out_of_range = app("move_range", "--move 9:0,0");
+  EXPECT_EQ(out_of_range.exit_code, 1) << out_of_range.output;
+  EXPECT_NE(out_of_range.output.find("--move 9: the scene has 4 instances"), std::string::npos)
+      << out_of_range.output;
+  const prt_test::CommandResult garbled = app("move_text", "--move 1:0");
+  EXPECT_EQ(garbled.exit_code, 2) << garbled.output;
+  EXPECT_NE(garbled.output.find("expected I:X,Z"), std::string::npos) << garbled.output;
+}
+
 TEST(ShadowfieldApp, ABadSceneFolderIsRefusedWithAClearMessage) {
   const prt_test::CommandResult missing = run_app("missing", scratch().file("nowhere"), "");
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
