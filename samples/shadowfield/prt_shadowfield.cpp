@@ -374,7 +374,9 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   // The reference: what it renders (placements, light, bounces, eye, spp as text), the run, and
   // the radiance of the last one that finished.
   ReferenceRun reference_;
-  std::string running_key_, reference_key_, failed_key_;
+  // What this frame shows and the previous frame showed (a reference starts only once they are
+  // the same, so that an orbit or a slider being dragged does not start one every frame).
+  std::string running_key_, reference_key_, failed_key_, current_key_, previous_key_;
   std::vector<glm::vec3> reference_rgb_;
   std::string reference_note_;
   double rmse_ = 0.0;
@@ -550,7 +552,6 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   bool showing_reference() const {
     return mode_ != Compare::Single && reference_key_ == current_key_ && !reference_rgb_.empty();
   }
-  std::string current_key_;
 
   std::string key(prt::sample::Sample& sample) const {
     std::string k = std::to_string(bounces_) + " " + std::to_string(reference_spp_) + " " +
@@ -566,6 +567,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   // Starts the reference when paused and something new is asked for; cancels a run that no
   // longer matches; takes in the one that finished.
   void update_reference(prt::sample::Sample& sample) {
+    previous_key_ = current_key_;
     current_key_ = key(sample);
     if (mode_ == Compare::Single) {
       reference_.cancel();
