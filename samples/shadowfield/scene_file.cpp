@@ -160,8 +160,11 @@ SceneFile read_scene_file(const std::string& where) {
 void write_placed_scene_file(const SceneFile& scene, const std::vector<Placement>& placements,
                              const std::string& env, const std::string& path) {
   json objects = json::array(), instances = json::array();
+  // Relative to the new file's folder, as the format says, however a reader joins the two.
+  const fs::path folder = fs::absolute(path).parent_path();
   for (const SceneObject& o : scene.objects)
-    objects.push_back({{"name", o.name}, {"blob", fs::absolute(o.blob).string()}});
+    objects.push_back(
+        {{"name", o.name}, {"blob", fs::relative(fs::absolute(o.blob), folder).string()}});
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const Placement& p = placements.at(i);
     const json key = {

@@ -68,7 +68,8 @@ struct SceneFile {
 SceneFile read_scene_file(const std::string& where);
 
 // Writes `scene` with each instance standing still at placements[i] (one keyframe at time 0),
-// the blobs by absolute path, and `env` as its environment. Throws SceneError on failure.
+// the blobs by their path from the new file's folder, and `env` as its environment. Throws
+// SceneError on failure.
 void write_placed_scene_file(const SceneFile& scene, const std::vector<Placement>& placements,
                              const std::string& env, const std::string& path);
 

@@ -258,6 +258,14 @@ TEST(ShadowfieldApp, TheReferenceIsAskedForThePlacementShownAndDrawnBeside) {
   const bake::ShadowfieldSceneFile placed =
       bake::read_shadowfield_scene_json(scratch().file("side-scene.json"));
   ASSERT_EQ(placed.instances.size(), file.instances.size());
+  // Its blobs are the scene's, by their path from where the app wrote it (its second argument).
+  const std::filesystem::path written = args.substr(22, args.find(' ', 22) - 22);
+  ASSERT_EQ(placed.objects.size(), file.objects.size());
+  for (std::size_t i = 0; i < file.objects.size(); ++i)
+    EXPECT_TRUE(std::filesystem::equivalent(
+        (written.parent_path() / placed.objects[i].blob).lexically_normal(),
+        std::filesystem::path(scene_dir()) / file.objects[i].blob))
+        << placed.objects[i].blob;
   for (std::size_t i = 0; i < file.instances.size(); ++i) {
     const bake::ShadowfieldPlacement want = file.instances[i].path.at(5.5f);
     const bake::ShadowfieldPlacement got = placed.instances[i].path.at(0.0f);
