@@ -235,12 +235,13 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   std::vector<View> frame(prt::sample::Sample& sample) override {
     const auto now = std::chrono::steady_clock::now();
     frame_ms_ = std::chrono::duration<double, std::milli>(now - previous_).count();
-    advance_time(std::chrono::duration<double>(now - previous_).count());
+    // The first frame shows --time; each later one a step on.
+    if (drew_a_frame_) advance_time(std::chrono::duration<double>(now - previous_).count());
     previous_ = now;
     place();
     prepare_light(sample);
-    if (!camera_set_ && !camera_given) aim_camera(sample);
-    camera_set_ = true;
+    if (!drew_a_frame_ && !camera_given) aim_camera(sample);
+    drew_a_frame_ = true;
     const float aspect = runtime_aspect(sample);
     eye_ = sample.camera().camera(aspect).eye;
     shade(sample);
@@ -342,7 +343,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   unsigned threads_ = 0;
   double time_ = 0.0, time_step_ = 0.0, frame_ms_ = 0.0;
   float speed_ = 1.0f, divider_ = 0.5f, error_scale_ = 0.25f;
-  bool paused_ = false, printed_positions_ = false, camera_set_ = false;
+  bool paused_ = false, printed_positions_ = false, drew_a_frame_ = false;
 
  public:
   // --yaw, --pitch or --zoom was given: the scene file's camera is not used.
@@ -528,6 +529,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   // Where each instance is on the screen, for scripted input: its origin (on the floor) and
   // its bounding sphere's centre and radius, in pixels from the top left.
   void print_positions(prt::sample::Sample& sample) const {
+    if (!world_) return;
     const FrameRect v = runtime_viewport();
     const glm::mat4 vp = sample.camera().view_projection(runtime_aspect(sample));
     const float w = float(sample.width()), h = float(sample.height());

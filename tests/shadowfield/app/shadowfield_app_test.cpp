@@ -80,7 +80,7 @@ const std::string& scene_dir() {
 
 constexpr int kWidth = 240, kHeight = 160;
 
-// prt-shadowfield headless, paused at t = 0, one frame, a fixed exposure, its picture into
+// prt-shadowfield headless, one frame unless told, a fixed exposure, its picture into
 // NAME.png (copied to $PRT_SHADOWFIELD_APP_PICTURES when set, to look at).
 prt_test::CommandResult run_app(const std::string& name, const std::string& scene,
                                 const std::string& extra) {
@@ -89,7 +89,7 @@ prt_test::CommandResult run_app(const std::string& name, const std::string& scen
       prt_test::run_command(PRT_SHADOWFIELD_EXE,
                             prt_test::shell_quote(scene) + " --headless --size " +
                                 std::to_string(kWidth) + "x" + std::to_string(kHeight) +
-                                " --supersample 1 --exposure -1 --pause --threads 1 "
+                                " --supersample 1 --exposure -1 --threads 1 "
                                 "--screenshot " +
                                 prt_test::shell_quote(png) + " " + extra,
                             scratch().file(name + ".log"));
@@ -100,8 +100,9 @@ prt_test::CommandResult run_app(const std::string& name, const std::string& scen
   return run;
 }
 
+// The app on the procedural scene, paused.
 prt_test::CommandResult app(const std::string& name, const std::string& extra) {
-  return run_app(name, scene_dir(), extra);
+  return run_app(name, scene_dir(), "--pause " + extra);
 }
 
 prt_test::Picture picture(const std::string& name) {
@@ -196,6 +197,23 @@ TEST(ShadowfieldApp, ADragMovesTheInstanceAndItsShadow) {
   const std::array<double, 2> old_floor = beside(sphere), new_floor = beside(moved);
   EXPECT_GT(patch(after, old_floor[0], old_floor[1]), patch(before, old_floor[0], old_floor[1]));
   EXPECT_LT(patch(after, new_floor[0], new_floor[1]), patch(before, new_floor[0], new_floor[1]));
+}
+
+TEST(ShadowfieldApp, PlayingTheScriptedPathsReachesThePlacementOfTheTimeReached) {
+  // Three frames from t = 0 a second apart: the last is drawn at t = 2, the picture of --time 2
+  // paused, to the byte.
+  const prt_test::CommandResult played =
+      run_app("played", scene_dir(), "--bounces 0 --frames 3 --time-step 1");
+  ASSERT_EQ(played.exit_code, 0) << played.output;
+  const prt_test::CommandResult at_two = app("at_two", "--bounces 0 --time 2");
+  ASSERT_EQ(at_two.exit_code, 0) << at_two.output;
+  const prt_test::Picture a = picture("played"), b = picture("at_two");
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  EXPECT_TRUE(a.rgb == b.rgb);
+  // And the objects did move: t = 0 looks otherwise.
+  const prt_test::CommandResult at_zero = app("at_zero", "--bounces 0");
+  ASSERT_EQ(at_zero.exit_code, 0) << at_zero.output;
+  EXPECT_FALSE(picture("at_zero").rgb == b.rgb);
 }
 
 TEST(ShadowfieldApp, BouncesAddLight) {
