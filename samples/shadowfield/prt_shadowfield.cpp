@@ -133,6 +133,9 @@ std::string vec3_text(const glm::vec3& v) {
 
 class ShadowfieldApp : public prt::sample::SampleApp {
  public:
+  // --yaw, --pitch or --zoom was given: the scene file's camera is not used.
+  bool camera_given = false;
+
   void add_options(CLI::App& app) override {
     app.add_option("SCENE_DIR", scene_path_,
                    "A folder holding scene.json and the blobs it names (prt-bake "
@@ -345,11 +348,6 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   float speed_ = 1.0f, divider_ = 0.5f, error_scale_ = 0.25f;
   bool paused_ = false, printed_positions_ = false, drew_a_frame_ = false;
 
- public:
-  // --yaw, --pitch or --zoom was given: the scene file's camera is not used.
-  bool camera_given = false;
-
- private:
   Compare mode_ = Compare::Single;
   std::chrono::steady_clock::time_point previous_;
 
