@@ -22,6 +22,7 @@
 
 #include "prt/baker/shadowfield/shadowfield_bake.hpp"
 #include "prt/baker/shadowfield/shadowfield_scenes.hpp"
+#include "prt/io/envmap.hpp"
 #include "prt/io/image_io.hpp"
 #include "support/command.hpp"
 #include "support/picture.hpp"
@@ -237,8 +238,8 @@ TEST(ShadowfieldApp, BouncesAddLight) {
 }
 
 // A stand-in for prt-bake: it records its arguments (appended to NAME-calls.txt, then
-// "finished" when it ends) and the scene file it was given, and writes radiance 0.5 for every
-// vertex, so that the picture's reference side is known. With `slow_first`, its first run
+// "finished" when it ends) and the scene file and map it was given, and writes radiance 0.5 for
+// every vertex, so that the picture's reference side is known. With `slow_first`, its first run
 // sleeps long enough that only a cancellation ends it in a test's time.
 std::string fake_reference_tool(const std::string& name, std::size_t vertices,
                                 bool slow_first = false) {
@@ -247,8 +248,10 @@ std::string fake_reference_tool(const std::string& name, std::size_t vertices,
   prt::io::write_npy_vec3(npy, grey);
   const std::string calls = scratch().file(name + "-calls.txt");
   const std::string marker = scratch().file(name + "-slept");
+  // $2 is the scene file, $6 the map (after --time T --env).
   std::string script = "#!/bin/sh\necho \"$@\" >> " + calls + "\ncp \"$2\" " +
-                       scratch().file(name + "-scene.json") + "\n";
+                       scratch().file(name + "-scene.json") + "\ncp \"$6\" " +
+                       scratch().file(name + "-env.hdr") + "\n";
   if (slow_first) script += "if [ ! -e " + marker + " ]; then touch " + marker + "; sleep 60; fi\n";
   script += "while [ $# -gt 1 ]; do [ \"$1\" = -o ] && out=$2; shift; done\necho 50%\ncp " + npy +
             " \"$out\"\necho finished >> " + calls + "\n";
@@ -302,6 +305,32 @@ TEST(ShadowfieldApp, TheReferenceIsAskedForThePlacementShownAndDrawnBeside) {
   EXPECT_EQ(grey[0], grey[1]);
   EXPECT_EQ(grey[1], grey[2]);
   EXPECT_NE(run.output.find("vs the reference"), std::string::npos) << run.output;
+}
+
+TEST(ShadowfieldApp, TheReferenceIsLitByTheMapTurnedAsTheLight) {
+  const bake::ShadowfieldSceneDescription scene = bake::make_shadowfield_scene("procedural", "");
+  const std::string tool = fake_reference_tool("turned", scene.instanced_vertex_count());
+  const prt_test::CommandResult run =
+      app("turned", "--rotate 90 --compare side --reference-tool " + prt_test::shell_quote(tool));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const prt::io::EnvMap map =
+      prt::io::load_envmap(scratch().file("turned-env.hdr"), prt::io::EnvMapping::LatLong);
+  // The sky's sun, from (-0.55, 0.7, 0.75), turned 90 degrees about +Y (formats/SPEC.md's
+  // R = [[c,0,s],[0,1,0],[-s,0,c]]): from (0.75, 0.7, 0.55). The centre of the sun's texels
+  // (the sky elsewhere is under 2) is there.
+  const glm::vec3 sun = glm::normalize(glm::vec3(0.75f, 0.7f, 0.55f));
+  glm::vec3 sum(0.0f);
+  for (int y = 0; y < map.height(); ++y)
+    for (int x = 0; x < map.width(); ++x) {
+      glm::vec3 dir;
+      float solid_angle = 0.0f;
+      const glm::vec3 c = map.texel_value(x, y);
+      if (map.texel(x, y, &dir, &solid_angle) && c.r > 10.0f) sum += c.r * solid_angle * dir;
+    }
+  const glm::vec3 at = glm::normalize(sum);
+  const float degrees = std::acos(std::min(1.0f, glm::dot(at, sun))) * 180.0f / 3.14159265f;
+  std::printf("the turned map's sun is %.3f degrees from where it should be\n", degrees);
+  EXPECT_LT(degrees, 0.2f);  // a texel is about 0.7 degrees; the resampling moves it less
 }
 
 TEST(ShadowfieldApp, MovingSomethingCancelsTheReferenceInProgress) {
