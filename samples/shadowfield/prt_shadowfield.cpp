@@ -540,7 +540,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
       return;  // not again for the same scene
     }
     const bool wanted =
-        paused_ && picked_ < 0 && reference_key_ != current_key_ &&
+        paused_ && picked_ < 0 && previous_key_ == current_key_ && reference_key_ != current_key_ &&
         !(reference_.state() != ReferenceRun::State::Idle && running_key_ == current_key_);
     if (wanted) start_reference(sample);
     if (reference_.state() == ReferenceRun::State::Running) {
@@ -586,12 +586,14 @@ class ShadowfieldApp : public prt::sample::SampleApp {
       rgb = prt::io::read_npy_vec3((scratch_dir() / "reference.npy").string());
     } catch (const std::exception& e) {
       sample.report(std::string("reference: ") + e.what());
+      reference_rgb_.clear();
       reference_key_ = running_key_;
       return;
     }
     if (rgb.size() != world_->vertex_count()) {
       sample.report("reference: " + std::to_string(rgb.size()) + " vertices, the scene has " +
                     std::to_string(world_->vertex_count()));
+      reference_rgb_.clear();
       reference_key_ = running_key_;
       return;
     }

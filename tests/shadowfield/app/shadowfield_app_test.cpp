@@ -367,6 +367,18 @@ TEST(ShadowfieldApp, MovingSomethingCancelsTheReferenceInProgress) {
   EXPECT_NE(run.output.find("vs the reference"), std::string::npos) << run.output;
 }
 
+TEST(ShadowfieldApp, AReferenceOfAnotherSceneIsReported) {
+  const std::string tool = fake_reference_tool("wrong_size", 5);
+  const prt_test::CommandResult run =
+      app("wrong_size", "--compare side --reference-tool " + prt_test::shell_quote(tool));
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  const bake::ShadowfieldSceneDescription scene = bake::make_shadowfield_scene("procedural", "");
+  EXPECT_NE(run.output.find("reference: 5 vertices, the scene has " +
+                            std::to_string(scene.instanced_vertex_count())),
+            std::string::npos)
+      << run.output;
+}
+
 TEST(ShadowfieldApp, AReferenceToolThatCannotRunIsReported) {
   const prt_test::CommandResult run =
       app("no_tool", "--compare split --reference-tool " + scratch().file("no-such-tool"));
