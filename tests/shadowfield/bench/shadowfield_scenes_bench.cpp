@@ -1,0 +1,315 @@
+// SPDX-License-Identifier: MIT
+// prt_bench_shadowfield_scenes: technique `shadowfield`'s frame on the presets the issue sets
+// marks for ("teapot": a teapot on a floor; "room": the room with its moving objects), baked
+// in-process at the default settings (blobs cached in the build folder, keyed by the settings
+// and the mesh, so a re-run only loads them), loaded into a runtime scene and animated along
+// their paths while the eye orbits and the light turns, 3 bounces:
+//   Frame/<scene>/<backend>/threads:<t>  one whole frame (prepare, passes, output), wall clock
+//                                        and process CPU time per frame;
+//   StreamTriad/<t>                      the memory-bandwidth roofline of the same run.
+// At the end it prints per scene the baked bytes (sum of the blobs, by block) and the runtime
+// memory (everything the context allocated: decoded objects and the scene's buffers) against the
+// issue's marks, and each frame's time against its mark. Printed, never asserted.
+#include <benchmark/benchmark.h>
+
+#include <prt/prt.h>
+#include <prt/prt_shadowfield.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "prt/baker/shadowfield/shadowfield_bake.hpp"
+#include "prt/baker/shadowfield/shadowfield_scenes.hpp"
+#include "support/bench_triad.hpp"
+
+namespace {
+
+namespace bake = prt::bake;
+
+// Counts the bytes the runtime holds, and the most it held.
+struct ByteCounter {
+  size_t live = 0, peak = 0;
+  static void* alloc(void* user, size_t size, size_t align) {
+    auto* self = static_cast<ByteCounter*>(user);
+    self->live += size;
+    if (self->live > self->peak) self->peak = self->live;
+    return std::aligned_alloc(align, (size + align - 1) / align * align);
+  }
+  static void release(void* user, void* ptr, size_t size) {
+    static_cast<ByteCounter*>(user)->live -= size;
+    std::free(ptr);
+  }
+};
+
+struct Mark {
+  double frame_ms, baked_mb;
+};
+const std::map<std::string, Mark> kMarks = {{"teapot", {16.0, 16.0}}, {"room", {50.0, 32.0}}};
+
+bake::ShadowfieldBakeSettings default_settings() {
+  return bake::ShadowfieldBakeSettings{};
+}
+
+// What a cached blob depends on: the settings and the mesh (its size and a sample of its data).
+std::string cache_key(const bake::ShadowfieldBakeSettings& s, const bake::ShadowfieldSceneObject& o,
+                      size_t index) {
+  std::ostringstream text;
+  const auto& f = s.fields;
+  text << f.order << ' ' << f.oof_shells << ' ' << f.inner << ' ' << f.outer << ' '
+       << f.oof_face_size << ' ' << f.field_directions << ' ' << f.transfer_rays << ' ' << f.seed
+       << ' ' << s.basis.size << ' ' << s.basis.lights << ' ' << s.basis.light_distance << ' '
+       << s.srf.shells << ' ' << s.srf.face_size << ' ' << s.srf.inner << ' ' << s.srf.outer << ' '
+       << s.srf.directions << ' ' << s.srf.seed << ' ' << s.brdf.terms << ' ' << s.brdf.grid_size
+       << ' ' << s.bits << ' ' << index << ' ' << o.name << ' ' << int(o.material.model);
+  for (const auto& mesh : o.mesh.meshes) {
+    text << ' ' << mesh.positions.size() << ' ' << mesh.indices.size();
+    for (size_t e = 0; e < mesh.positions.size(); e += 97) text << ' ' << mesh.positions[e].x;
+  }
+  uint64_t hash = 1469598103934665603ull;  // FNV-1a
+  for (const char c : text.str()) hash = (hash ^ uint8_t(c)) * 1099511628211ull;
+  char name[17];
+  std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(hash));
+  return name;
+}
+
+std::vector<uint8_t> read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+// One object's blob, from the cache or baked (and cached).
+std::vector<uint8_t> object_blob(const std::string& scene, const bake::ShadowfieldSceneObject& o,
+                                 size_t index, const bake::ShadowfieldBakeSettings& settings) {
+  const std::filesystem::path dir = PRT_BENCH_CACHE_DIR;
+  const std::filesystem::path path =
+      dir / (scene + "_" + std::to_string(index) + "_" + cache_key(settings, o, index) + ".prt");
+  if (std::filesystem::exists(path)) return read_file(path);
+  std::fprintf(stderr, "baking %s object %zu (%s)...\n", scene.c_str(), index, o.name.c_str());
+  bake::Context ctx;
+  const bake::ShadowfieldMaterial material =
+      bake::make_shadowfield_material(o.material, settings.brdf);
+  const bake::ShadowfieldBakeResult result =
+      bake::bake_shadowfield_object(o.mesh, material, settings, ctx);
+  std::vector<uint8_t> blob = bake::shadowfield_blob_of(result.object, settings.bits, o.name);
+  std::filesystem::create_directories(dir);
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(blob.data()), std::streamsize(blob.size()));
+  return blob;
+}
+
+prt_shadowfield_transform transform_of(const bake::ShadowfieldPlacement& p) {
+  prt_shadowfield_transform t{};
+  t.struct_size = sizeof t;
+  const glm::mat3 m = glm::mat3_cast(p.rotation);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) t.rotation[3 * r + c] = m[c][r];  // glm is column-major
+  for (int c = 0; c < 3; ++c) t.translation[c] = p.translation[c];
+  t.scale = p.scale;
+  return t;
+}
+
+// A preset loaded into a runtime scene, with its output buffers.
+struct LoadedScene {
+  bake::ShadowfieldSceneDescription description;
+  ByteCounter counter;
+  prt_context* context = nullptr;
+  std::vector<prt_asset*> assets;
+  prt_shadowfield_scene* scene = nullptr;
+  std::vector<std::vector<float>> out;
+  std::vector<float*> out_pointers;
+  size_t baked_bytes = 0, runtime_bytes = 0;
+  uint32_t vertices = 0;
+
+  explicit LoadedScene(const std::string& name) {
+    description = bake::make_shadowfield_scene(name, PRT_SHARED_DIR);
+    const prt_allocator allocator{&ByteCounter::alloc, &ByteCounter::release, &counter};
+    prt_context_desc desc{};
+    desc.struct_size = sizeof desc;
+    desc.allocator = &allocator;
+    prt_context_create(&desc, &context);
+    prt_shadowfield_scene_create(context, uint32_t(description.instances.size()), &scene);
+    for (size_t o = 0; o < description.objects.size(); ++o) {
+      const std::vector<uint8_t> blob =
+          object_blob(name, description.objects[o], o, default_settings());
+      baked_bytes += blob.size();
+      prt_asset* asset = nullptr;
+      if (prt_asset_load_memory(context, blob.data(), blob.size(), PRT_VALIDATE_QUICK, &asset) !=
+          PRT_OK) {
+        std::fprintf(stderr, "%s\n", prt_context_last_message(context));
+        std::abort();
+      }
+      assets.push_back(asset);
+      uint32_t id = 0;
+      prt_shadowfield_scene_add_object(scene, asset, &id);
+    }
+    for (const auto& instance : description.instances) {
+      const prt_shadowfield_transform t = transform_of(instance.path.at(0.0f));
+      uint32_t id = 0;
+      prt_shadowfield_scene_add_instance(scene, uint32_t(instance.object), &t, &id);
+      const uint32_t v = prt_shadowfield_instance_vertex_count(scene, id);
+      vertices += v;
+      out.emplace_back(size_t(v) * 3u);
+    }
+    for (auto& o : out) out_pointers.push_back(o.data());
+  }
+  ~LoadedScene() {
+    prt_shadowfield_scene_destroy(scene);
+    for (prt_asset* a : assets) prt_asset_destroy(a);
+    prt_context_destroy(context);
+  }
+
+  // The instances at time t on their paths.
+  void place(float t) {
+    for (size_t i = 0; i < description.instances.size(); ++i) {
+      const prt_shadowfield_transform transform = transform_of(description.instances[i].path.at(t));
+      prt_shadowfield_scene_set_transform(scene, uint32_t(i), &transform);
+    }
+  }
+};
+
+// A sky-like order-4 environment (bright above, warm ambient), turned about +Y by `angle`.
+std::vector<float> light_at(float angle) {
+  std::vector<float> sky(16 * 3, 0.0f);
+  const float base[16] = {1.2f,  0.6f,  0.2f,  0.3f,  0.05f,  0.1f,  0.15f, -0.08f,
+                          0.04f, 0.02f, 0.01f, 0.03f, -0.02f, 0.01f, 0.02f, 0.01f};
+  for (int k = 0; k < 16; ++k)
+    for (int c = 0; c < 3; ++c) sky[3 * k + c] = base[k] * (1.0f - 0.1f * c);
+  const float s = std::sin(angle), co = std::cos(angle);
+  const float yaw[9] = {co, 0.0f, s, 0.0f, 1.0f, 0.0f, -s, 0.0f, co};
+  std::vector<float> turned(sky.size());
+  prt_sh_rotate(4, yaw, sky.data(), turned.data(), 3);
+  return turned;
+}
+
+std::map<std::string, std::unique_ptr<LoadedScene>> g_scenes;
+struct FrameFigure {
+  double wall_ms = 0.0, cpu_ms = 0.0;
+  bool ran = false;
+};
+std::map<std::string, FrameFigure> g_frames;  // by "scene/backend/threads"
+prt_bench::Rate g_triad[3];
+
+LoadedScene& scene_named(const std::string& name) {
+  auto& slot = g_scenes[name];
+  if (!slot) slot = std::make_unique<LoadedScene>(name);
+  return *slot;
+}
+
+const char* backend_name(prt_backend b) {
+  return b == PRT_BACKEND_SIMD ? "simd" : "scalar";
+}
+
+void BM_Frame(benchmark::State& state, const std::string& name, prt_backend backend) {
+  LoadedScene& s = scene_named(name);
+  const uint32_t threads = uint32_t(state.range(0));
+  prt_workers* workers = nullptr;
+  if (threads > 1) {
+    prt_workers_desc desc{};
+    desc.struct_size = sizeof desc;
+    desc.thread_count = threads;
+    prt_workers_create(s.context, &desc, &workers);
+  }
+  prt_shadowfield_settings settings{};
+  settings.struct_size = sizeof settings;
+  settings.bounces = 3;
+  settings.backend = backend;
+  const glm::vec3 target = s.description.camera.target, eye0 = s.description.camera.eye;
+  float time = 0.0f;
+  double cpu = 0.0, wall = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    time += 1.0f / 60.0f;
+    s.place(time);
+    const float turn = 0.2f * time;
+    const glm::vec3 offset = eye0 - target;
+    const float eye[3] = {target.x + offset.x * std::cos(turn) + offset.z * std::sin(turn),
+                          target.y + offset.y,
+                          target.z - offset.x * std::sin(turn) + offset.z * std::cos(turn)};
+    const std::vector<float> light = light_at(0.5f * time);
+    state.ResumeTiming();
+    const double c0 = prt_bench::process_cpu_seconds();
+    const auto w0 = std::chrono::steady_clock::now();
+    const prt_result r =
+        workers
+            ? prt_shadowfield_shade_workers(workers, s.scene, light.data(), eye, &settings,
+                                            s.out_pointers.data())
+            : prt_shadowfield_shade(s.scene, light.data(), eye, &settings, s.out_pointers.data());
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    cpu += prt_bench::process_cpu_seconds() - c0;
+    if (r != PRT_OK) {
+      state.SkipWithError(prt_context_last_message(s.context));
+      break;
+    }
+  }
+  prt_workers_destroy(workers);
+  s.runtime_bytes = s.counter.peak;
+  if (state.iterations() == 0) return;
+  FrameFigure& f = g_frames[name + "/" + backend_name(backend) + "/" + std::to_string(threads)];
+  f.wall_ms = 1e3 * wall / double(state.iterations());
+  f.cpu_ms = 1e3 * cpu / double(state.iterations());
+  f.ran = true;
+  state.counters["cpu_ms"] = f.cpu_ms;
+  state.counters["vertices"] = s.vertices;
+}
+
+void BM_StreamTriad(benchmark::State& state) {
+  const int threads = int(state.range(0));
+  g_triad[threads] = prt_bench::stream_triad(state, threads);
+}
+BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void register_frames() {
+  for (const char* name : {"teapot", "room"})
+    for (const prt_backend backend : {PRT_BACKEND_CPU, PRT_BACKEND_SIMD})
+      benchmark::RegisterBenchmark(
+          (std::string("BM_Frame/") + name + "/" + backend_name(backend)).c_str(),
+          [name, backend](benchmark::State& state) { BM_Frame(state, name, backend); })
+          ->ArgName("threads")
+          ->Arg(1)
+          ->Arg(2)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->MinTime(2.0);
+}
+
+void print_summary() {
+  std::printf(
+      "\nshadowfield presets, 3 bounces (roofline: STREAM triad %.1f GB/s on 1 thread, "
+      "%.1f GB/s on 2, by CPU time)\n",
+      1e-9 * g_triad[1].cpu, 1e-9 * g_triad[2].cpu);
+  for (const auto& [name, scene] : g_scenes) {
+    const Mark mark = kMarks.at(name);
+    std::printf(
+        "  %s: %u vertices over %zu instances; baked %.2f MB (mark %.0f MB); runtime "
+        "memory %.2f MB\n",
+        name.c_str(), scene->vertices, scene->description.instances.size(),
+        1e-6 * double(scene->baked_bytes), mark.baked_mb, 1e-6 * double(scene->runtime_bytes));
+    for (const auto& [key, f] : g_frames) {
+      if (key.rfind(name + "/", 0) != 0 || !f.ran) continue;
+      std::printf("    %-20s %8.2f ms wall %8.2f ms CPU  (%.2f x the %.0f ms mark)\n", key.c_str(),
+                  f.wall_ms, f.cpu_ms, f.wall_ms / mark.frame_ms, mark.frame_ms);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_frames();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  if (!g_scenes.empty()) print_summary();
+  g_scenes.clear();
+  benchmark::Shutdown();
+  return 0;
+}
