@@ -116,14 +116,18 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
   const uint32_t basis = object->basis_size, terms = object->terms, width = terms * 3u;
   const uint32_t vertices = object->vertex_count;
   memset(projected, 0, (size_t)basis * width * sizeof(float));
-  for (uint32_t m = 0; m < basis; ++m) {
-    float* row = projected + (size_t)m * width;
-    for (uint32_t v = 0; v < vertices; ++v) {
+  /* Vertex by vertex, so its radiance is formed once and every basis row adds it in a loop the
+   * compiler vectorises; each row's sum still runs over the vertices in order. */
+  float radiance[PRT_SF_MAX_TERMS * 3u];
+  for (uint32_t v = 0; v < vertices; ++v) {
+    const float* albedo = object->albedo + 3u * v;
+    const float* l = incident + (size_t)v * width;
+    for (uint32_t k = 0; k < terms; ++k)
+      for (uint32_t c = 0; c < 3u; ++c) radiance[3u * k + c] = albedo[c] * l[3u * k + c];
+    for (uint32_t m = 0; m < basis; ++m) {
       const float bw = object->basis[(size_t)m * vertices + v] * object->vertex_weights[v];
-      const float* albedo = object->albedo + 3u * v;
-      const float* l = incident + (size_t)v * width;
-      for (uint32_t k = 0; k < terms; ++k)
-        for (uint32_t c = 0; c < 3u; ++c) row[3u * k + c] += bw * albedo[c] * l[3u * k + c];
+      float* restrict row = projected + (size_t)m * width;
+      for (uint32_t e = 0; e < width; ++e) row[e] += bw * radiance[e];
     }
   }
   for (uint32_t i = 0; i < basis; ++i)
