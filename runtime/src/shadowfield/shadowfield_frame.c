@@ -34,15 +34,16 @@ static void rotation_blocks(uint32_t order, const float rotation[9], float* bloc
   memset(identity, 0, sizeof identity);
   for (uint32_t i = 0; i < n2; ++i) identity[i * n2 + i] = 1.0f;
   prt_sh_rotate(order, rotation, identity, matrix, n2);
-  for (uint32_t a = 0; a < n2; ++a)
-    for (uint32_t b = 0; b < n2; ++b) columns[b * n2 + a] = matrix[a * n2 + b];
   float* block = blocks;
   for (uint32_t l = 0; l < order; ++l) {
     const uint32_t width = 2u * l + 1u, base = l * l;
     for (uint32_t a = 0; a < width; ++a)
-      for (uint32_t b = 0; b < width; ++b)
+      for (uint32_t b = 0; b < width; ++b) {
         block[a * width + b] = matrix[(base + a) * n2 + base + b];
+        columns[b * width + a] = matrix[(base + a) * n2 + base + b];
+      }
     block += width * width;
+    columns += width * width;
   }
 }
 

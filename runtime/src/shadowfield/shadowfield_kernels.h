@@ -21,8 +21,8 @@ typedef struct prt_sf_kernels {
    * and planes c < planes (lookup->count > 0). */
   void (*read_rows)(const float* field, uint64_t plane, uint32_t planes, uint32_t width,
                     const prt_sf_lookup* lookup, float* out);
-  /* `planes` planes of order^2 coefficients turned by the pair's SH rotation (j's frame to i's);
-   * out may not alias in. */
+  /* `planes` (1..3) planes of order^2 coefficients turned by the pair's SH rotation (j's frame
+   * to i's); out may not alias in. */
   void (*rotate)(const struct prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                  uint32_t planes);
   /* light_rgb[3 k + c] = sum_j matrix[(c n2 + k) n2 + j] visibility[j]: the environment times a

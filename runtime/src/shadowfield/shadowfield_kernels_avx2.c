@@ -57,19 +57,27 @@ static void read_rows_avx2(const float* field, uint64_t plane, uint32_t planes, 
     }
 }
 
-/* With the rotation as a dense column-major matrix: out = sum_b in_b column_b. */
+/* Band by band with the blocks column-major: out_band = sum_b in_b column_b, the planes' sums
+ * side by side so that their multiply-adds overlap. */
 static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                         uint32_t planes) {
   const uint32_t n2 = order * order;
-  for (uint32_t c = 0; c < planes; ++c)
-    for (uint32_t a = 0; a < n2; a += 8u) {
-      const uint32_t left = n2 - a;
-      __m256 acc = _mm256_setzero_ps();
-      for (uint32_t b = 0; b < n2; ++b)
-        acc = _mm256_fmadd_ps(_mm256_set1_ps(in[c * n2 + b]),
-                              load_part(pair->sh_rotation_columns + b * n2 + a, left), acc);
-      store_part(out + c * n2 + a, left, acc);
+  const float* block = pair->sh_rotation_columns;
+  for (uint32_t l = 0; l < order; ++l) {
+    const uint32_t width = 2u * l + 1u, base = l * l;
+    for (uint32_t a = 0; a < width; a += 8u) {
+      const uint32_t left = width - a;
+      __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
+      for (uint32_t b = 0; b < width; ++b) {
+        const __m256 column = load_part(block + b * width + a, left);
+        for (uint32_t c = 0; c < planes && c < 3u; ++c)
+          acc[c] = _mm256_fmadd_ps(_mm256_set1_ps(in[c * n2 + base + b]), column, acc[c]);
+      }
+      for (uint32_t c = 0; c < planes && c < 3u; ++c)
+        store_part(out + c * n2 + base + a, left, acc[c]);
     }
+    block += width * width;
+  }
 }
 
 /* Dot products of `rows` rows (n floats each, row r at rows_at[r]) with v, eight rows per tree;

@@ -26,9 +26,9 @@ typedef struct prt_sf_pair {
   float offset[3];
   /* SH rotation from j's frame to i's (R_i^T R_j), band blocks row-major. */
   float sh_rotation[PRT_SF_ROTATION_FLOATS];
-  /* The same rotation as a dense n^2 x n^2 matrix, column-major ([b n^2 + a] = row a, column
-   * b), for the SIMD kernels. */
-  float sh_rotation_columns[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS];
+  /* The same band blocks column-major (each block's [b width + a] = row a, column b), for the
+   * SIMD kernels. */
+  float sh_rotation_columns[PRT_SF_ROTATION_FLOATS];
 } prt_sf_pair;
 
 typedef struct prt_sf_instance {
