@@ -123,8 +123,9 @@ static void transfer_dot_avx2(const float* transfer, uint32_t n2, uint32_t terms
   }
 }
 
-/* Sixteen values of all three planes at a time in registers while every SRF row adds to them,
- * so each plane is written once and each SRF row read once. */
+/* Thirty-two values (two cache lines of each SRF row) of all three planes at a time in
+ * registers while every SRF row adds to them, so each plane is written once and each SRF row
+ * read once, a whole line per row visited. */
 static void cast_field_avx2(const prt_sf_object* object, const float* weights, float* field,
                             uint64_t first, uint64_t count) {
   const uint32_t n2 = object->order * object->order, rows = object->basis_size * object->terms;
@@ -132,25 +133,31 @@ static void cast_field_avx2(const prt_sf_object* object, const float* weights, f
   const size_t plane = (size_t)points * n2, begin = (size_t)first * n2;
   const size_t end = begin + (size_t)count * n2;
   const float* srf = object->srf;
-  for (size_t e = begin; e < end; e += 16u) {
-    const uint32_t left = end - e < 16u ? (uint32_t)(end - e) : 16u;
-    const uint32_t low = left < 8u ? left : 8u, high = left - low;
-    __m256 acc[6];
-    for (int a = 0; a < 6; ++a) acc[a] = _mm256_setzero_ps();
+  for (size_t e = begin; e < end; e += 32u) {
+    uint32_t left[4];
+    for (uint32_t q = 0; q < 4u; ++q) {
+      const size_t at = e + 8u * q;
+      left[q] = at >= end ? 0u : end - at < 8u ? (uint32_t)(end - at) : 8u;
+    }
+    __m256 acc[3][4];
+    for (uint32_t c = 0; c < 3u; ++c)
+      for (uint32_t q = 0; q < 4u; ++q) acc[c][q] = _mm256_setzero_ps();
     for (uint32_t r = 0; r < rows; ++r) {
       const float* row = srf + r * plane + e;
-      const __m256 s0 = load_part(row, low);
-      const __m256 s1 = high ? load_part(row + 8, high) : _mm256_setzero_ps();
+      /* Each row is its own stream: ask for its next lines ahead of the hardware prefetcher. */
+      _mm_prefetch((const char*)(row + 64), _MM_HINT_T0);
+      _mm_prefetch((const char*)(row + 80), _MM_HINT_T0);
+      __m256 s[4];
+      for (uint32_t q = 0; q < 4u; ++q)
+        s[q] = left[q] ? load_part(row + 8u * q, left[q]) : _mm256_setzero_ps();
       for (uint32_t c = 0; c < 3u; ++c) {
         const __m256 w = _mm256_broadcast_ss(weights + 3u * r + c);
-        acc[2u * c] = _mm256_fmadd_ps(w, s0, acc[2u * c]);
-        acc[2u * c + 1u] = _mm256_fmadd_ps(w, s1, acc[2u * c + 1u]);
+        for (uint32_t q = 0; q < 4u; ++q) acc[c][q] = _mm256_fmadd_ps(w, s[q], acc[c][q]);
       }
     }
-    for (uint32_t c = 0; c < 3u; ++c) {
-      store_part(field + c * plane + e, low, acc[2u * c]);
-      if (high) store_part(field + c * plane + e + 8u, high, acc[2u * c + 1u]);
-    }
+    for (uint32_t c = 0; c < 3u; ++c)
+      for (uint32_t q = 0; q < 4u; ++q)
+        if (left[q]) store_part(field + c * plane + e + 8u * q, left[q], acc[c][q]);
   }
 }
 
