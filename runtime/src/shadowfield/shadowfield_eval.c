@@ -32,7 +32,7 @@ static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]
 /* ---- Gather --------------------------------------------------------------------------------- */
 
 /* Step 2: the environment at vertex x times every blocker's visibility, in the receiver's frame
- * (RGB). */
+ * (one plane of coefficients per colour). */
 static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                            const float x[3], float* light) {
   const prt_sf_kernels* kernels = scene->kernels;
@@ -56,14 +56,15 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
     }
   }
   if (!blocked) {
-    memcpy(light, receiver->light, (size_t)n2 * 3u * sizeof(float));
+    for (uint32_t c = 0; c < 3u; ++c)
+      for (uint32_t k = 0; k < n2; ++k) light[c * n2 + k] = receiver->light[3u * k + c];
     return;
   }
   kernels->light_times(receiver->light_product, n2, visibility, light);
 }
 
 /* Step 3: the light reaching vertex x from every source's field of the previous pass, in the
- * receiver's frame (RGB); 0 when no source reaches it. */
+ * receiver's frame (one plane per colour); 0 when no source reaches it. */
 static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                          const float x[3], float* light) {
   const prt_sf_kernels* kernels = scene->kernels;
@@ -80,8 +81,7 @@ static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instan
     point_in_other(pair, x, p);
     if (!read_field(kernels, &object->srf_shells, source->field, n2, 3u, p, local)) continue;
     kernels->rotate(pair, order, local, turned, 3u);
-    for (uint32_t c = 0; c < 3u; ++c)
-      for (uint32_t i = 0; i < n2; ++i) light[3u * i + c] += turned[c * n2 + i];
+    for (uint32_t e = 0; e < 3u * n2; ++e) light[e] += turned[e];
     lit = 1;
   }
   return lit;

@@ -27,23 +27,23 @@ static void rotate_scalar(const prt_sf_pair* pair, uint32_t order, const float* 
 }
 
 static void light_times_scalar(const float* matrix, uint32_t n2, const float* visibility,
-                               float* light_rgb) {
+                               float* light) {
   for (uint32_t c = 0; c < 3u; ++c)
     for (uint32_t k = 0; k < n2; ++k) {
       const float* row = matrix + ((size_t)c * n2 + k) * n2;
       float sum = 0.0f;
       for (uint32_t j = 0; j < n2; ++j) sum += row[j] * visibility[j];
-      light_rgb[3u * k + c] = sum;
+      light[c * n2 + k] = sum;
     }
 }
 
 static void transfer_dot_scalar(const float* transfer, uint32_t n2, uint32_t terms,
-                                const float* light_rgb, float* out) {
+                                const float* light, float* out) {
   for (uint32_t k = 0; k < terms; ++k) {
     const float* t = transfer + (size_t)k * n2;
     float sum[3] = {0.0f, 0.0f, 0.0f};
     for (uint32_t i = 0; i < n2; ++i)
-      for (uint32_t c = 0; c < 3u; ++c) sum[c] += t[i] * light_rgb[3u * i + c];
+      for (uint32_t c = 0; c < 3u; ++c) sum[c] += t[i] * light[c * n2 + i];
     for (uint32_t c = 0; c < 3u; ++c) out[3u * k + c] = sum[c];
   }
 }

@@ -80,47 +80,40 @@ static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in
   }
 }
 
-/* Dot products of `rows` rows (n floats each, row r at rows_at[r]) with v, eight rows per tree;
- * sums[r] receives row r's. */
-static void dots(const float* const* rows_at, uint32_t rows, const float* v, uint32_t n,
-                 float* sums) {
-  for (uint32_t r = 0; r < rows; r += 8u) {
+/* out[r] = rows_at[r] . vectors_at[r] (n floats each) for r < count, eight dots per tree,
+ * stored straight into out. */
+static void dots(const float* const* rows_at, const float* const* vectors_at, uint32_t count,
+                 uint32_t n, float* out) {
+  for (uint32_t r = 0; r < count; r += 8u) {
     __m256 acc[8];
     for (uint32_t q = 0; q < 8u; ++q)
-      acc[q] = r + q < rows ? dot_lanes(rows_at[r + q], v, n) : _mm256_setzero_ps();
-    float total[8];
-    _mm256_storeu_ps(total, sum8(acc));
-    for (uint32_t q = 0; q < 8u && r + q < rows; ++q) sums[r + q] = total[q];
+      acc[q] =
+          r + q < count ? dot_lanes(rows_at[r + q], vectors_at[r + q], n) : _mm256_setzero_ps();
+    store_part(out + r, count - r, sum8(acc));
   }
 }
 
 static void light_times_avx2(const float* matrix, uint32_t n2, const float* visibility,
-                             float* light_rgb) {
+                             float* light) {
   const float* rows[3u * PRT_SF_MAX_COEFFS];
-  float sums[3u * PRT_SF_MAX_COEFFS];
-  for (uint32_t r = 0; r < 3u * n2; ++r) rows[r] = matrix + (size_t)r * n2;
-  dots(rows, 3u * n2, visibility, n2, sums);
-  for (uint32_t c = 0; c < 3u; ++c)
-    for (uint32_t k = 0; k < n2; ++k) light_rgb[3u * k + c] = sums[c * n2 + k];
+  const float* vectors[3u * PRT_SF_MAX_COEFFS];
+  for (uint32_t r = 0; r < 3u * n2; ++r) {
+    rows[r] = matrix + (size_t)r * n2;
+    vectors[r] = visibility;
+  }
+  dots(rows, vectors, 3u * n2, n2, light);
 }
 
 static void transfer_dot_avx2(const float* transfer, uint32_t n2, uint32_t terms,
-                              const float* light_rgb, float* out) {
-  float planes[3u * PRT_SF_MAX_COEFFS];
-  for (uint32_t i = 0; i < n2; ++i)
-    for (uint32_t c = 0; c < 3u; ++c) planes[c * n2 + i] = light_rgb[3u * i + c];
-  for (uint32_t c = 0; c < 3u; ++c) {
-    /* Eight terms per tree: out[3 k + c] for this colour. */
-    for (uint32_t k = 0; k < terms; k += 8u) {
-      __m256 acc[8];
-      for (uint32_t q = 0; q < 8u; ++q)
-        acc[q] = k + q < terms ? dot_lanes(transfer + (size_t)(k + q) * n2, planes + c * n2, n2)
-                               : _mm256_setzero_ps();
-      float total[8];
-      _mm256_storeu_ps(total, sum8(acc));
-      for (uint32_t q = 0; q < 8u && k + q < terms; ++q) out[3u * (k + q) + c] = total[q];
+                              const float* light, float* out) {
+  const float* rows[3u * PRT_SF_MAX_TERMS];
+  const float* vectors[3u * PRT_SF_MAX_TERMS];
+  for (uint32_t k = 0; k < terms; ++k)
+    for (uint32_t c = 0; c < 3u; ++c) {
+      rows[3u * k + c] = transfer + (size_t)k * n2;
+      vectors[3u * k + c] = light + c * n2;
     }
-  }
+  dots(rows, vectors, 3u * terms, n2, out);
 }
 
 /* Thirty-two values (two cache lines of each SRF row) of all three planes at a time in

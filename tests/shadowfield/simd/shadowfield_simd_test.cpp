@@ -103,7 +103,7 @@ TEST(ShadowfieldSimdKernels, LightTimesAndTransferAgree) {
     for (uint32_t c = 0; c < 3; ++c)
       for (uint32_t k = 0; k < n2; ++k)
         for (uint32_t j = 0; j < n2; ++j)
-          magnitude[3 * k + c] += std::fabs(double(matrix[(c * n2 + k) * n2 + j]) * visibility[j]);
+          magnitude[c * n2 + k] += std::fabs(double(matrix[(c * n2 + k) * n2 + j]) * visibility[j]);
     check_within(scalar, simd, magnitude, n2);
 
     const std::vector<float> transfer = random_floats(terms * n2, order + 20);
@@ -114,7 +114,7 @@ TEST(ShadowfieldSimdKernels, LightTimesAndTransferAgree) {
     for (uint32_t k = 0; k < terms; ++k)
       for (uint32_t c = 0; c < 3; ++c)
         for (uint32_t i = 0; i < n2; ++i)
-          t_magnitude[3 * k + c] += std::fabs(double(transfer[k * n2 + i]) * scalar[3 * i + c]);
+          t_magnitude[3 * k + c] += std::fabs(double(transfer[k * n2 + i]) * scalar[c * n2 + i]);
     check_within(t_scalar, t_simd, t_magnitude, n2);
   }
 }
