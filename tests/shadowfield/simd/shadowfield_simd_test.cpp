@@ -45,6 +45,8 @@ bool simd_here() {
 #define SKIP_WITHOUT_AVX2() \
   if (!simd_here()) GTEST_SKIP() << "no AVX2 + FMA here (or compiled out)"
 
+#if defined(PRT_HAS_X86_SIMD)
+
 std::vector<float> random_floats(size_t count, uint32_t seed) {
   std::mt19937 generator(seed);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -67,8 +69,6 @@ double check_within(const std::vector<float>& a, const std::vector<float>& b,
                                   std::to_string(worst));
   return worst;
 }
-
-#if defined(PRT_HAS_X86_SIMD)
 
 TEST(ShadowfieldSimdKernels, ReadRowsAgreeForEveryWidth) {
   SKIP_WITHOUT_AVX2();
