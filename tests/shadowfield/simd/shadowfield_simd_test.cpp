@@ -32,10 +32,6 @@ namespace {
 
 constexpr double kUnit = 1.0 / 16777216.0;  // u = 2^-24
 
-double gamma(double n) {
-  return n * kUnit / (1.0 - n * kUnit);
-}
-
 bool simd_here() {
   const prt::ContextPtr context = prt_test::limited_context();
   return prt_test::simd_usable(context.get()) &&
@@ -46,6 +42,10 @@ bool simd_here() {
   if (!simd_here()) GTEST_SKIP() << "no AVX2 + FMA here (or compiled out)"
 
 #if defined(PRT_HAS_X86_SIMD)
+
+double gamma(double n) {
+  return n * kUnit / (1.0 - n * kUnit);
+}
 
 std::vector<float> random_floats(size_t count, uint32_t seed) {
   std::mt19937 generator(seed);
