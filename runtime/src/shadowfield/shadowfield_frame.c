@@ -200,7 +200,7 @@ static prt_result read_settings(prt_context* context, const prt_shadowfield_sett
       break;
     case PRT_BACKEND_GL:
       return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                               "shadowfield: the GL backend is not written");
+                               "shadowfield: GL shades through prt_gl_shadowfield_shade");
     default:
       return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
                                "shadowfield settings: backend %d", (int)settings->backend);

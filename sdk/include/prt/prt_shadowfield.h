@@ -25,6 +25,7 @@
 
 #include <prt/prt_asset.h>
 #include <prt/prt_context.h>
+#include <prt/prt_gl.h>
 #include <prt/prt_types.h>
 #include <prt/prt_workers.h>
 
@@ -53,8 +54,9 @@ typedef struct prt_shadowfield_settings {
   uint32_t bounces;
   /* PRT_BACKEND_CPU: the scalar evaluation; PRT_BACKEND_SIMD: the same with AVX2 + FMA inner
    * loops (PRT_ERROR_UNSUPPORTED_BACKEND where the context's SIMD ISA lacks them); AUTO: SIMD
-   * where usable, else scalar. SIMD agrees with scalar to rounding, not bitwise. GL is
-   * PRT_ERROR_UNSUPPORTED_BACKEND for now. */
+   * where usable, else scalar. SIMD agrees with scalar to rounding, not bitwise. GL shades
+   * through prt_gl_shadowfield_shade; the CPU entry points refuse it
+   * (PRT_ERROR_UNSUPPORTED_BACKEND). */
   prt_backend backend;
 } prt_shadowfield_settings;
 
@@ -135,6 +137,50 @@ PRT_API prt_result prt_shadowfield_project(prt_shadowfield_scene* scene, uint32_
 PRT_API prt_result prt_shadowfield_output(const prt_shadowfield_scene* scene, uint32_t instance,
                                           uint32_t through_pass, uint32_t first_vertex,
                                           uint32_t vertex_count, float* out_rgb);
+
+/* ---- The GL backend (prt/prt_gl.h) ----------------------------------------------------------
+ * The frame's per-vertex work (the direct light through the blockers' occlusion fields, the
+ * bounces through the sources' radiance fields, the outgoing radiance) and, between two passes,
+ * each source's basis projection and the field it casts, in a compute shader; the preparation
+ * (prt_shadowfield_prepare) on the CPU. A frame reads nothing back. The output is one GL buffer
+ * (SSBO) of RGB floats per vertex, the instances one after another.
+ *
+ * Create it after adding the scene's objects and instances; transforms may change between
+ * frames. The GL calls need the GL context current, as prt_gl.h says; create and shade record
+ * failures in the scene's context (shade, like prt_shadowfield_shade, changes the scene and
+ * needs exclusive use of it), read and the output queries write no context. After a GL shade the
+ * scene's CPU stages (gather, project, output) need prepare again. GL state: shade uses the
+ * current program and the SSBO bindings 0 to 6, read the generic SSBO binding; both leave them
+ * 0. */
+typedef struct prt_gl_shadowfield prt_gl_shadowfield;
+
+/* The buffers and program for `scene` (which must outlive it). PRT_ERROR_INVALID_ARGUMENT for
+ * NULL arguments, PRT_ERROR_INVALID_OPERATION for a scene without instances,
+ * PRT_ERROR_UNSUPPORTED_BACKEND when the context's backend limit excludes GL, the loader lacks
+ * an entry point, the GL version is below 4.3 or a buffer exceeds the SSBO limit,
+ * PRT_ERROR_OUT_OF_MEMORY. */
+PRT_API prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader_fn loader,
+                                             void* loader_user, prt_gl_shadowfield** out_shader);
+/* NULL is ignored. */
+PRT_API void prt_gl_shadowfield_destroy(prt_gl_shadowfield* shader);
+
+/* prt_shadowfield_shade on GL into the output buffer, with the same arguments and failures;
+ * settings->backend may be AUTO or GL (CPU and SIMD: PRT_ERROR_UNSUPPORTED_BACKEND).
+ * PRT_ERROR_INVALID_OPERATION when the scene gained objects or instances since create. */
+PRT_API prt_result prt_gl_shadowfield_shade(prt_gl_shadowfield* shader, const float* light_sh_rgb,
+                                            const float eye[3],
+                                            const prt_shadowfield_settings* settings);
+
+/* The GL name of the output buffer, and where an instance's vertices start in it (in vertices:
+ * its RGB is at floats 3 (first + v)); 0 for NULL or an unknown instance. */
+PRT_API uint32_t prt_gl_shadowfield_output_buffer(const prt_gl_shadowfield* shader);
+PRT_API uint32_t prt_gl_shadowfield_output_first(const prt_gl_shadowfield* shader,
+                                                 uint32_t instance);
+/* Reads the output of vertices [first_vertex, first_vertex + vertex_count) of `instance` into
+ * out_rgb (vertex_count x 3). PRT_ERROR_INVALID_ARGUMENT for a bad instance or range. */
+PRT_API prt_result prt_gl_shadowfield_read(prt_gl_shadowfield* shader, uint32_t instance,
+                                           uint32_t first_vertex, uint32_t vertex_count,
+                                           float* out_rgb);
 
 #ifdef __cplusplus
 }
