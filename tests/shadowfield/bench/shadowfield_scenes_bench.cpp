@@ -6,7 +6,11 @@
 // their paths while the eye orbits and the light turns, 3 bounces:
 //   Frame/<scene>/<backend>/threads:<t>  one whole frame (prepare, passes, output), wall clock
 //                                        and process CPU time per frame;
+//   Frame/<scene>/gl                     the same on GL (prt_gl_shadowfield_shade, then a read of
+//                                        one vertex to wait for it), where a headless GL exists;
 //   StreamTriad/<t>                      the memory-bandwidth roofline of the same run.
+// It also prints how far the backends' outputs are apart on one frame of each preset, relative
+// to the largest output (scalar, SIMD and GL should agree to rounding).
 // At the end it prints per scene the baked bytes (sum of the blobs) and the runtime memory
 // (everything the context holds once loaded: the decoded objects and the scene's buffers; the
 // blobs are loaded borrowed) against the marks, and each frame's time against its mark.
@@ -16,6 +20,7 @@
 #include <prt/prt.h>
 #include <prt/prt_shadowfield.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +38,9 @@
 #include "prt/baker/shadowfield/shadowfield_bake.hpp"
 #include "prt/baker/shadowfield/shadowfield_scenes.hpp"
 #include "support/bench_triad.hpp"
+#if PRT_BENCH_GL
+#include "support/bench_gl.hpp"
+#endif
 
 extern "C" {
 #include "shadowfield_scene.h"
@@ -180,6 +188,16 @@ struct LoadedScene {
     prt_context_destroy(context);
   }
 
+  // The frame at time t: the instances on their paths and the eye turned about the target.
+  void frame_at(float t, float eye[3]) {
+    place(t);
+    const glm::vec3 target = description.camera.target, offset = description.camera.eye - target;
+    const float turn = 0.2f * t;
+    eye[0] = target.x + offset.x * std::cos(turn) + offset.z * std::sin(turn);
+    eye[1] = target.y + offset.y;
+    eye[2] = target.z - offset.x * std::sin(turn) + offset.z * std::cos(turn);
+  }
+
   // The instances at time t on their paths.
   void place(float t) {
     for (size_t i = 0; i < description.instances.size(); ++i) {
@@ -221,6 +239,17 @@ const char* backend_name(prt_backend b) {
   return b == PRT_BACKEND_SIMD ? "simd" : "scalar";
 }
 
+void record(benchmark::State& state, const std::string& key, double wall, double cpu,
+            uint32_t vertices) {
+  if (state.iterations() == 0) return;
+  FrameFigure& f = g_frames[key];
+  f.wall_ms = 1e3 * wall / double(state.iterations());
+  f.cpu_ms = 1e3 * cpu / double(state.iterations());
+  f.ran = true;
+  state.counters["cpu_ms"] = f.cpu_ms;
+  state.counters["vertices"] = vertices;
+}
+
 void BM_Frame(benchmark::State& state, const std::string& name, prt_backend backend) {
   LoadedScene& s = scene_named(name);
   const uint32_t threads = uint32_t(state.range(0));
@@ -235,18 +264,13 @@ void BM_Frame(benchmark::State& state, const std::string& name, prt_backend back
   settings.struct_size = sizeof settings;
   settings.bounces = 3;
   settings.backend = backend;
-  const glm::vec3 target = s.description.camera.target, eye0 = s.description.camera.eye;
   float time = 0.0f;
   double cpu = 0.0, wall = 0.0;
   for (auto _ : state) {
     state.PauseTiming();
     time += 1.0f / 60.0f;
-    s.place(time);
-    const float turn = 0.2f * time;
-    const glm::vec3 offset = eye0 - target;
-    const float eye[3] = {target.x + offset.x * std::cos(turn) + offset.z * std::sin(turn),
-                          target.y + offset.y,
-                          target.z - offset.x * std::sin(turn) + offset.z * std::cos(turn)};
+    float eye[3];
+    s.frame_at(time, eye);
     const std::vector<float> light = light_at(0.5f * time);
     state.ResumeTiming();
     const double c0 = prt_bench::process_cpu_seconds();
@@ -274,14 +298,54 @@ void BM_Frame(benchmark::State& state, const std::string& name, prt_backend back
                           prt_sf_point_count(&object->srf_shells) * object->order * object->order;
   }
   s.peak_bytes = s.counter.peak;
-  if (state.iterations() == 0) return;
-  FrameFigure& f = g_frames[name + "/" + backend_name(backend) + "/" + std::to_string(threads)];
-  f.wall_ms = 1e3 * wall / double(state.iterations());
-  f.cpu_ms = 1e3 * cpu / double(state.iterations());
-  f.ran = true;
-  state.counters["cpu_ms"] = f.cpu_ms;
-  state.counters["vertices"] = s.vertices;
+  record(state, name + "/" + backend_name(backend) + "/" + std::to_string(threads), wall, cpu,
+         s.vertices);
 }
+
+#if PRT_BENCH_GL
+prt_bench::SharedGl g_gl;
+
+void BM_FrameGl(benchmark::State& state, const std::string& name) {
+  headless_gl* gl = g_gl.get();
+  if (!gl) {
+    state.SkipWithError(g_gl.missing().c_str());
+    return;
+  }
+  LoadedScene& s = scene_named(name);
+  prt_gl_shadowfield* shader = nullptr;
+  if (prt_gl_shadowfield_create(s.scene, headless_gl_get_proc, gl, &shader) != PRT_OK) {
+    state.SkipWithError(prt_context_last_message(s.context));
+    return;
+  }
+  prt_shadowfield_settings settings{};
+  settings.struct_size = sizeof settings;
+  settings.bounces = 3;
+  settings.backend = PRT_BACKEND_GL;
+  float time = 0.0f, one[3];
+  double cpu = 0.0, wall = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    time += 1.0f / 60.0f;
+    float eye[3];
+    s.frame_at(time, eye);
+    const std::vector<float> light = light_at(0.5f * time);
+    state.ResumeTiming();
+    const double c0 = prt_bench::process_cpu_seconds();
+    const auto w0 = std::chrono::steady_clock::now();
+    prt_result r = prt_gl_shadowfield_shade(shader, light.data(), eye, &settings);
+    if (r == PRT_OK) r = prt_gl_shadowfield_read(shader, 0, 0, 1, one);  // waits for the frame
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    cpu += prt_bench::process_cpu_seconds() - c0;
+    if (r != PRT_OK) {
+      state.SkipWithError(prt_context_last_message(s.context));
+      break;
+    }
+  }
+  prt_gl_shadowfield_destroy(shader);
+  record(state, name + "/gl/" + std::to_string(prt_bench::llvmpipe_threads()), wall, cpu,
+         s.vertices);
+}
+#endif
 
 void BM_StreamTriad(benchmark::State& state) {
   const int threads = int(state.range(0));
@@ -290,6 +354,14 @@ void BM_StreamTriad(benchmark::State& state) {
 BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void register_frames() {
+#if PRT_BENCH_GL
+  for (const char* name : {"teapot", "room"})
+    benchmark::RegisterBenchmark((std::string("BM_Frame/") + name + "/gl").c_str(),
+                                 [name](benchmark::State& state) { BM_FrameGl(state, name); })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MinTime(2.0);
+#endif
   for (const char* name : {"teapot", "room"})
     for (const prt_backend backend : {PRT_BACKEND_CPU, PRT_BACKEND_SIMD})
       benchmark::RegisterBenchmark(
@@ -301,6 +373,59 @@ void register_frames() {
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime()
           ->MinTime(2.0);
+}
+
+// One frame's outputs (every instance's vertices, one after another) on `backend`; empty when
+// the backend is not usable here.
+std::vector<float> shade_once(LoadedScene& s, prt_backend backend) {
+  float eye[3];
+  s.frame_at(1.0f, eye);
+  const std::vector<float> light = light_at(0.5f);
+  prt_shadowfield_settings settings{};
+  settings.struct_size = sizeof settings;
+  settings.bounces = 3;
+  settings.backend = backend;
+  std::vector<float> all;
+  if (backend == PRT_BACKEND_GL) {
+#if PRT_BENCH_GL
+    headless_gl* gl = g_gl.get();
+    prt_gl_shadowfield* shader = nullptr;
+    if (!gl || prt_gl_shadowfield_create(s.scene, headless_gl_get_proc, gl, &shader) != PRT_OK)
+      return all;
+    if (prt_gl_shadowfield_shade(shader, light.data(), eye, &settings) == PRT_OK)
+      for (uint32_t i = 0; i < uint32_t(s.out.size()); ++i) {
+        std::vector<float> part(s.out[i].size());
+        prt_gl_shadowfield_read(shader, i, 0, uint32_t(part.size() / 3), part.data());
+        all.insert(all.end(), part.begin(), part.end());
+      }
+    prt_gl_shadowfield_destroy(shader);
+#endif
+    return all;
+  }
+  if (prt_shadowfield_shade(s.scene, light.data(), eye, &settings, s.out_pointers.data()) != PRT_OK)
+    return all;
+  for (const auto& part : s.out) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
+// How far SIMD's and GL's outputs of one frame are from scalar's, over the largest output.
+void print_agreement(LoadedScene& s) {
+  const std::vector<float> scalar = shade_once(s, PRT_BACKEND_CPU);
+  double largest = 0.0;
+  for (const float v : scalar) largest = std::max(largest, double(std::fabs(v)));
+  std::printf("    one frame, largest output %.3g; apart from scalar by", largest);
+  for (const prt_backend backend : {PRT_BACKEND_SIMD, PRT_BACKEND_GL}) {
+    const std::vector<float> other = shade_once(s, backend);
+    if (other.size() != scalar.size() || largest == 0.0) {
+      std::printf(" %s: not run;", backend == PRT_BACKEND_GL ? "gl" : "simd");
+      continue;
+    }
+    double worst = 0.0;
+    for (size_t e = 0; e < other.size(); ++e)
+      worst = std::max(worst, double(std::fabs(other[e] - scalar[e])));
+    std::printf(" %s %.2g of it;", backend == PRT_BACKEND_GL ? "gl" : "simd", worst / largest);
+  }
+  std::printf("\n");
 }
 
 void print_summary() {
@@ -328,6 +453,7 @@ void print_summary() {
           key.c_str(), f.wall_ms, f.cpu_ms, f.wall_ms / mark.frame_ms, mark.frame_ms,
           g_triad[threads].cpu > 0.0 ? f.cpu_ms / floor_ms : 0.0);
     }
+    print_agreement(*scene);
   }
 }
 
@@ -340,6 +466,9 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   if (!g_scenes.empty()) print_summary();
   g_scenes.clear();
+#if PRT_BENCH_GL
+  g_gl.destroy();
+#endif
   benchmark::Shutdown();
   return 0;
 }
