@@ -12,39 +12,14 @@
 
 /* ---- Reading fields ------------------------------------------------------------------------- */
 
-/* The field (points x width floats) read at object-frame point p of its grid: 0 when p is
- * beyond the outermost shell. */
-static int read_field(const prt_sf_shells* grid, const float* field, uint32_t width,
-                      const float p[3], float* out) {
+/* `planes` planes of a field (points x width floats each) read at object-frame point p of its
+ * grid: 0 when p is beyond the outermost shell. */
+static int read_field(const prt_sf_kernels* kernels, const prt_sf_shells* grid, const float* field,
+                      uint32_t width, uint32_t planes, const float p[3], float* out) {
   prt_sf_lookup lookup;
   prt_sf_locate(grid, p, &lookup);
   if (lookup.count == 0u) return 0;
-  memset(out, 0, width * sizeof(float));
-  for (uint32_t e = 0; e < lookup.count; ++e) {
-    const float w = lookup.weight[e];
-    const float* row = field + lookup.index[e] * width;
-    for (uint32_t c = 0; c < width; ++c) out[c] += w * row[c];
-  }
-  return 1;
-}
-
-/* The same for a field of three colour planes (points x width floats each), into three planes
- * of width floats. */
-static int read_planar_field(const prt_sf_shells* grid, const float* field, uint32_t width,
-                             const float p[3], float* out_planes) {
-  prt_sf_lookup lookup;
-  prt_sf_locate(grid, p, &lookup);
-  if (lookup.count == 0u) return 0;
-  const uint64_t plane = prt_sf_point_count(grid) * width;
-  memset(out_planes, 0, (size_t)width * 3u * sizeof(float));
-  for (uint32_t c = 0; c < 3u; ++c) {
-    float* out = out_planes + c * width;
-    for (uint32_t e = 0; e < lookup.count; ++e) {
-      const float w = lookup.weight[e];
-      const float* row = field + c * plane + lookup.index[e] * width;
-      for (uint32_t i = 0; i < width; ++i) out[i] += w * row[i];
-    }
-  }
+  kernels->read_rows(field, prt_sf_point_count(grid) * width, planes, width, &lookup, out);
   return 1;
 }
 
@@ -57,9 +32,10 @@ static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]
 /* ---- Gather --------------------------------------------------------------------------------- */
 
 /* Step 2: the environment at vertex x times every blocker's visibility, in the receiver's frame
- * (RGB). */
+ * (one plane of coefficients per colour). */
 static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                            const float x[3], float* light) {
+  const prt_sf_kernels* kernels = scene->kernels;
   const uint32_t order = scene->order, n2 = order * order;
   float visibility[PRT_SF_MAX_COEFFS], local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
   int blocked = 0;
@@ -69,33 +45,29 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
     const prt_sf_object* blocker = scene->objects[scene->instances[pair->other].object];
     float p[3];
     point_in_other(pair, x, p);
-    if (!read_field(&blocker->oof_shells, blocker->oof, n2, p, local)) continue;
+    if (!read_field(kernels, &blocker->oof_shells, blocker->oof, n2, 1u, p, local)) continue;
     if (!blocked) {
-      prt_sf_rotate_apply(order, pair->sh_rotation, local, visibility, 1u);
+      kernels->rotate(pair, order, local, visibility, 1u);
       blocked = 1;
     } else {
-      prt_sf_rotate_apply(order, pair->sh_rotation, local, turned, 1u);
+      kernels->rotate(pair, order, local, turned, 1u);
       prt_sf_sh_multiply(&scene->gaunt, visibility, turned, local);
       memcpy(visibility, local, n2 * sizeof(float));
     }
   }
   if (!blocked) {
-    memcpy(light, receiver->light, (size_t)n2 * 3u * sizeof(float));
+    for (uint32_t c = 0; c < 3u; ++c)
+      for (uint32_t k = 0; k < n2; ++k) light[c * n2 + k] = receiver->light[3u * k + c];
     return;
   }
-  for (uint32_t c = 0; c < 3u; ++c)
-    for (uint32_t k = 0; k < n2; ++k) {
-      const float* row = receiver->light_product + ((size_t)c * n2 + k) * n2;
-      float sum = 0.0f;
-      for (uint32_t j = 0; j < n2; ++j) sum += row[j] * visibility[j];
-      light[3u * k + c] = sum;
-    }
+  kernels->light_times(receiver->light_product, n2, visibility, light);
 }
 
 /* Step 3: the light reaching vertex x from every source's field of the previous pass, in the
- * receiver's frame (RGB); 0 when no source reaches it. */
+ * receiver's frame (one plane per colour); 0 when no source reaches it. */
 static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                          const float x[3], float* light) {
+  const prt_sf_kernels* kernels = scene->kernels;
   const uint32_t order = scene->order, n2 = order * order;
   float local[PRT_SF_MAX_COEFFS * 3u], turned[PRT_SF_MAX_COEFFS * 3u];
   int lit = 0;
@@ -107,11 +79,9 @@ static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instan
     const prt_sf_object* object = scene->objects[source->object];
     float p[3];
     point_in_other(pair, x, p);
-    if (!read_planar_field(&object->srf_shells, source->field, n2, p, local)) continue;
-    for (uint32_t c = 0; c < 3u; ++c) {
-      prt_sf_rotate_apply(order, pair->sh_rotation, local + c * n2, turned, 1u);
-      for (uint32_t i = 0; i < n2; ++i) light[3u * i + c] += turned[i];
-    }
+    if (!read_field(kernels, &object->srf_shells, source->field, n2, 3u, p, local)) continue;
+    kernels->rotate(pair, order, local, turned, 3u);
+    for (uint32_t e = 0; e < 3u * n2; ++e) light[e] += turned[e];
     lit = 1;
   }
   return lit;
@@ -134,13 +104,7 @@ void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint
       continue;
     }
     /* L_k(x) = T_k(x) . L */
-    for (uint32_t k = 0; k < terms; ++k) {
-      const float* transfer = object->transfer + ((size_t)v * terms + k) * n2;
-      float sum[3] = {0.0f, 0.0f, 0.0f};
-      for (uint32_t i = 0; i < n2; ++i)
-        for (uint32_t c = 0; c < 3u; ++c) sum[c] += transfer[i] * light[3u * i + c];
-      for (uint32_t c = 0; c < 3u; ++c) out[3u * k + c] = sum[c];
-    }
+    scene->kernels->transfer_dot(object->transfer + (size_t)v * terms * n2, n2, terms, light, out);
   }
 }
 
@@ -152,14 +116,18 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
   const uint32_t basis = object->basis_size, terms = object->terms, width = terms * 3u;
   const uint32_t vertices = object->vertex_count;
   memset(projected, 0, (size_t)basis * width * sizeof(float));
-  for (uint32_t m = 0; m < basis; ++m) {
-    float* row = projected + (size_t)m * width;
-    for (uint32_t v = 0; v < vertices; ++v) {
+  /* Vertex by vertex, so its radiance is formed once and every basis row adds it in a loop the
+   * compiler vectorises; each row's sum still runs over the vertices in order. */
+  float radiance[PRT_SF_MAX_TERMS * 3u];
+  for (uint32_t v = 0; v < vertices; ++v) {
+    const float* albedo = object->albedo + 3u * v;
+    const float* l = incident + (size_t)v * width;
+    for (uint32_t k = 0; k < terms; ++k)
+      for (uint32_t c = 0; c < 3u; ++c) radiance[3u * k + c] = albedo[c] * l[3u * k + c];
+    for (uint32_t m = 0; m < basis; ++m) {
       const float bw = object->basis[(size_t)m * vertices + v] * object->vertex_weights[v];
-      const float* albedo = object->albedo + 3u * v;
-      const float* l = incident + (size_t)v * width;
-      for (uint32_t k = 0; k < terms; ++k)
-        for (uint32_t c = 0; c < 3u; ++c) row[3u * k + c] += bw * albedo[c] * l[3u * k + c];
+      float* restrict row = projected + (size_t)m * width;
+      for (uint32_t e = 0; e < width; ++e) row[e] += bw * radiance[e];
     }
   }
   for (uint32_t i = 0; i < basis; ++i)
@@ -169,25 +137,6 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
         sum += object->basis_inverse[(size_t)i * basis + m] * projected[(size_t)m * width + e];
       weights[(size_t)i * width + e] = sum;
     }
-}
-
-/* field_c(p) = sum_ik w_ikc SRF_ik(p) at the SRF points [first, first + count): per colour, a
- * sum of contiguous rows of the SRF, which the compiler vectorises. */
-static void source_field(const prt_sf_object* object, const float* weights, float* field,
-                         uint64_t first, uint64_t count) {
-  const uint32_t n2 = object->order * object->order, terms = object->terms;
-  const uint64_t points = prt_sf_point_count(&object->srf_shells);
-  const size_t length = (size_t)count * n2;
-  for (uint32_t c = 0; c < 3u; ++c) {
-    float* plane = field + ((size_t)c * points + first) * n2;
-    memset(plane, 0, length * sizeof(float));
-    for (uint32_t i = 0; i < object->basis_size; ++i)
-      for (uint32_t k = 0; k < terms; ++k) {
-        const float w = weights[((size_t)i * terms + k) * 3u + c];
-        const float* srf = object->srf + (((size_t)i * terms + k) * points + first) * n2;
-        for (size_t e = 0; e < length; ++e) plane[e] += w * srf[e];
-      }
-  }
 }
 
 void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
@@ -210,7 +159,8 @@ void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, ui
                        uint64_t count) {
   const prt_sf_instance* source = &scene->instances[instance];
   if (!source->is_source) return;
-  source_field(scene->objects[source->object], source->weights, source->field, first, count);
+  scene->kernels->cast_field(scene->objects[source->object], source->weights, source->field, first,
+                             count);
 }
 
 void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {

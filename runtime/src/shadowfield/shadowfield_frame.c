@@ -26,7 +26,8 @@ void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, f
 
 /* The band blocks of the SH rotation by `rotation` (row-major 3x3): prt_sh_rotate of the basis
  * vectors, one channel each, gives the matrix's columns. */
-static void rotation_blocks(uint32_t order, const float rotation[9], float* blocks) {
+static void rotation_blocks(uint32_t order, const float rotation[9], float* blocks,
+                            float* columns) {
   const uint32_t n2 = order * order;
   float identity[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS],
       matrix[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS];
@@ -37,9 +38,12 @@ static void rotation_blocks(uint32_t order, const float rotation[9], float* bloc
   for (uint32_t l = 0; l < order; ++l) {
     const uint32_t width = 2u * l + 1u, base = l * l;
     for (uint32_t a = 0; a < width; ++a)
-      for (uint32_t b = 0; b < width; ++b)
+      for (uint32_t b = 0; b < width; ++b) {
         block[a * width + b] = matrix[(base + a) * n2 + base + b];
+        columns[b * width + a] = matrix[(base + a) * n2 + base + b];
+      }
     block += width * width;
+    columns += width * width;
   }
 }
 
@@ -98,7 +102,7 @@ static void fill_pair(const prt_shadowfield_scene* scene, uint32_t i, uint32_t j
   /* A field in j's frame seen in i's: rotation R_i^T R_j. */
   transpose3(receiver->rotation, receiver_t);
   multiply3(receiver_t, other->rotation, rotation);
-  rotation_blocks(scene->order, rotation, pair->sh_rotation);
+  rotation_blocks(scene->order, rotation, pair->sh_rotation, pair->sh_rotation_columns);
 }
 
 /* Visits every interacting pair in receiver order; with `pairs` NULL only counts them. */
@@ -158,10 +162,23 @@ static int all_finite(const float* values, size_t count) {
   return 1;
 }
 
-/* The settings' bounce count, or a failure. */
+/* The SIMD kernels when the context may use AVX2 + FMA, else NULL. */
+static const prt_sf_kernels* simd_kernels(const prt_context* context) {
+#if defined(PRT_HAS_X86_SIMD)
+  const prt_simd_isa isa = prt_internal_simd_isa(context);
+  if (isa == PRT_SIMD_ISA_AVX2 || isa == PRT_SIMD_ISA_AVX512) return &prt_sf_kernels_avx2;
+#else
+  (void)context;
+#endif
+  return NULL;
+}
+
+/* The settings' bounce count and backend's kernels (AUTO: SIMD when usable), or a failure. */
 static prt_result read_settings(prt_context* context, const prt_shadowfield_settings* settings,
-                                uint32_t* bounces) {
+                                uint32_t* bounces, const prt_sf_kernels** kernels) {
+  const prt_sf_kernels* simd = simd_kernels(context);
   *bounces = PRT_SHADOWFIELD_DEFAULT_BOUNCES;
+  *kernels = simd ? simd : &prt_sf_kernels_scalar;
   if (!settings) return PRT_OK;
   if (!prt_internal_struct_size_ok(settings, sizeof(prt_shadowfield_settings)))
     return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
@@ -172,12 +189,18 @@ static prt_result read_settings(prt_context* context, const prt_shadowfield_sett
                              PRT_SHADOWFIELD_MAX_BOUNCES);
   switch (settings->backend) {
     case PRT_BACKEND_AUTO:
+      break;
     case PRT_BACKEND_CPU:
+      *kernels = &prt_sf_kernels_scalar;
       break;
     case PRT_BACKEND_SIMD:
+      if (!simd)
+        return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                                 "shadowfield: the SIMD backend needs AVX2 and FMA");
+      break;
     case PRT_BACKEND_GL:
       return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                               "shadowfield: only the scalar CPU backend is written");
+                               "shadowfield: GL shades through prt_gl_shadowfield_shade");
     default:
       return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
                                "shadowfield settings: backend %d", (int)settings->backend);
@@ -194,7 +217,8 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
   if (!light_sh_rgb || !eye)
     return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT, "shadowfield: NULL light or eye");
   uint32_t bounces;
-  const prt_result read = read_settings(context, settings, &bounces);
+  const prt_sf_kernels* kernels;
+  const prt_result read = read_settings(context, settings, &bounces, &kernels);
   if (read != PRT_OK) return read;
   const uint32_t n2 = scene->order * scene->order;
   if (!all_finite(light_sh_rgb, (size_t)n2 * 3u) || !all_finite(eye, 3u))
@@ -214,6 +238,7 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
   scene->pair_count = find_pairs(scene, scene->pairs);
   memcpy(scene->eye, eye, sizeof scene->eye);
   scene->bounces = bounces;
+  scene->kernels = kernels;
   scene->prepared = 1u;
   return PRT_OK;
 }

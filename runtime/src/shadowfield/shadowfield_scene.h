@@ -7,6 +7,7 @@
 #include <prt/prt.h>
 
 #include "shadowfield_gaunt.h"
+#include "shadowfield_kernels.h"
 #include "shadowfield_object.h"
 
 #define PRT_SF_MAX_COEFFS (PRT_SF_GAUNT_MAX_ORDER * PRT_SF_GAUNT_MAX_ORDER)
@@ -25,6 +26,9 @@ typedef struct prt_sf_pair {
   float offset[3];
   /* SH rotation from j's frame to i's (R_i^T R_j), band blocks row-major. */
   float sh_rotation[PRT_SF_ROTATION_FLOATS];
+  /* The same band blocks column-major (each block's [b width + a] = row a, column b), for the
+   * SIMD kernels. */
+  float sh_rotation_columns[PRT_SF_ROTATION_FLOATS];
 } prt_sf_pair;
 
 typedef struct prt_sf_instance {
@@ -70,6 +74,7 @@ struct prt_shadowfield_scene {
   uint32_t prepared;
   uint32_t bounces;
   float eye[3];
+  const prt_sf_kernels* kernels; /* the prepared backend's inner loops */
 };
 
 /* The test entry and what prt_shadowfield_scene_add_object calls: adds an object read in place

@@ -52,8 +52,11 @@ typedef struct prt_shadowfield_settings {
   /* Passes after the direct light, 0..PRT_SHADOWFIELD_MAX_BOUNCES. A zeroed struct gives 0
    * bounces (direct light only); NULL settings give PRT_SHADOWFIELD_DEFAULT_BOUNCES. */
   uint32_t bounces;
-  /* PRT_BACKEND_AUTO or PRT_BACKEND_CPU (the scalar evaluation); others are
-   * PRT_ERROR_UNSUPPORTED_BACKEND for now. */
+  /* PRT_BACKEND_CPU: the scalar evaluation; PRT_BACKEND_SIMD: the same with AVX2 + FMA inner
+   * loops (PRT_ERROR_UNSUPPORTED_BACKEND where the context's SIMD ISA lacks them); AUTO: SIMD
+   * where usable, else scalar. SIMD agrees with scalar to rounding, not bitwise. GL shades
+   * through prt_gl_shadowfield_shade; the CPU entry points refuse it
+   * (PRT_ERROR_UNSUPPORTED_BACKEND). */
   prt_backend backend;
 } prt_shadowfield_settings;
 

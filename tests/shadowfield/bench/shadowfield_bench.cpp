@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// prt_bench_shadowfield: the cost of technique `shadowfield`'s scene on the scalar CPU backend,
-// one thread, on synthetic objects with the default field sizes (OOF 16 shells of 6 x 16 x 16
-// points, SRF 8 shells of 6 x 8 x 8, N = 16, SH order 4):
+// prt_bench_shadowfield: the cost of technique `shadowfield`'s scene on the backend AUTO picks
+// (SIMD where usable), one thread, on synthetic objects with the default field sizes (OOF 16
+// shells of 6 x 16 x 16 points, SRF 8 shells of 6 x 8 x 8, N = 16, SH order 4):
 //   Direct/b:  pass 0 of a 32 x 32 receiver under b blockers; the counter is the time per
 //              receiver vertex per blocker;
 //   Bounce/k:  pass 1 of that receiver lit by one source of k BRDF terms; the time per vertex

@@ -210,7 +210,7 @@ TEST(ShadowfieldExtremes, BadArgumentsAreRefused) {
   EXPECT_EQ(prt_shadowfield_prepare(s.scene, light.data(), kEye, &settings),
             PRT_ERROR_INVALID_ARGUMENT);
   settings.bounces = 0;
-  settings.backend = PRT_BACKEND_SIMD;
+  settings.backend = PRT_BACKEND_GL;
   EXPECT_EQ(prt_shadowfield_prepare(s.scene, light.data(), kEye, &settings),
             PRT_ERROR_UNSUPPORTED_BACKEND);
   settings.backend = prt_backend(9);

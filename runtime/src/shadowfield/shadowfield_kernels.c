@@ -1,0 +1,80 @@
+/* SPDX-License-Identifier: MIT */
+/* Technique `shadowfield`'s inner loops, scalar: the reference the SIMD table is checked
+ * against (shadowfield_kernels.h). */
+#include <string.h>
+
+#include "shadowfield_kernels.h"
+#include "shadowfield_scene.h"
+
+static void read_rows_scalar(const float* field, uint64_t plane, uint32_t planes, uint32_t width,
+                             const prt_sf_lookup* lookup, float* out) {
+  memset(out, 0, (size_t)width * planes * sizeof(float));
+  for (uint32_t c = 0; c < planes; ++c) {
+    float* o = out + c * width;
+    for (uint32_t e = 0; e < lookup->count; ++e) {
+      const float w = lookup->weight[e];
+      const float* row = field + c * plane + lookup->index[e] * width;
+      for (uint32_t i = 0; i < width; ++i) o[i] += w * row[i];
+    }
+  }
+}
+
+static void rotate_scalar(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                          uint32_t planes) {
+  const uint32_t n2 = order * order;
+  for (uint32_t c = 0; c < planes; ++c)
+    prt_sf_rotate_apply(order, pair->sh_rotation, in + c * n2, out + c * n2, 1u);
+}
+
+static void light_times_scalar(const float* matrix, uint32_t n2, const float* visibility,
+                               float* light) {
+  for (uint32_t c = 0; c < 3u; ++c)
+    for (uint32_t k = 0; k < n2; ++k) {
+      const float* row = matrix + ((size_t)c * n2 + k) * n2;
+      float sum = 0.0f;
+      for (uint32_t j = 0; j < n2; ++j) sum += row[j] * visibility[j];
+      light[c * n2 + k] = sum;
+    }
+}
+
+static void transfer_dot_scalar(const float* transfer, uint32_t n2, uint32_t terms,
+                                const float* light, float* out) {
+  for (uint32_t k = 0; k < terms; ++k) {
+    const float* t = transfer + (size_t)k * n2;
+    float sum[3] = {0.0f, 0.0f, 0.0f};
+    for (uint32_t i = 0; i < n2; ++i)
+      for (uint32_t c = 0; c < 3u; ++c) sum[c] += t[i] * light[c * n2 + i];
+    for (uint32_t c = 0; c < 3u; ++c) out[3u * k + c] = sum[c];
+  }
+}
+
+/* Per block of points, every SRF row in turn adds to the block's three planes; each value's
+ * sum runs over (i, k) in order, as a row-by-row sum over the whole field would. */
+static void cast_field_scalar(const prt_sf_object* object, const float* weights, float* field,
+                              uint64_t first, uint64_t count) {
+  const uint32_t n2 = object->order * object->order, rows = object->basis_size * object->terms;
+  const uint64_t points = prt_sf_point_count(&object->srf_shells);
+  for (uint64_t start = first; start < first + count; start += PRT_SF_FIELD_BLOCK) {
+    const uint64_t end =
+        start + PRT_SF_FIELD_BLOCK < first + count ? start + PRT_SF_FIELD_BLOCK : first + count;
+    const size_t length = (size_t)(end - start) * n2;
+    float* restrict red = field + (size_t)start * n2;
+    float* restrict green = field + ((size_t)points + start) * n2;
+    float* restrict blue = field + ((size_t)2u * points + start) * n2;
+    memset(red, 0, length * sizeof(float));
+    memset(green, 0, length * sizeof(float));
+    memset(blue, 0, length * sizeof(float));
+    for (uint32_t r = 0; r < rows; ++r) {
+      const float w0 = weights[3u * r], w1 = weights[3u * r + 1u], w2 = weights[3u * r + 2u];
+      const float* restrict srf = object->srf + ((size_t)r * points + start) * n2;
+      for (size_t e = 0; e < length; ++e) {
+        red[e] += w0 * srf[e];
+        green[e] += w1 * srf[e];
+        blue[e] += w2 * srf[e];
+      }
+    }
+  }
+}
+
+const prt_sf_kernels prt_sf_kernels_scalar = {read_rows_scalar, rotate_scalar, light_times_scalar,
+                                              transfer_dot_scalar, cast_field_scalar};

@@ -1,0 +1,49 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to the runtime: the inner loops of technique `shadowfield`'s evaluation
+ * (shadowfield_eval.c), one table per backend: the scalar reference (shadowfield_kernels.c) and
+ * AVX2 + FMA (shadowfield_kernels_avx2.c, compiled with those flags and picked at prepare only
+ * when the context's SIMD ISA has them). The tables compute the same sums; the SIMD one fuses
+ * multiply-adds and sums in another order, so it agrees with the scalar one to rounding, not
+ * bitwise. */
+#ifndef PRT_RUNTIME_SHADOWFIELD_KERNELS_H
+#define PRT_RUNTIME_SHADOWFIELD_KERNELS_H
+
+#include <stdint.h>
+
+#include <prt/format/shadowfield_shells.h>
+
+#include "shadowfield_object.h"
+
+struct prt_sf_pair;
+
+typedef struct prt_sf_kernels {
+  /* out[c width + i] = sum_e weight_e field[c plane + index_e width + i] for the lookup's points
+   * and planes c < planes (lookup->count > 0). */
+  void (*read_rows)(const float* field, uint64_t plane, uint32_t planes, uint32_t width,
+                    const prt_sf_lookup* lookup, float* out);
+  /* `planes` (1..3) planes of order^2 coefficients turned by the pair's SH rotation (j's frame
+   * to i's); out may not alias in. */
+  void (*rotate)(const struct prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                 uint32_t planes);
+  /* light_rgb[3 k + c] = sum_j matrix[(c n2 + k) n2 + j] visibility[j]: the environment times a
+   * visibility (the instance's light_product). */
+  void (*light_times)(const float* matrix, uint32_t n2, const float* visibility, float* light_rgb);
+  /* out[3 k + c] = sum_i transfer[k n2 + i] light_rgb[3 i + c] for the terms k < terms. */
+  void (*transfer_dot)(const float* transfer, uint32_t n2, uint32_t terms, const float* light_rgb,
+                       float* out);
+  /* The source field sum_ik w_ikc SRF_ik(p) at SRF points [first, first + count) (see
+   * prt_sf_instance::field). */
+  void (*cast_field)(const prt_sf_object* object, const float* weights, float* field,
+                     uint64_t first, uint64_t count);
+} prt_sf_kernels;
+
+extern const prt_sf_kernels prt_sf_kernels_scalar;
+#if defined(PRT_HAS_X86_SIMD)
+extern const prt_sf_kernels prt_sf_kernels_avx2;
+#endif
+
+/* The SRF points cast_field handles at once: their three planes stay in the L1 cache while every
+ * SRF row adds to them, so the SRF is read once per projection. */
+#define PRT_SF_FIELD_BLOCK 64u
+
+#endif /* PRT_RUNTIME_SHADOWFIELD_KERNELS_H */
