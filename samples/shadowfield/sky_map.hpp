@@ -9,7 +9,7 @@
 
 namespace prt::shadowfield_app {
 
-// The built-in sky of the scenes (`builtin:sky`, the baker's demo sky) as a lat-long .hdr at
+// The built-in sky of the scenes (`builtin:sky`, prt/io/demo_sky.hpp) as a lat-long .hdr at
 // `path`; returns the path. Throws prt::io::Error when it cannot be written.
 std::string write_builtin_sky(const std::string& path);
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "prt/baker/scene.hpp"
+#include "prt/io/demo_sky.hpp"
 #include "prt/io/envmap.hpp"
 
 namespace prt::bake {
@@ -14,10 +15,8 @@ namespace prt::bake {
 // frame (+Y up, metres). Materials carry distinct diffuse base colours.
 Scene make_demo_scene();
 
-// A lat-long sky (width x width/2): a blue-to-white gradient, a darker ground below the horizon
-// and a small sun disc that holds most of the power, placed so that the default camera (looking
-// down -Z) sees the shadows.
-io::EnvMap make_demo_sky(int width = 512);
+// The built-in sky (prt/io/demo_sky.hpp), shared with the samples.
+using io::make_demo_sky;
 
 // Writes the meshes of a static scene (positions, normals, indices, base-colour materials) as a
 // binary glTF 2.0 file. Throws Error when the file cannot be written.
