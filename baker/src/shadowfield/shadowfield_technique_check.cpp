@@ -43,7 +43,11 @@ glm::dvec3 outgoing_direction(const glm::vec3& position, const glm::vec3& normal
                               const glm::vec3& eye) {
   const Frame frame(normal);
   const glm::vec3 to_eye = eye - position;
-  glm::dvec3 wo(glm::dot(frame.t, to_eye), glm::dot(frame.b, to_eye), glm::dot(normal, to_eye));
+  // In double from the float operands, as the runtime does, so both see the same side.
+  const auto dot = [&to_eye](const glm::vec3& axis) {
+    return double(axis.x) * to_eye.x + double(axis.y) * to_eye.y + double(axis.z) * to_eye.z;
+  };
+  glm::dvec3 wo(dot(frame.t), dot(frame.b), dot(normal));
   if (wo == glm::dvec3(0.0)) wo.z = 1.0;
   return glm::normalize(wo);
 }
@@ -158,7 +162,10 @@ std::vector<double> shade_float_shadowfield(const ShadowfieldObject& object,
   for (std::size_t v = 0; v < vertices; ++v) {
     const glm::dvec3 wo = outgoing_direction(object.positions[v], object.normals[v], eye);
     for (std::uint32_t k = 0; k < terms; ++k) {
-      const double g = object.material.glossy ? object.material.brdf.outgoing_at(k, wo) : 1.0;
+      // Seen from behind, a glossy surface reflects nothing towards the eye (as the runtime).
+      const double g = !object.material.glossy ? 1.0
+                       : wo.z > 0.0            ? object.material.brdf.outgoing_at(k, wo)
+                                               : 0.0;
       const float* t = object.transfer.data() + (v * terms + k) * n2;
       for (int c = 0; c < 3; ++c) {
         double sum = 0.0, magnitude = 0.0, step = 0.0;

@@ -269,7 +269,10 @@ void prt_sf_output_range(const prt_shadowfield_scene* scene, uint32_t instance,
     if (object->glossy) {
       double wo[3];
       view_direction(scene, receiver, object->positions + 3u * v, object->normals + 3u * v, wo);
-      for (uint32_t k = 0; k < terms; ++k) g[k] = prt_sf_outgoing_at(object, k, wo);
+      /* A glossy surface seen from behind reflects nothing towards the eye (as the reference
+       * renderer and the baked source fields have it); the table would read its horizon. */
+      for (uint32_t k = 0; k < terms; ++k)
+        g[k] = wo[2] > 0.0 ? prt_sf_outgoing_at(object, k, wo) : 0.0f;
     } else {
       g[0] = 1.0f;
     }
