@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -335,7 +336,12 @@ TEST(ShadowfieldGl, BadSettingsAreRefusedAsByScalar) {
   prt_shadowfield_settings too_many = settings_for(PRT_SHADOWFIELD_MAX_BOUNCES + 1);
   prt_shadowfield_settings old = settings_for(1);
   old.struct_size = sizeof(size_t);
-  prt_shadowfield_settings unknown = settings_for(1, prt_backend(77));
+  // A backend value no enumerator has, as a C caller could pass it; C++ may not form such an
+  // enum value, so it is written and read as the int it is.
+  static_assert(sizeof(prt_backend) == sizeof(int), "prt_backend is stored as an int");
+  prt_shadowfield_settings unknown = settings_for(1);
+  const int bogus_backend = 77;
+  std::memcpy(&unknown.backend, &bogus_backend, sizeof bogus_backend);
   const Case cases[] = {{"too many bounces", too_many, light.data(), kNearEye},
                         {"struct_size too small", old, light.data(), kNearEye},
                         {"unknown backend", unknown, light.data(), kNearEye},
@@ -345,7 +351,9 @@ TEST(ShadowfieldGl, BadSettingsAreRefusedAsByScalar) {
                         {"infinite eye", settings_for(1), light.data(), nan_eye}};
   for (const Case& c : cases) {
     prt_shadowfield_settings cpu_settings = c.settings;
-    if (cpu_settings.backend == PRT_BACKEND_GL) cpu_settings.backend = PRT_BACKEND_CPU;
+    int backend = 0;
+    std::memcpy(&backend, &cpu_settings.backend, sizeof backend);
+    if (backend == PRT_BACKEND_GL) cpu_settings.backend = PRT_BACKEND_CPU;
     const prt_result scalar =
         prt_shadowfield_shade(scene, c.light, c.eye, &cpu_settings, pointers.data());
     EXPECT_NE(scalar, PRT_OK) << c.what;
