@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "prt/io/error.hpp"
+
 namespace prt::shadowfield_app {
 namespace {
 
@@ -19,32 +21,6 @@ constexpr int kVersion = 1;
 glm::vec3 read_vec3(const json& j) {
   if (!j.is_array() || j.size() != 3) throw SceneError("expected 3 numbers");
   return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
-}
-
-bool finite(const Placement& p) {
-  const float values[8] = {p.translation.x, p.translation.y, p.translation.z, p.rotation.x,
-                           p.rotation.y,    p.rotation.z,    p.rotation.w,    p.scale};
-  for (float v : values)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
-
-void check_path(const Path& path) {
-  if (path.keyframes.empty()) throw SceneError("no keyframe");
-  const bool loops = path.moves();
-  if (loops && !(std::isfinite(path.duration) && path.duration > 0.0f))
-    throw SceneError("duration must be finite and > 0");
-  for (std::size_t i = 0; i < path.keyframes.size(); ++i) {
-    const Keyframe& k = path.keyframes[i];
-    const std::string which = "keyframe " + std::to_string(i);
-    if (!finite(k.placement) || !std::isfinite(k.time)) throw SceneError(which + " is not finite");
-    if (!(k.placement.scale > 0.0f)) throw SceneError(which + ": scale must be > 0");
-    if (glm::length(k.placement.rotation) < 1e-6f) throw SceneError(which + ": zero rotation");
-    if (loops && (k.time < 0.0f || k.time >= path.duration))
-      throw SceneError(which + ": time outside [0, duration)");
-    if (i > 0 && !(k.time > path.keyframes[i - 1].time))
-      throw SceneError(which + ": times not ascending");
-  }
 }
 
 Path read_path(const json& instance) {
@@ -61,7 +37,11 @@ Path read_path(const json& instance) {
     key.placement.scale = k.at("scale").get<float>();
     path.keyframes.push_back(key);
   }
-  check_path(path);
+  try {
+    path.check();
+  } catch (const io::Error& e) {
+    throw SceneError(e.what());
+  }
   for (Keyframe& k : path.keyframes) k.placement.rotation = glm::normalize(k.placement.rotation);
   return path;
 }
@@ -98,44 +78,11 @@ SceneFile read_scene(const json& j, const fs::path& folder) {
   return scene;
 }
 
-Placement interpolate(const Placement& a, const Placement& b, float t) {
-  Placement p;
-  p.translation = glm::mix(a.translation, b.translation, t);
-  p.scale = a.scale + (b.scale - a.scale) * t;
-  p.rotation = glm::normalize(glm::slerp(a.rotation, b.rotation, t));  // the shorter arc
-  return p;
-}
-
 json vec3_json(const glm::vec3& v) {
   return json::array({v.x, v.y, v.z});
 }
 
 }  // namespace
-
-void Placement::to_rows(float rows[9]) const {
-  const glm::mat3 m = glm::mat3_cast(rotation);  // column-major: m[column][row]
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) rows[3 * r + c] = m[c][r];
-}
-
-// As the baker's ShadowfieldPath::at, so that the app and the reference place alike.
-Placement Path::at(double time) const {
-  if (!moves() || !std::isfinite(time)) return keyframes.front().placement;
-  float tau = std::fmod(float(time), duration);
-  if (tau < 0.0f) tau += duration;
-  const Keyframe& first = keyframes.front();
-  const Keyframe& last = keyframes.back();
-  if (tau < first.time || tau >= last.time) {
-    const float start = last.time, end = first.time + duration;
-    const float local = tau < first.time ? tau + duration : tau;
-    return interpolate(last.placement, first.placement, (local - start) / (end - start));
-  }
-  std::size_t i = 1;
-  while (keyframes[i].time <= tau) ++i;
-  const Keyframe& a = keyframes[i - 1];
-  const Keyframe& b = keyframes[i];
-  return interpolate(a.placement, b.placement, (tau - a.time) / (b.time - a.time));
-}
 
 SceneFile read_scene_file(const std::string& where) {
   fs::path file = where;

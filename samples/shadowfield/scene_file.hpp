@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The app's side of a shadowfield scene file (docs/shadowfield/scenes.md, "The scene file"):
-// scene.json read without the baker, its scripted paths evaluated as the baker's ShadowfieldPath
-// evaluates them, and a scene file written back for one placement of every instance (what the
+// scene.json read without the baker, its scripted paths evaluated by prt::io::RigidPath as the
+// baker evaluates them, and a scene file written back for one placement of every instance (what the
 // reference tool renders).
 #pragma once
 
@@ -10,7 +10,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
+
+#include "prt/io/rigid_path.hpp"
 
 namespace prt::shadowfield_app {
 
@@ -20,31 +21,10 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// world = scale * rotation * local + translation.
-struct Placement {
-  glm::vec3 translation{0.0f};
-  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z; unit
-  float scale = 1.0f;
-
-  glm::vec3 apply(const glm::vec3& local) const { return scale * (rotation * local) + translation; }
-  // The runtime's transform: row-major rotation, translation, scale.
-  void to_rows(float rotation_rows[9]) const;
-};
-
-struct Keyframe {
-  float time = 0.0f;
-  Placement placement;
-};
-
-// Keyframes at ascending times in [0, duration): translation and scale linear, rotation by
-// slerp, looping back to the first keyframe a period later. One keyframe stands still.
-struct Path {
-  std::vector<Keyframe> keyframes;
-  float duration = 0.0f;
-
-  Placement at(double time) const;
-  bool moves() const { return keyframes.size() > 1; }
-};
+// The baker's placements and paths, shared through prt_io.
+using Placement = io::RigidPlacement;
+using Keyframe = io::RigidKeyframe;
+using Path = io::RigidPath;
 
 struct SceneObject {
   std::string name, blob;  // blob: resolved against the scene file's folder

@@ -48,7 +48,7 @@ ShadowfieldWorld::ShadowfieldWorld(const SceneFile& scene) {
     for (const SceneObject& object : scene.objects) load_object(object);
     for (const SceneInstance& instance : scene.instances) {
       const Object& o = objects_[instance.object];
-      const prt_shadowfield_transform t = runtime_transform(instance.path.at(0.0));
+      const prt_shadowfield_transform t = runtime_transform(instance.path.at(0.0f));
       std::uint32_t index = 0;
       if (prt_shadowfield_scene_add_instance(scene_, std::uint32_t(instance.object), &t, &index) !=
           PRT_OK)
@@ -65,7 +65,7 @@ ShadowfieldWorld::ShadowfieldWorld(const SceneFile& scene) {
     positions_.assign(3u * vertex_count_, 0.0f);
     radiance_.assign(3u * vertex_count_, 0.0f);
     std::vector<Placement> first;
-    for (const SceneInstance& instance : scene.instances) first.push_back(instance.path.at(0.0));
+    for (const SceneInstance& instance : scene.instances) first.push_back(instance.path.at(0.0f));
     place(first);
     lo_ = glm::vec3(INFINITY), hi_ = glm::vec3(-INFINITY);
     for (std::uint32_t v = 0; v < vertex_count_; ++v) {

@@ -9,6 +9,7 @@
 
 #include "prt/baker/context.hpp"
 #include "prt/baker/shadowfield/shadowfield_scenes.hpp"
+#include "prt/io/error.hpp"
 
 namespace prt::bake {
 namespace {
@@ -63,6 +64,15 @@ glm::quat read_quat(const json& j) {
   return {j.at(3).get<float>(), j.at(0).get<float>(), j.at(1).get<float>(), j.at(2).get<float>()};
 }
 
+// The path's own reason, as the baker's Error every caller of this file catches.
+void check_path(const ShadowfieldPath& path) {
+  try {
+    path.check();
+  } catch (const io::Error& e) {
+    throw Error(std::string("shadowfield ") + e.what());
+  }
+}
+
 ShadowfieldPath read_path(const json& j) {
   ShadowfieldPath path;
   path.duration = j.value("duration", 0.0f);
@@ -74,7 +84,7 @@ ShadowfieldPath read_path(const json& j) {
     keyframe.placement.scale = k.at("scale").get<float>();
     path.keyframes.push_back(keyframe);
   }
-  path.check();
+  check_path(path);
   return path;
 }
 
@@ -118,7 +128,7 @@ void write_shadowfield_scene_json(const ShadowfieldSceneDescription& description
     if (instance.object >= description.objects.size())
       throw Error(path + ": an instance names object " + std::to_string(instance.object) + " of " +
                   std::to_string(description.objects.size()));
-    instance.path.check();
+    check_path(instance.path);
     instances.push_back(instance_json(instance));
   }
   const json scene = {{"format", kFormat},

@@ -12,6 +12,7 @@
 
 #include "prt/baker/context.hpp"
 #include "prt/baker/shadowfield/shadowfield_scenes.hpp"
+#include "prt/io/error.hpp"
 
 namespace prt::bake {
 namespace {
@@ -155,31 +156,31 @@ TEST(Path, PlacementAppliesScaleRotationThenTranslation) {
 
 TEST(Path, BadPathsAreRejected) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW(ShadowfieldPath{}.at(0.0f), Error);
+  EXPECT_THROW(ShadowfieldPath{}.at(0.0f), io::Error);
   auto broken = [](auto change) {
     ShadowfieldPath path = three_keyframes();
     change(path);
     return path;
   };
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.duration = 3.0f; }).check(), Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.duration = 0.0f; }).check(), Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[1].time = 0.0f; }).check(), Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[0].time = -1.0f; }).check(), Error);
+  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.duration = 3.0f; }).check(), io::Error);
+  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.duration = 0.0f; }).check(), io::Error);
+  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[1].time = 0.0f; }).check(), io::Error);
+  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[0].time = -1.0f; }).check(), io::Error);
   EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[2].placement.scale = 0.0f; }).check(),
-               Error);
+               io::Error);
   EXPECT_THROW(
       broken([&](ShadowfieldPath& p) { p.keyframes[1].placement.translation.y = nan; }).check(),
-      Error);
+      io::Error);
   EXPECT_THROW(
       broken([&](ShadowfieldPath& p) { p.keyframes[1].placement.rotation.w = nan; }).check(),
-      Error);
+      io::Error);
   EXPECT_THROW(broken([](ShadowfieldPath& p) {
                  p.keyframes[1].placement.rotation = {0, 0, 0, 0};
                }).check(),
-               Error);
+               io::Error);
   EXPECT_NO_THROW(three_keyframes().check());
-  EXPECT_THROW(three_keyframes().at(nan), Error);
-  EXPECT_THROW(three_keyframes().at(std::numeric_limits<float>::infinity()), Error);
+  EXPECT_THROW(three_keyframes().at(nan), io::Error);
+  EXPECT_THROW(three_keyframes().at(std::numeric_limits<float>::infinity()), io::Error);
 }
 
 }  // namespace

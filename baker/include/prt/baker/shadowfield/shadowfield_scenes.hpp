@@ -18,6 +18,7 @@
 
 #include "prt/baker/scene.hpp"
 #include "prt/baker/shadowfield/shadowfield_brdf.hpp"
+#include "prt/io/rigid_path.hpp"
 
 namespace prt::bake {
 
@@ -37,35 +38,12 @@ struct ShadowfieldSceneObject {
   ShadowfieldMaterialDescription material;
 };
 
-// A rigid placement: world = scale * rotation * local + translation.
-struct ShadowfieldPlacement {
-  glm::vec3 translation{0.0f};
-  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z; unit
-  float scale = 1.0f;
-
-  glm::vec3 apply(const glm::vec3& local) const { return scale * (rotation * local) + translation; }
-};
-
-struct ShadowfieldKeyframe {
-  float time = 0.0f;  // seconds, in [0, duration)
-  ShadowfieldPlacement placement;
-};
-
-// Keyframes at ascending times in [0, duration); between two keyframes translation and scale are
-// interpolated linearly and rotation by slerp (the shorter arc), and after the last keyframe the
-// path runs back to the first, reached again at its time + duration: the path loops with period
-// `duration`. One keyframe is a constant placement (duration is then ignored).
-struct ShadowfieldPath {
-  std::vector<ShadowfieldKeyframe> keyframes;
-  float duration = 0.0f;  // seconds, > the last keyframe's time when there are several
-
-  // The placement at any finite time (negative too). Throws Error for a path check() rejects
-  // and, when the path moves, for a non-finite time.
-  ShadowfieldPlacement at(float time) const;
-  // Throws Error naming what is wrong: no keyframe, times not ascending or outside
-  // [0, duration), a scale <= 0, a non-finite value.
-  void check() const;
-};
+// A rigid placement (world = scale * rotation * local + translation) and a scripted, looping
+// keyframe path of them: prt_io's, which the shadowfield app shares. check() and at() throw
+// io::Error.
+using ShadowfieldPlacement = io::RigidPlacement;
+using ShadowfieldKeyframe = io::RigidKeyframe;
+using ShadowfieldPath = io::RigidPath;
 
 struct ShadowfieldInstance {
   std::size_t object = 0;  // index into ShadowfieldSceneDescription::objects
