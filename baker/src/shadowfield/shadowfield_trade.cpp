@@ -20,6 +20,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
@@ -397,8 +398,9 @@ class CountedScene {
                       context_, std::uint32_t(description.instances.size()), &scene_),
                   "prt_shadowfield_scene_create");
     for (std::size_t o = 0; o < blobs.size(); ++o) {
-      // 16-byte aligned, alive as long as the asset.
-      storage_.emplace_back((blobs[o].size() + 15) / 16);
+      // Aligned as malloc aligns, alive as long as the asset.
+      storage_.emplace_back((blobs[o].size() + sizeof(std::max_align_t) - 1) /
+                            sizeof(std::max_align_t));
       std::memcpy(storage_.back().data(), blobs[o].data(), blobs[o].size());
       prt_asset* asset = nullptr;
       check_runtime(prt_asset_load_memory_borrowed(context_, storage_.back().data(),
@@ -466,7 +468,7 @@ class CountedScene {
   ByteCounter counter_;
   prt_context* context_ = nullptr;
   prt_shadowfield_scene* scene_ = nullptr;
-  std::vector<std::vector<std::array<std::uint64_t, 2>>> storage_;
+  std::vector<std::vector<std::max_align_t>> storage_;
   std::vector<prt_asset*> assets_;
 };
 
