@@ -103,6 +103,10 @@ void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx) {
   ctx.info("self-check passed: " + check.message);
 }
 
+Scene TechniqueTrade::load_scene(const TradeInput& input, const Context& ctx) {
+  return import_scene(input.scene, ctx);
+}
+
 void run_trade(TechniqueTrade& trade, TradeInput input, const Context& ctx) {
   if (input.envs.empty()) throw Error("give at least one --env MAP");
   check_map_names(input.envs);
@@ -113,7 +117,7 @@ void run_trade(TechniqueTrade& trade, TradeInput input, const Context& ctx) {
   fs::create_directories(input.out_dir);
   fs::create_directories(input.cache_dir);
 
-  const Scene scene = import_scene(input.scene, ctx);
+  const Scene scene = trade.load_scene(input, ctx);
   warn_about_degenerate_meshes(scene, input.scene, ctx);
   trade.prepare(scene, input, ctx);
   const EmbreeScene rays(scene, ctx);

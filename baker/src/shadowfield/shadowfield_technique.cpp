@@ -222,8 +222,9 @@ class ShadowfieldTechnique final : public Technique {
            "self-shadowed transfer) into a blob";
   }
   const char* trade_summary() const override {
-    return "Measure technique shadowfield's speed/accuracy trade: sweep order, BRDF terms, bits "
-           "and transfer rays";
+    return "Measure technique shadowfield's speed/accuracy trade: one object (SCENE a file; "
+           "order, BRDF terms, bits, transfer rays) or a scene preset (SCENE teapot, bunny, room "
+           "or procedural; also shells, points per shell, basis size and bounces)";
   }
   std::unique_ptr<TechniqueBake> make_bake() const override {
     return std::make_unique<ShadowfieldBake>();

@@ -7,9 +7,9 @@
 //
 // A bake runs the steps of TechniqueBake in order (run_bake): import the scene, bake (the
 // transfer), quantise, write the blob, check it through the runtime, report. A trade runs
-// TechniqueTrade (run_trade): check the options, import the scene, prepare (lights and cached
-// references), build one Embree scene, sweep (bake, load, shade and measure each setting;
-// trade.csv and trade.md).
+// TechniqueTrade (run_trade): check the options, load the scene (by default SCENE imported),
+// prepare (lights and cached references), build one Embree scene, sweep (bake, load, shade and
+// measure each setting; trade.csv and trade.md).
 #pragma once
 
 #include <cstddef>
@@ -90,6 +90,9 @@ class TechniqueTrade {
   virtual OptionList options() = 0;
   // Throws Error naming the flag when an option value cannot be swept; before any work.
   virtual void check(const TradeInput& input) const = 0;
+  // The scene SCENE names. Default: the file imported (.gltf, .glb, .obj); a technique whose
+  // trade also takes scenes by another name (shadowfield's presets) overrides it.
+  virtual Scene load_scene(const TradeInput& input, const Context& ctx);
   // Loads the maps as the technique's runtime takes them, and their cached references.
   virtual void prepare(const Scene& scene, const TradeInput& input, const Context& ctx) = 0;
   // Bakes, loads, shades and measures every setting; writes OUT_DIR/trade.csv and trade.md.
