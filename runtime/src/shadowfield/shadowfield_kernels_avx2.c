@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* Technique `shadowfield`'s inner loops for AVX2 + FMA (this file is compiled with -mavx2 -mfma
- * and only called when the CPU has both; shadowfield_kernels.h): eight coefficients a lane, a
- * masked load for a row's last partial group, dot products summed by one tree for eight rows. */
+ * and only called when the CPU has both; shadowfield_kernels.h): eight coefficients a lane (eight
+ * vertices for the triple product), a masked load for a row's last partial group, dot products
+ * summed by one tree for eight rows. */
 #include <immintrin.h>
 #include <math.h>
 #include <string.h>
@@ -59,10 +60,9 @@ static void read_rows_avx2(const float* field, uint64_t plane, uint32_t planes, 
 
 /* Band by band with the blocks column-major: out_band = sum_b in_b column_b, the planes' sums
  * side by side so that their multiply-adds overlap. */
-static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
-                        uint32_t planes) {
+static void rotate_columns(const float* block, uint32_t order, const float* in, float* out,
+                           uint32_t planes) {
   const uint32_t n2 = order * order;
-  const float* block = pair->sh_rotation_columns;
   for (uint32_t l = 0; l < order; ++l) {
     const uint32_t width = 2u * l + 1u, base = l * l;
     for (uint32_t a = 0; a < width; a += 8u) {
@@ -78,6 +78,17 @@ static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in
     }
     block += width * width;
   }
+}
+
+static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                        uint32_t planes) {
+  rotate_columns(pair->sh_rotation_columns, order, in, out, planes);
+}
+
+/* The row-major blocks read column-major are the transpose's, the inverse rotation. */
+static void rotate_back_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                             uint32_t planes) {
+  rotate_columns(pair->sh_rotation, order, in, out, planes);
 }
 
 /* out[r] = rows_at[r] . vectors_at[r] (n floats each) for r < count, eight dots per tree,
@@ -102,6 +113,31 @@ static void light_times_avx2(const float* matrix, uint32_t n2, const float* visi
     vectors[r] = visibility;
   }
   dots(rows, vectors, 3u * n2, n2, light);
+}
+
+/* One lane a vertex: each non-zero Gaunt coefficient is one multiply and one multiply-add for
+ * all eight, against the scalar form's per-vertex sparse loop. */
+static void multiply_lanes_avx2(const prt_sf_gaunt* gaunt, float* a, const float* b,
+                                uint32_t mask) {
+  const uint32_t n2 = gaunt->order * gaunt->order;
+  __m256 product[PRT_SF_MAX_COEFFS];
+  for (uint32_t k = 0; k < n2; ++k) {
+    __m256 acc = _mm256_setzero_ps();
+    for (uint32_t e = gaunt->k_start[k]; e < gaunt->k_start[k + 1u]; ++e) {
+      const __m256 ca = _mm256_mul_ps(_mm256_set1_ps(gaunt->value[e]),
+                                      _mm256_loadu_ps(a + gaunt->i[e] * PRT_SF_LANES));
+      acc = _mm256_fmadd_ps(ca, _mm256_loadu_ps(b + gaunt->j[e] * PRT_SF_LANES), acc);
+    }
+    product[k] = acc;
+  }
+  const __m256 keep = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
+                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+                         _mm256_setzero_si256()));
+  for (uint32_t k = 0; k < n2; ++k) {
+    float* at = a + k * PRT_SF_LANES;
+    _mm256_storeu_ps(at, _mm256_blendv_ps(product[k], _mm256_loadu_ps(at), keep));
+  }
 }
 
 static void transfer_dot_avx2(const float* transfer, uint32_t n2, uint32_t terms,
@@ -154,5 +190,6 @@ static void cast_field_avx2(const prt_sf_object* object, const float* weights, f
   }
 }
 
-const prt_sf_kernels prt_sf_kernels_avx2 = {read_rows_avx2, rotate_avx2, light_times_avx2,
-                                            transfer_dot_avx2, cast_field_avx2};
+const prt_sf_kernels prt_sf_kernels_avx2 = {
+    read_rows_avx2,      rotate_avx2,       rotate_back_avx2, light_times_avx2,
+    multiply_lanes_avx2, transfer_dot_avx2, cast_field_avx2};

@@ -11,8 +11,10 @@
 
 #include <prt/prt.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -159,6 +161,96 @@ TEST(ShadowfieldSimdKernels, RotationsAgree) {
       }
     }
     check_within(scalar, simd, magnitude, 2 * order - 1);
+  }
+}
+
+// The inverse rotation (a receiver's transfer turned into a source's frame): the backends agree
+// within the bound of the transpose's sums, and turning back undoes the rotation up to the
+// rounding of the blocks' orthogonality.
+TEST(ShadowfieldSimdKernels, RotationsBackAgreeAndUndoTheRotation) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t order : {3u, 4u, 6u}) {
+    SyntheticObject a = make_patch(order, 2), b = make_patch(order, 2);
+    TestScene s(2);
+    const float axis[3] = {-0.36f, 0.8f, 0.48f};
+    float turn[9];
+    axis_rotation(axis, 2.1f, turn);
+    s.add_instance(s.add_object(a), make_transform(identity_rotation(), 0, 0, 0));
+    s.add_instance(s.add_object(b), make_transform(turn, 0.2f, -0.4f, 0.1f));
+    const std::vector<float> light = test_light(order);
+    const float eye[3] = {0, 3, 1};
+    ASSERT_EQ(prt_shadowfield_prepare(s.scene, light.data(), eye, nullptr), PRT_OK);
+    ASSERT_GT(s.scene->pair_count, 0u);
+    const prt_sf_pair* pair = &s.scene->pairs[0];
+    const uint32_t n2 = order * order;
+    const std::vector<float> in = random_floats(2 * n2, order + 40);
+    std::vector<float> scalar(2 * n2), simd(2 * n2);
+    prt_sf_kernels_scalar.rotate_back(pair, order, in.data(), scalar.data(), 2);
+    prt_sf_kernels_avx2.rotate_back(pair, order, in.data(), simd.data(), 2);
+    // Row a of the transpose is column a of the row-major blocks.
+    std::vector<double> magnitude(2 * n2, 0.0);
+    for (uint32_t c = 0; c < 2; ++c) {
+      const float* block = pair->sh_rotation;
+      for (uint32_t l = 0; l < order; ++l) {
+        const uint32_t width = 2 * l + 1, base = l * l;
+        for (uint32_t r = 0; r < width; ++r)
+          for (uint32_t q = 0; q < width; ++q)
+            magnitude[c * n2 + base + r] +=
+                std::fabs(double(block[q * width + r]) * in[c * n2 + base + q]);
+        block += width * width;
+      }
+    }
+    check_within(scalar, simd, magnitude, 2 * order - 1);
+    for (const prt_sf_kernels* kernels : {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2}) {
+      std::vector<float> turned(2 * n2), back(2 * n2);
+      kernels->rotate(pair, order, in.data(), turned.data(), 2);
+      kernels->rotate_back(pair, order, turned.data(), back.data(), 2);
+      for (uint32_t e = 0; e < 2 * n2; ++e) EXPECT_NEAR(back[e], in[e], 2e-6) << "value " << e;
+    }
+  }
+}
+
+// The triple product eight vertices at a time: in the masked lanes the SIMD kernel is within the
+// bound of each coefficient's sparse sum of the scalar one, which is prt_sf_sh_multiply lane by
+// lane; the other lanes keep their bits on both.
+TEST(ShadowfieldSimdKernels, MultiplyLanesAgreesAndKeepsTheOtherLanes) {
+  SKIP_WITHOUT_AVX2();
+  prt_allocator allocator{};
+  allocator.alloc = [](void*, size_t size, size_t) -> void* { return std::malloc(size); };
+  allocator.free = [](void*, void* p, size_t) { std::free(p); };
+  for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
+    prt_sf_gaunt gaunt{};
+    ASSERT_EQ(prt_sf_gaunt_build(&allocator, order, &gaunt), PRT_OK);
+    const uint32_t n2 = order * order, mask = 0xB5u;
+    const std::vector<float> a = random_floats(n2 * PRT_SF_LANES, order + 50);
+    const std::vector<float> b = random_floats(n2 * PRT_SF_LANES, order + 60);
+    std::vector<float> scalar = a, simd = a;
+    prt_sf_kernels_scalar.multiply_lanes(&gaunt, scalar.data(), b.data(), mask);
+    prt_sf_kernels_avx2.multiply_lanes(&gaunt, simd.data(), b.data(), mask);
+    std::vector<float> masked_scalar, masked_simd;
+    std::vector<double> magnitude;
+    uint32_t longest = 0;
+    for (uint32_t k = 0; k < n2; ++k) {
+      longest = std::max(longest, gaunt.k_start[k + 1] - gaunt.k_start[k]);
+      for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+        const size_t at = k * PRT_SF_LANES + lane;
+        if (!(mask >> lane & 1u)) {
+          EXPECT_EQ(scalar[at], a[at]);
+          EXPECT_EQ(simd[at], a[at]);
+          continue;
+        }
+        double sum = 0.0;
+        for (uint32_t e = gaunt.k_start[k]; e < gaunt.k_start[k + 1]; ++e)
+          sum += std::fabs(double(gaunt.value[e]) * a[gaunt.i[e] * PRT_SF_LANES + lane] *
+                           b[gaunt.j[e] * PRT_SF_LANES + lane]);
+        magnitude.push_back(sum);
+        masked_scalar.push_back(scalar[at]);
+        masked_simd.push_back(simd[at]);
+      }
+    }
+    // Each product has two multiplications: a sum of m of them is within gamma_(m + 2).
+    check_within(masked_scalar, masked_simd, magnitude, longest + 2);
+    prt_sf_gaunt_free(&allocator, &gaunt);
   }
 }
 
