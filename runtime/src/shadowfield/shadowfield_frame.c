@@ -86,9 +86,15 @@ static void fill_pair(const prt_shadowfield_scene* scene, uint32_t i, uint32_t j
   const prt_sf_instance* receiver = &scene->instances[i];
   const prt_sf_instance* other = &scene->instances[j];
   float other_t[9], rotation[9], receiver_t[9];
+  const prt_sf_object* other_object = scene->objects[other->object];
   pair->other = j;
   pair->occludes = occludes;
   pair->lights = lights;
+  pair->oof_log_span = prt_sf_log_span(&other_object->oof_shells);
+  pair->srf_log_span = lights ? prt_sf_log_span(&other_object->srf_shells) : 0.0;
+  pair->fields_share_sphere =
+      occludes && lights &&
+      prt_sf_shells_share_sphere(&other_object->oof_shells, &other_object->srf_shells);
   /* p = R_j^T (s_i R_i x + t_i - t_j) / s_j */
   transpose3(other->rotation, other_t);
   multiply3(other_t, receiver->rotation, rotation);
@@ -154,6 +160,36 @@ static void light_product(const prt_sf_gaunt* gaunt, const float* light, float* 
       for (uint32_t c = 0; c < 3u; ++c)
         matrix[((size_t)c * n2 + k) * n2 + gaunt->j[e]] +=
             gaunt->value[e] * light[3u * gaunt->i[e] + c];
+}
+
+/* Room for every receiver vertex's row of cells (prepare's pairs), and each receiver's start. */
+static prt_result reserve_cells(prt_shadowfield_scene* scene) {
+  size_t count = 0;
+  for (uint32_t i = 0; i < scene->instance_count; ++i) {
+    prt_sf_instance* instance = &scene->instances[i];
+    instance->cell_first = count;
+    count += (size_t)scene->objects[instance->object]->vertex_count * instance->pair_count;
+  }
+  if (count <= scene->cell_capacity) return PRT_OK;
+  prt_sf_cell* cells =
+      (prt_sf_cell*)prt_internal_alloc(&scene->allocator, count * sizeof(prt_sf_cell), 16);
+  if (!cells) return PRT_ERROR_OUT_OF_MEMORY;
+  if (scene->cells)
+    prt_internal_free(&scene->allocator, scene->cells, scene->cell_capacity * sizeof(prt_sf_cell));
+  scene->cells = cells;
+  scene->cell_capacity = count;
+  return PRT_OK;
+}
+
+/* A new stamp for the frame, so no cell located before it is read; after 2^32 - 1 frames the
+ * stamps start again from cleared ones. */
+static void next_frame(prt_shadowfield_scene* scene) {
+  if (++scene->frame != 0u) return;
+  for (uint32_t i = 0; i < scene->instance_count; ++i) {
+    const prt_sf_instance* instance = &scene->instances[i];
+    memset(instance->located, 0, scene->objects[instance->object]->vertex_count * sizeof(uint32_t));
+  }
+  scene->frame = 1u;
 }
 
 static int all_finite(const float* values, size_t count) {
@@ -236,6 +272,9 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
   if (reserve_pairs(scene, find_pairs(scene, NULL)) != PRT_OK)
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield pairs");
   scene->pair_count = find_pairs(scene, scene->pairs);
+  if (reserve_cells(scene) != PRT_OK)
+    return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield cells");
+  next_frame(scene);
   memcpy(scene->eye, eye, sizeof scene->eye);
   scene->bounces = bounces;
   scene->kernels = kernels;
