@@ -33,19 +33,31 @@ static prt_sf_cell* cell_row(const prt_shadowfield_scene* scene, const prt_sf_in
   return scene->cells + receiver->cell_first + (size_t)v * receiver->pair_count;
 }
 
+/* Vertex v's transfer turned into the source of its pair q (receivers of fewer terms than
+ * colours only). */
+static float* turned_transfer(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                              uint32_t v, uint32_t q, uint32_t terms) {
+  const uint32_t n2 = scene->order * scene->order;
+  return scene->turned + receiver->turned_first +
+         ((size_t)v * receiver->pair_count + q) * terms * n2;
+}
+
 /* ---- Gather --------------------------------------------------------------------------------- */
 
 /* Step 2 for vertices [first, first + count) (count <= PRT_SF_LANES), one lane each: the
  * environment times every blocker's visibility, in the receiver's frame, into
  * light[lane][c n^2 + k] (one plane of coefficients per colour). Each lane's visibilities are
  * multiplied in the pairs' order, as vertex by vertex. With `locate_sources`, also locates each
- * vertex in every source's SRF grid into its row of cells, which the bounces read. */
+ * vertex in every source's SRF grid into its row of cells, which the bounces read, and for a
+ * receiver of fewer terms than colours turns its transfer into each source's frame that reaches
+ * it. */
 static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                            uint32_t first, uint32_t count, int locate_sources,
                            float light[][PRT_SF_MAX_COEFFS * 3u]) {
   const prt_sf_kernels* kernels = scene->kernels;
   const prt_sf_object* object = scene->objects[receiver->object];
-  const uint32_t order = scene->order, n2 = order * order;
+  const uint32_t order = scene->order, n2 = order * order, terms = object->terms;
+  const int turn_transfer = locate_sources && terms < 3u;
   float visibility[PRT_SF_MAX_COEFFS * PRT_SF_LANES], next[PRT_SF_MAX_COEFFS * PRT_SF_LANES];
   float local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
   /* The SIMD product computes every lane: the idle ones hold zeros, not garbage. */
@@ -61,16 +73,19 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
       float p[3];
       point_in_other(pair, object->positions + 3u * v, p);
       prt_sf_cell cell;
-      if (locate_sources && pair->fields_share_sphere) {
+      prt_sf_cell* source_cell = locate_sources ? &cell_row(scene, receiver, v)[q] : NULL;
+      if (source_cell && pair->fields_share_sphere) {
         prt_sf_cell_locate_two(&other->oof_shells, pair->oof_log_span, &other->srf_shells,
-                               pair->srf_log_span, p, &cell, &cell_row(scene, receiver, v)[q]);
-      } else {
-        if (locate_sources && pair->lights)
-          prt_sf_cell_locate(&other->srf_shells, pair->srf_log_span, p,
-                             &cell_row(scene, receiver, v)[q]);
-        if (!pair->occludes) continue;
-        prt_sf_cell_locate(&other->oof_shells, pair->oof_log_span, p, &cell);
+                               pair->srf_log_span, p, &cell, source_cell);
+      } else if (source_cell && pair->lights) {
+        prt_sf_cell_locate(&other->srf_shells, pair->srf_log_span, p, source_cell);
       }
+      if (turn_transfer && pair->lights && source_cell->count > 0u)
+        kernels->rotate_back(pair, order, object->transfer + (size_t)v * terms * n2,
+                             turned_transfer(scene, receiver, v, q, terms), terms);
+      if (!pair->occludes) continue;
+      if (!(source_cell && pair->fields_share_sphere))
+        prt_sf_cell_locate(&other->oof_shells, pair->oof_log_span, p, &cell);
       if (cell.count == 0u) continue;
       read_cell(kernels, &other->oof_shells, other->oof, n2, 1u, &cell, local);
       kernels->rotate(pair, order, local, turned, 1u);
@@ -94,9 +109,9 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
 
 /* Step 3: L_k(v) from every source's field of the previous pass; 0 when no source reaches
  * vertex v (at x). The sources' cells come from v's direct pass when it ran this frame.
- * T_k . R f = R^T T_k . f: a receiver of fewer terms than colours turns its transfer into each
- * source's frame (terms rotations a source), others turn each source's field (3 rotations) and
- * take one dot product of the sum. */
+ * T_k . R f = R^T T_k . f: a receiver of fewer terms than colours dots each source's field with
+ * its transfer turned into the source's frame (by its direct pass, or here when that did not
+ * run), others turn each source's field (3 rotations a pass) and dot the sum once. */
 static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                           uint32_t v, const float x[3], const float* transfer, uint32_t terms,
                           float* out) {
@@ -128,8 +143,12 @@ static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_insta
     if (cell.count == 0u) continue;
     read_cell(kernels, &object->srf_shells, source->field, n2, 3u, &cell, local);
     if (turn_transfer) {
-      kernels->rotate_back(pair, order, transfer, turned, terms);
-      kernels->transfer_dot(turned, n2, terms, local, part);
+      const float* turned_back = turned;
+      if (row)
+        turned_back = turned_transfer(scene, receiver, v, q, terms);
+      else
+        kernels->rotate_back(pair, order, transfer, turned, terms);
+      kernels->transfer_dot(turned_back, n2, terms, local, part);
       for (uint32_t e = 0; e < 3u * terms; ++e) out[e] += part[e];
     } else {
       kernels->rotate(pair, order, local, turned, 3u);

@@ -162,22 +162,38 @@ static void light_product(const prt_sf_gaunt* gaunt, const float* light, float* 
             gaunt->value[e] * light[3u * gaunt->i[e] + c];
 }
 
-/* Room for every receiver vertex's row of cells (prepare's pairs), and each receiver's start. */
+/* Room for every receiver vertex's row of cells (prepare's pairs) and, for a receiver of fewer
+ * terms than colours, of turned transfers; each receiver's start in both. */
 static prt_result reserve_cells(prt_shadowfield_scene* scene) {
-  size_t count = 0;
+  size_t count = 0, floats = 0;
+  const uint32_t n2 = scene->order * scene->order;
   for (uint32_t i = 0; i < scene->instance_count; ++i) {
     prt_sf_instance* instance = &scene->instances[i];
+    const prt_sf_object* object = scene->objects[instance->object];
+    const size_t row_count = (size_t)object->vertex_count * instance->pair_count;
     instance->cell_first = count;
-    count += (size_t)scene->objects[instance->object]->vertex_count * instance->pair_count;
+    instance->turned_first = floats;
+    count += row_count;
+    if (object->terms < 3u) floats += row_count * object->terms * n2;
   }
-  if (count <= scene->cell_capacity) return PRT_OK;
-  prt_sf_cell* cells =
-      (prt_sf_cell*)prt_internal_alloc(&scene->allocator, count * sizeof(prt_sf_cell), 16);
-  if (!cells) return PRT_ERROR_OUT_OF_MEMORY;
-  if (scene->cells)
-    prt_internal_free(&scene->allocator, scene->cells, scene->cell_capacity * sizeof(prt_sf_cell));
-  scene->cells = cells;
-  scene->cell_capacity = count;
+  if (count > scene->cell_capacity) {
+    prt_sf_cell* cells =
+        (prt_sf_cell*)prt_internal_alloc(&scene->allocator, count * sizeof(prt_sf_cell), 16);
+    if (!cells) return PRT_ERROR_OUT_OF_MEMORY;
+    if (scene->cells)
+      prt_internal_free(&scene->allocator, scene->cells,
+                        scene->cell_capacity * sizeof(prt_sf_cell));
+    scene->cells = cells;
+    scene->cell_capacity = count;
+  }
+  if (floats > scene->turned_capacity) {
+    float* turned = (float*)prt_internal_alloc(&scene->allocator, floats * sizeof(float), 16);
+    if (!turned) return PRT_ERROR_OUT_OF_MEMORY;
+    if (scene->turned)
+      prt_internal_free(&scene->allocator, scene->turned, scene->turned_capacity * sizeof(float));
+    scene->turned = turned;
+    scene->turned_capacity = floats;
+  }
   return PRT_OK;
 }
 

@@ -65,6 +65,7 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     prt_internal_free(allocator, scene->pairs, scene->pair_capacity * sizeof(prt_sf_pair));
   if (scene->cells)
     prt_internal_free(allocator, scene->cells, scene->cell_capacity * sizeof(prt_sf_cell));
+  free_floats(allocator, scene->turned, scene->turned_capacity);
   prt_sf_gaunt_free(allocator, &scene->gaunt);
   if (scene->objects)
     prt_internal_free(allocator, scene->objects,

@@ -92,6 +92,9 @@ typedef struct prt_sf_instance {
   /* Where this receiver's cells start in scene->cells: vertex v's row of pair_count cells (the
    * SRF lookup of each of its pairs) begins at cell_first + v pair_count. */
   size_t cell_first;
+  /* A receiver of fewer terms than colours: where its transfer turned into each source's frame
+   * starts in scene->turned (vertex v, pair q: turned_first + (v pair_count + q) terms n^2). */
+  size_t turned_first;
 } prt_sf_instance;
 
 struct prt_shadowfield_scene {
@@ -109,6 +112,10 @@ struct prt_shadowfield_scene {
    * direct pass (they depend only on the placements) and read by every bounce. */
   prt_sf_cell* cells;
   size_t cell_capacity;
+  /* Diffuse receivers' transfer turned into each source's frame (R^T T), by the direct pass
+   * with the cells and read by every bounce. */
+  float* turned;
+  size_t turned_capacity;
   uint32_t frame; /* the prepared frame's stamp, never 0 */
 
   /* The prepared frame. */
