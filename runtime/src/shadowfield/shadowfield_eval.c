@@ -223,9 +223,42 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
     }
 }
 
+/* Marks the source's SRF points some receiver's cell reads this frame, or every point when a
+ * receiver vertex that it reaches has no cells this frame (its bounces locate afresh). */
+static void mark_needed(const prt_shadowfield_scene* scene, uint32_t instance) {
+  prt_sf_instance* source = &scene->instances[instance];
+  const prt_sf_shells* grid = &scene->objects[source->object]->srf_shells;
+  const uint64_t points = prt_sf_point_count(grid);
+  memset(source->needed, 0, points);
+  for (uint32_t i = 0; i < scene->instance_count; ++i) {
+    const prt_sf_instance* receiver = &scene->instances[i];
+    const uint32_t vertices = scene->objects[receiver->object]->vertex_count;
+    for (uint32_t q = 0; q < receiver->pair_count; ++q) {
+      const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
+      if (pair->other != instance || !pair->lights) continue;
+      for (uint32_t v = 0; v < vertices; ++v) {
+        if (receiver->located[v] != scene->frame) {
+          memset(source->needed, 1, points);
+          return;
+        }
+        const prt_sf_cell* cell = &cell_row(scene, receiver, v)[q];
+        if (cell->count == 0u) continue;
+        prt_sf_lookup lookup;
+        prt_sf_cell_lookup(grid, cell, &lookup);
+        for (uint32_t e = 0; e < lookup.count; ++e) source->needed[lookup.index[e]] = 1u;
+      }
+    }
+  }
+}
+
 void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
-  const prt_sf_instance* source = &scene->instances[instance];
+  prt_sf_instance* source = &scene->instances[instance];
   if (!source->is_source) return;
+  /* The cells are the frame's from its direct pass on, so the marks serve every pass. */
+  if (source->needed_frame != scene->frame) {
+    mark_needed(scene, instance);
+    source->needed_frame = scene->frame;
+  }
   const prt_sf_object* object = scene->objects[source->object];
   const float* incident =
       source->incident + (size_t)pass * object->vertex_count * object->terms * 3u;
@@ -239,12 +272,21 @@ uint64_t prt_sf_field_points(const prt_shadowfield_scene* scene, uint32_t instan
   return prt_sf_point_count(&scene->objects[source->object]->srf_shells);
 }
 
+/* Only the points prt_sf_project_weights marked: the others are never read this frame. Each
+ * point's value is the same whatever run it is cast in. */
 void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, uint64_t first,
                        uint64_t count) {
   const prt_sf_instance* source = &scene->instances[instance];
   if (!source->is_source) return;
-  scene->kernels->cast_field(scene->objects[source->object], source->weights, source->field, first,
-                             count);
+  const prt_sf_object* object = scene->objects[source->object];
+  const uint64_t end = first + count;
+  for (uint64_t p = first; p < end;) {
+    while (p < end && !source->needed[p]) ++p;
+    const uint64_t start = p;
+    while (p < end && source->needed[p]) ++p;
+    if (p > start)
+      scene->kernels->cast_field(object, source->weights, source->field, start, p - start);
+  }
 }
 
 void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {

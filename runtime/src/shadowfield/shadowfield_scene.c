@@ -58,6 +58,9 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     free_floats(allocator, instance->incident, instance->incident_floats);
     free_floats(allocator, instance->weights, instance->weights_floats);
     free_floats(allocator, instance->field, instance->field_floats);
+    if (instance->needed)
+      prt_internal_free(allocator, instance->needed,
+                        prt_sf_point_count(&scene->objects[instance->object]->srf_shells));
     free_floats(allocator, instance->light_product, instance->light_product_floats);
     free_stamps(allocator, instance->located, scene->objects[instance->object]->vertex_count);
   }
@@ -210,12 +213,16 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
     instance->weights = alloc_floats(&scene->allocator, instance->weights_floats);
     instance->field_floats = (size_t)prt_sf_point_count(&o->srf_shells) * n2 * 3u;
     instance->field = alloc_floats(&scene->allocator, instance->field_floats);
-    failed = failed || !instance->weights || !instance->field;
+    instance->needed =
+        (uint8_t*)prt_internal_alloc(&scene->allocator, prt_sf_point_count(&o->srf_shells), 16);
+    failed = failed || !instance->weights || !instance->field || !instance->needed;
   }
   if (failed) {
     free_floats(&scene->allocator, instance->incident, instance->incident_floats);
     free_floats(&scene->allocator, instance->weights, instance->weights_floats);
     free_floats(&scene->allocator, instance->field, instance->field_floats);
+    if (instance->needed)
+      prt_internal_free(&scene->allocator, instance->needed, prt_sf_point_count(&o->srf_shells));
     free_floats(&scene->allocator, instance->light_product, instance->light_product_floats);
     free_stamps(&scene->allocator, instance->located, o->vertex_count);
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield instance buffers");

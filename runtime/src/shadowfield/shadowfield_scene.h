@@ -75,6 +75,10 @@ typedef struct prt_sf_instance {
    * [(c points + p) n^2 + coef]; NULL when the object has no basis. */
   float* field;
   size_t field_floats;
+  /* Per SRF point, 1 when some receiver's cell reads it this frame (needed_frame): the field is
+   * cast at those points only. NULL when the object has no basis. */
+  uint8_t* needed;
+  uint32_t needed_frame;
 
   /* The triple product with the frame's light as a matrix, one plane per colour:
    * [(c n^2 + k) n^2 + j] = sum_i C_ijk light_i,c, so that light x V = this . V. */
