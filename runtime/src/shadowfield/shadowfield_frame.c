@@ -26,8 +26,8 @@ void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, f
 
 /* The band blocks of the SH rotation by `rotation` (row-major 3x3): prt_sh_rotate of the basis
  * vectors, one channel each, gives the matrix's columns. */
-static void rotation_blocks(uint32_t order, const float rotation[9], float* blocks,
-                            float* columns) {
+static void rotation_blocks(uint32_t order, const float rotation[9], float* blocks, float* columns,
+                            float* padded, float* padded_back) {
   const uint32_t n2 = order * order;
   float identity[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS],
       matrix[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS];
@@ -35,15 +35,22 @@ static void rotation_blocks(uint32_t order, const float rotation[9], float* bloc
   for (uint32_t i = 0; i < n2; ++i) identity[i * n2 + i] = 1.0f;
   prt_sh_rotate(order, rotation, identity, matrix, n2);
   float* block = blocks;
+  memset(padded, 0, PRT_SF_PADDED_ROTATION_FLOATS * sizeof(float));
+  memset(padded_back, 0, PRT_SF_PADDED_ROTATION_FLOATS * sizeof(float));
   for (uint32_t l = 0; l < order; ++l) {
-    const uint32_t width = 2u * l + 1u, base = l * l;
+    const uint32_t width = 2u * l + 1u, base = l * l, pad = (width + 7u) / 8u * 8u;
     for (uint32_t a = 0; a < width; ++a)
       for (uint32_t b = 0; b < width; ++b) {
-        block[a * width + b] = matrix[(base + a) * n2 + base + b];
-        columns[b * width + a] = matrix[(base + a) * n2 + base + b];
+        const float m = matrix[(base + a) * n2 + base + b];
+        block[a * width + b] = m;
+        columns[b * width + a] = m;
+        padded[b * pad + a] = m;
+        padded_back[a * pad + b] = m;
       }
     block += width * width;
     columns += width * width;
+    padded += width * pad;
+    padded_back += width * pad;
   }
 }
 
@@ -108,7 +115,8 @@ static void fill_pair(const prt_shadowfield_scene* scene, uint32_t i, uint32_t j
   /* A field in j's frame seen in i's: rotation R_i^T R_j. */
   transpose3(receiver->rotation, receiver_t);
   multiply3(receiver_t, other->rotation, rotation);
-  rotation_blocks(scene->order, rotation, pair->sh_rotation, pair->sh_rotation_columns);
+  rotation_blocks(scene->order, rotation, pair->sh_rotation, pair->sh_rotation_columns,
+                  pair->padded_columns, pair->padded_columns_back);
 }
 
 /* Visits every interacting pair in receiver order; with `pairs` NULL only counts them. */

@@ -58,37 +58,35 @@ static void read_rows_avx2(const float* field, uint64_t plane, uint32_t planes, 
     }
 }
 
-/* Band by band with the blocks column-major: out_band = sum_b in_b column_b, the planes' sums
- * side by side so that their multiply-adds overlap. */
-static void rotate_columns(const float* block, uint32_t order, const float* in, float* out,
-                           uint32_t planes) {
+/* Band by band with the columns padded to whole vectors: out_band = sum_b in_b column_b, the
+ * planes' sums side by side so that their multiply-adds overlap; only the stores are masked. */
+static void rotate_padded(const float* block, uint32_t order, const float* in, float* out,
+                          uint32_t planes) {
   const uint32_t n2 = order * order;
   for (uint32_t l = 0; l < order; ++l) {
-    const uint32_t width = 2u * l + 1u, base = l * l;
+    const uint32_t width = 2u * l + 1u, base = l * l, pad = (width + 7u) / 8u * 8u;
     for (uint32_t a = 0; a < width; a += 8u) {
-      const uint32_t left = width - a;
       __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
       for (uint32_t b = 0; b < width; ++b) {
-        const __m256 column = load_part(block + b * width + a, left);
+        const __m256 column = _mm256_loadu_ps(block + b * pad + a);
         for (uint32_t c = 0; c < planes && c < 3u; ++c)
           acc[c] = _mm256_fmadd_ps(_mm256_set1_ps(in[c * n2 + base + b]), column, acc[c]);
       }
       for (uint32_t c = 0; c < planes && c < 3u; ++c)
-        store_part(out + c * n2 + base + a, left, acc[c]);
+        store_part(out + c * n2 + base + a, width - a, acc[c]);
     }
-    block += width * width;
+    block += width * pad;
   }
 }
 
 static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                         uint32_t planes) {
-  rotate_columns(pair->sh_rotation_columns, order, in, out, planes);
+  rotate_padded(pair->padded_columns, order, in, out, planes);
 }
 
-/* The row-major blocks read column-major are the transpose's, the inverse rotation. */
 static void rotate_back_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                              uint32_t planes) {
-  rotate_columns(pair->sh_rotation, order, in, out, planes);
+  rotate_padded(pair->padded_columns_back, order, in, out, planes);
 }
 
 /* out[r] = rows_at[r] . vectors_at[r] (n floats each) for r < count, eight dots per tree,

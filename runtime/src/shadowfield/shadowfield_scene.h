@@ -13,6 +13,9 @@
 #define PRT_SF_MAX_COEFFS (PRT_SF_GAUNT_MAX_ORDER * PRT_SF_GAUNT_MAX_ORDER)
 /* An SH rotation up to order 6 as its band blocks: sum over l < 6 of (2l + 1)^2. */
 #define PRT_SF_ROTATION_FLOATS 286u
+/* The same with each block's columns padded with zeros to a multiple of 8 floats: sum over
+ * l < 6 of (2l + 1) x 8 ceil((2l + 1) / 8). */
+#define PRT_SF_PADDED_ROTATION_FLOATS 448u
 #define PRT_SF_PASSES (PRT_SHADOWFIELD_MAX_BOUNCES + 1u)
 /* The most BRDF terms an object may have (the baker's default is 4). */
 #define PRT_SF_MAX_TERMS 64u
@@ -58,6 +61,10 @@ typedef struct prt_sf_pair {
   /* The same band blocks column-major (each block's [b width + a] = row a, column b), for the
    * SIMD kernels. */
   float sh_rotation_columns[PRT_SF_ROTATION_FLOATS];
+  /* For the SIMD kernels: the columns padded (column b of band l at [b pad(2l + 1) + a]) of the
+   * rotation and of its inverse (the transpose), so whole vectors load without masks. */
+  float padded_columns[PRT_SF_PADDED_ROTATION_FLOATS];
+  float padded_columns_back[PRT_SF_PADDED_ROTATION_FLOATS];
 } prt_sf_pair;
 
 typedef struct prt_sf_instance {
