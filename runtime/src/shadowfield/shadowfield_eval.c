@@ -121,10 +121,10 @@ static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_insta
       receiver->located[v] == scene->frame ? cell_row(scene, receiver, v) : NULL;
   const int turn_transfer = terms < 3u;
   float light[PRT_SF_MAX_COEFFS * 3u], local[PRT_SF_MAX_COEFFS * 3u],
-      turned[PRT_SF_MAX_COEFFS * 3u], part[3u * 2u];
+      turned[PRT_SF_MAX_COEFFS * 3u], partial[3u * 2u * PRT_SF_LANES];
   int lit = 0;
   if (turn_transfer)
-    memset(out, 0, (size_t)terms * 3u * sizeof(float));
+    memset(partial, 0, sizeof partial);
   else
     memset(light, 0, (size_t)n2 * 3u * sizeof(float));
   for (uint32_t q = 0; q < receiver->pair_count; ++q) {
@@ -141,22 +141,27 @@ static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_insta
       prt_sf_cell_locate(&object->srf_shells, pair->srf_log_span, p, &cell);
     }
     if (cell.count == 0u) continue;
-    read_cell(kernels, &object->srf_shells, source->field, n2, 3u, &cell, local);
+    prt_sf_lookup lookup;
+    prt_sf_cell_lookup(&object->srf_shells, &cell, &lookup);
+    const uint64_t plane = prt_sf_point_count(&object->srf_shells) * n2;
     if (turn_transfer) {
       const float* turned_back = turned;
       if (row)
         turned_back = turned_transfer(scene, receiver, v, q, terms);
       else
         kernels->rotate_back(pair, order, transfer, turned, terms);
-      kernels->transfer_dot(turned_back, n2, terms, local, part);
-      for (uint32_t e = 0; e < 3u * terms; ++e) out[e] += part[e];
+      kernels->read_dot(source->field, plane, n2, &lookup, turned_back, terms, partial);
     } else {
+      kernels->read_rows(source->field, plane, 3u, n2, &lookup, local);
       kernels->rotate(pair, order, local, turned, 3u);
       for (uint32_t e = 0; e < 3u * n2; ++e) light[e] += turned[e];
     }
     lit = 1;
   }
-  if (turn_transfer) return;
+  if (turn_transfer) {
+    kernels->reduce_lanes(partial, 3u * terms, out);
+    return;
+  }
   if (lit)
     kernels->transfer_dot(transfer, n2, terms, light, out);
   else

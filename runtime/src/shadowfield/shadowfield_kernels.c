@@ -19,6 +19,28 @@ static void read_rows_scalar(const float* field, uint64_t plane, uint32_t planes
   }
 }
 
+/* The dots whole, in lane 0. */
+static void read_dot_scalar(const float* field, uint64_t plane, uint32_t width,
+                            const prt_sf_lookup* lookup, const float* transfer, uint32_t terms,
+                            float* partial) {
+  float local[3u * PRT_SF_MAX_COEFFS];
+  read_rows_scalar(field, plane, 3u, width, lookup, local);
+  for (uint32_t k = 0; k < terms; ++k)
+    for (uint32_t c = 0; c < 3u; ++c) {
+      float sum = 0.0f;
+      for (uint32_t i = 0; i < width; ++i) sum += transfer[k * width + i] * local[c * width + i];
+      partial[(3u * k + c) * PRT_SF_LANES] += sum;
+    }
+}
+
+static void reduce_lanes_scalar(const float* partial, uint32_t count, float* out) {
+  for (uint32_t r = 0; r < count; ++r) {
+    float sum = 0.0f;
+    for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) sum += partial[r * PRT_SF_LANES + lane];
+    out[r] = sum;
+  }
+}
+
 static void rotate_scalar(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                           uint32_t planes) {
   const uint32_t n2 = order * order;
@@ -100,5 +122,6 @@ static void cast_field_scalar(const prt_sf_object* object, const float* weights,
 }
 
 const prt_sf_kernels prt_sf_kernels_scalar = {
-    read_rows_scalar,      rotate_scalar,       rotate_back_scalar, light_times_scalar,
-    multiply_lanes_scalar, transfer_dot_scalar, cast_field_scalar};
+    read_rows_scalar,    rotate_scalar,         rotate_back_scalar,
+    light_times_scalar,  multiply_lanes_scalar, read_dot_scalar,
+    reduce_lanes_scalar, transfer_dot_scalar,   cast_field_scalar};

@@ -39,6 +39,13 @@ typedef struct prt_sf_kernels {
   /* a = a x b (prt_sf_sh_multiply) in the lanes whose bit is set in `mask`, the others left as
    * they are; a and b lane-interleaved (PRT_SF_LANES). */
   void (*multiply_lanes)(const prt_sf_gaunt* gaunt, float* a, const float* b, uint32_t mask);
+  /* A read_rows of the 3 colour planes dotted with `terms` (1 or 2) transfer vectors (width
+   * floats each), the sums kept in lanes: partial[(3 k + c) PRT_SF_LANES + lane] += a share of
+   * transfer_k . (sum_e weight_e field[c plane + index_e width + .]), whose lanes add up to it. */
+  void (*read_dot)(const float* field, uint64_t plane, uint32_t width, const prt_sf_lookup* lookup,
+                   const float* transfer, uint32_t terms, float* partial);
+  /* out[r] = the sum of partial[r PRT_SF_LANES + lane] over the lanes, for r < count. */
+  void (*reduce_lanes)(const float* partial, uint32_t count, float* out);
   /* out[3 k + c] = sum_i transfer[k n2 + i] light_rgb[3 i + c] for the terms k < terms. */
   void (*transfer_dot)(const float* transfer, uint32_t n2, uint32_t terms, const float* light_rgb,
                        float* out);

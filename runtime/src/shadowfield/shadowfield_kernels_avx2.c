@@ -58,6 +58,41 @@ static void read_rows_avx2(const float* field, uint64_t plane, uint32_t planes, 
     }
 }
 
+/* Each group of 8 coefficients of a plane is read into a register and multiplied into the
+ * terms' lane sums there, so neither the read values nor a dot's horizontal sum go through
+ * memory per source. */
+static void read_dot_avx2(const float* field, uint64_t plane, uint32_t width,
+                          const prt_sf_lookup* lookup, const float* transfer, uint32_t terms,
+                          float* partial) {
+  for (uint32_t c = 0; c < 3u; ++c) {
+    __m256 sums[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()};
+    for (uint32_t i = 0; i < width; i += 8u) {
+      const uint32_t left = width - i;
+      __m256 acc = _mm256_setzero_ps();
+      for (uint32_t e = 0; e < lookup->count; ++e) {
+        const float* row = field + c * plane + lookup->index[e] * width + i;
+        acc = _mm256_fmadd_ps(_mm256_set1_ps(lookup->weight[e]), load_part(row, left), acc);
+      }
+      for (uint32_t k = 0; k < terms && k < 2u; ++k)
+        sums[k] = _mm256_fmadd_ps(load_part(transfer + k * width + i, left), acc, sums[k]);
+    }
+    for (uint32_t k = 0; k < terms && k < 2u; ++k) {
+      float* at = partial + (3u * k + c) * PRT_SF_LANES;
+      _mm256_storeu_ps(at, _mm256_add_ps(_mm256_loadu_ps(at), sums[k]));
+    }
+  }
+}
+
+static void reduce_lanes_avx2(const float* partial, uint32_t count, float* out) {
+  for (uint32_t r = 0; r < count; r += 8u) {
+    __m256 acc[8];
+    for (uint32_t q = 0; q < 8u; ++q)
+      acc[q] =
+          r + q < count ? _mm256_loadu_ps(partial + (r + q) * PRT_SF_LANES) : _mm256_setzero_ps();
+    store_part(out + r, count - r, sum8(acc));
+  }
+}
+
 /* Band by band with the columns padded to whole vectors: out_band = sum_b in_b column_b, the
  * planes' sums side by side so that their multiply-adds overlap; only the stores are masked. */
 static void rotate_padded(const float* block, uint32_t order, const float* in, float* out,
@@ -189,5 +224,5 @@ static void cast_field_avx2(const prt_sf_object* object, const float* weights, f
 }
 
 const prt_sf_kernels prt_sf_kernels_avx2 = {
-    read_rows_avx2,      rotate_avx2,       rotate_back_avx2, light_times_avx2,
-    multiply_lanes_avx2, transfer_dot_avx2, cast_field_avx2};
+    read_rows_avx2, rotate_avx2,       rotate_back_avx2,  light_times_avx2, multiply_lanes_avx2,
+    read_dot_avx2,  reduce_lanes_avx2, transfer_dot_avx2, cast_field_avx2};

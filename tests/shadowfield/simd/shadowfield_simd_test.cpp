@@ -96,6 +96,55 @@ TEST(ShadowfieldSimdKernels, ReadRowsAgreeForEveryWidth) {
   }
 }
 
+// A bounce's read of three colour planes dotted with one or two transfer vectors, summed over
+// two sources in lanes and reduced: within the bound of the whole sum (8 weighted rows, then the
+// dot over the width, then the two sources), against the scalar table and against the same
+// sums taken here in double.
+TEST(ShadowfieldSimdKernels, ReadDotAgreesForEveryWidth) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t width : {4u, 9u, 16u, 25u, 36u})
+    for (const uint32_t terms : {1u, 2u}) {
+      const uint64_t points = 37;
+      const std::vector<float> field = random_floats(3 * points * width, width + 70);
+      const std::vector<float> transfer = random_floats(terms * width, width + 80);
+      prt_sf_lookup lookups[2]{};
+      for (uint32_t s = 0; s < 2; ++s) {
+        lookups[s].count = s == 0 ? 8 : 4;
+        for (uint32_t e = 0; e < lookups[s].count; ++e) {
+          lookups[s].index[e] = (e * 7 + 5 * s + 1) % points;
+          lookups[s].weight[e] = 0.04f + 0.03f * float(e + s);
+        }
+      }
+      std::vector<float> outputs[2];
+      const prt_sf_kernels* tables[2] = {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2};
+      for (uint32_t t = 0; t < 2; ++t) {
+        std::vector<float> partial(3 * terms * PRT_SF_LANES, 0.0f);
+        for (const prt_sf_lookup& lookup : lookups)
+          tables[t]->read_dot(field.data(), points * width, width, &lookup, transfer.data(), terms,
+                              partial.data());
+        outputs[t].assign(3 * terms, 0.0f);
+        tables[t]->reduce_lanes(partial.data(), 3 * terms, outputs[t].data());
+      }
+      std::vector<double> magnitude(3 * terms, 0.0), exact(3 * terms, 0.0);
+      for (uint32_t k = 0; k < terms; ++k)
+        for (uint32_t c = 0; c < 3; ++c)
+          for (const prt_sf_lookup& lookup : lookups)
+            for (uint32_t e = 0; e < lookup.count; ++e)
+              for (uint32_t i = 0; i < width; ++i) {
+                const double product = double(transfer[k * width + i]) * lookup.weight[e] *
+                                       field[c * points * width + lookup.index[e] * width + i];
+                magnitude[3 * k + c] += std::fabs(product);
+                exact[3 * k + c] += product;
+              }
+      // Each product: two multiplications; sums of 8 rows, width values, 2 sources and 8 lanes.
+      const double n = 2.0 + 8.0 + width + 2.0 + 8.0;
+      check_within(outputs[0], outputs[1], magnitude, n);
+      for (uint32_t r = 0; r < 3 * terms; ++r)
+        for (uint32_t t = 0; t < 2; ++t)
+          EXPECT_LE(std::fabs(outputs[t][r] - exact[r]), gamma(n) * magnitude[r]) << r;
+    }
+}
+
 TEST(ShadowfieldSimdKernels, LightTimesAndTransferAgree) {
   SKIP_WITHOUT_AVX2();
   for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
