@@ -250,11 +250,13 @@ TEST(ShadowfieldSimdKernels, RotationsBackAgreeAndUndoTheRotation) {
       }
     }
     check_within(scalar, simd, magnitude, 2 * order - 1);
+    // Inputs within [-1, 1]: the round trip stays within a few float steps of 1 (measured up to
+    // 1.8e-7 over these orders).
     for (const prt_sf_kernels* kernels : {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2}) {
       std::vector<float> turned(2 * n2), back(2 * n2);
       kernels->rotate(pair, order, in.data(), turned.data(), 2);
       kernels->rotate_back(pair, order, turned.data(), back.data(), 2);
-      for (uint32_t e = 0; e < 2 * n2; ++e) EXPECT_NEAR(back[e], in[e], 2e-6) << "value " << e;
+      for (uint32_t e = 0; e < 2 * n2; ++e) EXPECT_NEAR(back[e], in[e], 5e-7) << "value " << e;
     }
   }
 }
