@@ -117,8 +117,10 @@ static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_insta
                           float* out) {
   const prt_sf_kernels* kernels = scene->kernels;
   const uint32_t order = scene->order, n2 = order * order;
-  const prt_sf_cell* row =
-      receiver->located[v] == scene->frame ? cell_row(scene, receiver, v) : NULL;
+  /* Without pairs the frame has no cells for this receiver (the buffer may be NULL). */
+  const prt_sf_cell* row = receiver->pair_count > 0u && receiver->located[v] == scene->frame
+                               ? cell_row(scene, receiver, v)
+                               : NULL;
   const int turn_transfer = terms < 3u;
   float light[PRT_SF_MAX_COEFFS * 3u], local[PRT_SF_MAX_COEFFS * 3u],
       turned[PRT_SF_MAX_COEFFS * 3u], partial[3u * 2u * PRT_SF_LANES];
