@@ -12,15 +12,13 @@
 
 /* ---- Reading fields ------------------------------------------------------------------------- */
 
-/* `planes` planes of a field (points x width floats each) read at object-frame point p of its
- * grid: 0 when p is beyond the outermost shell. */
-static int read_field(const prt_sf_kernels* kernels, const prt_sf_shells* grid, const float* field,
-                      uint32_t width, uint32_t planes, const float p[3], float* out) {
+/* `planes` planes of a field (points x width floats each) read at a located cell of its grid
+ * (cell->count > 0). */
+static void read_cell(const prt_sf_kernels* kernels, const prt_sf_shells* grid, const float* field,
+                      uint32_t width, uint32_t planes, const prt_sf_cell* cell, float* out) {
   prt_sf_lookup lookup;
-  prt_sf_locate(grid, p, &lookup);
-  if (lookup.count == 0u) return 0;
+  prt_sf_cell_lookup(grid, cell, &lookup);
   kernels->read_rows(field, prt_sf_point_count(grid) * width, planes, width, &lookup, out);
-  return 1;
 }
 
 static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]) {
@@ -29,62 +27,147 @@ static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]
            pair->to_other[3 * r + 2] * x[2] + pair->offset[r];
 }
 
-/* ---- Gather --------------------------------------------------------------------------------- */
-
-/* Step 2: the environment at vertex x times every blocker's visibility, in the receiver's frame
- * (one plane of coefficients per colour). */
-static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
-                           const float x[3], float* light) {
-  const prt_sf_kernels* kernels = scene->kernels;
-  const uint32_t order = scene->order, n2 = order * order;
-  float visibility[PRT_SF_MAX_COEFFS], local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
-  int blocked = 0;
-  for (uint32_t q = 0; q < receiver->pair_count; ++q) {
-    const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
-    if (!pair->occludes) continue;
-    const prt_sf_object* blocker = scene->objects[scene->instances[pair->other].object];
-    float p[3];
-    point_in_other(pair, x, p);
-    if (!read_field(kernels, &blocker->oof_shells, blocker->oof, n2, 1u, p, local)) continue;
-    if (!blocked) {
-      kernels->rotate(pair, order, local, visibility, 1u);
-      blocked = 1;
-    } else {
-      kernels->rotate(pair, order, local, turned, 1u);
-      prt_sf_sh_multiply(&scene->gaunt, visibility, turned, local);
-      memcpy(visibility, local, n2 * sizeof(float));
-    }
-  }
-  if (!blocked) {
-    for (uint32_t c = 0; c < 3u; ++c)
-      for (uint32_t k = 0; k < n2; ++k) light[c * n2 + k] = receiver->light[3u * k + c];
-    return;
-  }
-  kernels->light_times(receiver->light_product, n2, visibility, light);
+/* Vertex v's row of cells: one per pair of its receiver. */
+static prt_sf_cell* cell_row(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                             uint32_t v) {
+  return scene->cells + receiver->cell_first + (size_t)v * receiver->pair_count;
 }
 
-/* Step 3: the light reaching vertex x from every source's field of the previous pass, in the
- * receiver's frame (one plane per colour); 0 when no source reaches it. */
-static int bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
-                         const float x[3], float* light) {
+/* Vertex v's transfer turned into the source of its pair q (receivers of fewer terms than
+ * colours only). */
+static float* turned_transfer(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                              uint32_t v, uint32_t q, uint32_t terms) {
+  const uint32_t n2 = scene->order * scene->order;
+  return scene->turned + receiver->turned_first +
+         ((size_t)v * receiver->pair_count + q) * terms * n2;
+}
+
+/* ---- Gather --------------------------------------------------------------------------------- */
+
+/* Step 2 for vertices [first, first + count) (count <= PRT_SF_LANES), one lane each: the
+ * environment times every blocker's visibility, in the receiver's frame, into
+ * light[lane][c n^2 + k] (one plane of coefficients per colour). Each lane's visibilities are
+ * multiplied in the pairs' order, as vertex by vertex. With `locate_sources`, also locates each
+ * vertex in every source's SRF grid into its row of cells, which the bounces read, and for a
+ * receiver of fewer terms than colours turns its transfer into each source's frame that reaches
+ * it. */
+static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                           uint32_t first, uint32_t count, int locate_sources,
+                           float light[][PRT_SF_MAX_COEFFS * 3u]) {
+  const prt_sf_kernels* kernels = scene->kernels;
+  const prt_sf_object* object = scene->objects[receiver->object];
+  const uint32_t order = scene->order, n2 = order * order, terms = object->terms;
+  const int turn_transfer = locate_sources && terms < 3u;
+  float visibility[PRT_SF_MAX_COEFFS * PRT_SF_LANES], next[PRT_SF_MAX_COEFFS * PRT_SF_LANES];
+  float local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
+  /* The SIMD product computes every lane: the idle ones hold zeros, not garbage. */
+  memset(visibility, 0, (size_t)n2 * PRT_SF_LANES * sizeof(float));
+  memset(next, 0, (size_t)n2 * PRT_SF_LANES * sizeof(float));
+  uint32_t blocked = 0u; /* lanes with a visibility so far */
+  for (uint32_t q = 0; q < receiver->pair_count; ++q) {
+    const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
+    const prt_sf_object* other = scene->objects[scene->instances[pair->other].object];
+    uint32_t multiply = 0u; /* lanes whose visibility this blocker multiplies */
+    for (uint32_t lane = 0; lane < count; ++lane) {
+      const uint32_t v = first + lane;
+      float p[3];
+      point_in_other(pair, object->positions + 3u * v, p);
+      prt_sf_cell cell;
+      prt_sf_cell* source_cell = locate_sources ? &cell_row(scene, receiver, v)[q] : NULL;
+      if (source_cell && pair->fields_share_sphere) {
+        prt_sf_cell_locate_two(&other->oof_shells, pair->oof_log_span, &other->srf_shells,
+                               pair->srf_log_span, p, &cell, source_cell);
+      } else if (source_cell && pair->lights) {
+        prt_sf_cell_locate(&other->srf_shells, pair->srf_log_span, p, source_cell);
+      }
+      if (turn_transfer && pair->lights && source_cell->count > 0u)
+        kernels->rotate_back(pair, order, object->transfer + (size_t)v * terms * n2,
+                             turned_transfer(scene, receiver, v, q, terms), terms);
+      if (!pair->occludes) continue;
+      if (!(source_cell && pair->fields_share_sphere))
+        prt_sf_cell_locate(&other->oof_shells, pair->oof_log_span, p, &cell);
+      if (cell.count == 0u) continue;
+      read_cell(kernels, &other->oof_shells, other->oof, n2, 1u, &cell, local);
+      kernels->rotate(pair, order, local, turned, 1u);
+      float* into = blocked >> lane & 1u ? next : visibility;
+      for (uint32_t k = 0; k < n2; ++k) into[k * PRT_SF_LANES + lane] = turned[k];
+      if (blocked >> lane & 1u) multiply |= 1u << lane;
+      blocked |= 1u << lane;
+    }
+    if (multiply) kernels->multiply_lanes(&scene->gaunt, visibility, next, multiply);
+  }
+  for (uint32_t lane = 0; lane < count; ++lane) {
+    if (!(blocked >> lane & 1u)) {
+      for (uint32_t c = 0; c < 3u; ++c)
+        for (uint32_t k = 0; k < n2; ++k) light[lane][c * n2 + k] = receiver->light[3u * k + c];
+      continue;
+    }
+    for (uint32_t k = 0; k < n2; ++k) local[k] = visibility[k * PRT_SF_LANES + lane];
+    kernels->light_times(receiver->light_product, n2, local, light[lane]);
+  }
+}
+
+/* Step 3: L_k(v) from every source's field of the previous pass; 0 when no source reaches
+ * vertex v (at x). The sources' cells come from v's direct pass when it ran this frame.
+ * T_k . R f = R^T T_k . f: a receiver of fewer terms than colours dots each source's field with
+ * its transfer turned into the source's frame (by its direct pass, or here when that did not
+ * run), others turn each source's field (3 rotations a pass) and dot the sum once. */
+static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                          uint32_t v, const float x[3], const float* transfer, uint32_t terms,
+                          float* out) {
   const prt_sf_kernels* kernels = scene->kernels;
   const uint32_t order = scene->order, n2 = order * order;
-  float local[PRT_SF_MAX_COEFFS * 3u], turned[PRT_SF_MAX_COEFFS * 3u];
+  /* Without pairs the frame has no cells for this receiver (the buffer may be NULL). */
+  const prt_sf_cell* row = receiver->pair_count > 0u && receiver->located[v] == scene->frame
+                               ? cell_row(scene, receiver, v)
+                               : NULL;
+  const int turn_transfer = terms < 3u;
+  float light[PRT_SF_MAX_COEFFS * 3u], local[PRT_SF_MAX_COEFFS * 3u],
+      turned[PRT_SF_MAX_COEFFS * 3u], partial[3u * 2u * PRT_SF_LANES];
   int lit = 0;
-  memset(light, 0, (size_t)n2 * 3u * sizeof(float));
+  if (turn_transfer)
+    memset(partial, 0, sizeof partial);
+  else
+    memset(light, 0, (size_t)n2 * 3u * sizeof(float));
   for (uint32_t q = 0; q < receiver->pair_count; ++q) {
     const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
     if (!pair->lights) continue;
     const prt_sf_instance* source = &scene->instances[pair->other];
     const prt_sf_object* object = scene->objects[source->object];
-    float p[3];
-    point_in_other(pair, x, p);
-    if (!read_field(kernels, &object->srf_shells, source->field, n2, 3u, p, local)) continue;
-    kernels->rotate(pair, order, local, turned, 3u);
-    for (uint32_t e = 0; e < 3u * n2; ++e) light[e] += turned[e];
+    prt_sf_cell cell;
+    if (row) {
+      cell = row[q];
+    } else {
+      float p[3];
+      point_in_other(pair, x, p);
+      prt_sf_cell_locate(&object->srf_shells, pair->srf_log_span, p, &cell);
+    }
+    if (cell.count == 0u) continue;
+    prt_sf_lookup lookup;
+    prt_sf_cell_lookup(&object->srf_shells, &cell, &lookup);
+    const uint64_t plane = prt_sf_point_count(&object->srf_shells) * n2;
+    if (turn_transfer) {
+      const float* turned_back = turned;
+      if (row)
+        turned_back = turned_transfer(scene, receiver, v, q, terms);
+      else
+        kernels->rotate_back(pair, order, transfer, turned, terms);
+      kernels->read_dot(source->field, plane, n2, &lookup, turned_back, terms, partial);
+    } else {
+      kernels->read_rows(source->field, plane, 3u, n2, &lookup, local);
+      kernels->rotate(pair, order, local, turned, 3u);
+      for (uint32_t e = 0; e < 3u * n2; ++e) light[e] += turned[e];
+    }
     lit = 1;
   }
-  return lit;
+  if (turn_transfer) {
+    kernels->reduce_lanes(partial, 3u * terms, out);
+    return;
+  }
+  if (lit)
+    kernels->transfer_dot(transfer, n2, terms, light, out);
+  else
+    memset(out, 0, (size_t)terms * 3u * sizeof(float));
 }
 
 void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance,
@@ -93,18 +176,26 @@ void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint
   const prt_sf_object* object = scene->objects[receiver->object];
   const uint32_t n2 = scene->order * scene->order, terms = object->terms;
   float* incident = receiver->incident + (size_t)pass * object->vertex_count * terms * 3u;
-  float light[PRT_SF_MAX_COEFFS * 3u];
-  for (uint32_t v = first_vertex; v < first_vertex + vertex_count; ++v) {
-    const float* x = object->positions + 3u * v;
-    float* out = incident + (size_t)v * terms * 3u;
-    if (pass == 0u) {
-      shadowed_light(scene, receiver, x, light);
-    } else if (!bounced_light(scene, receiver, x, light)) {
-      memset(out, 0, terms * 3u * sizeof(float));
-      continue;
+  const uint32_t end = first_vertex + vertex_count;
+  if (pass > 0u) {
+    for (uint32_t v = first_vertex; v < end; ++v)
+      bounced_light(scene, receiver, v, object->positions + 3u * v,
+                    object->transfer + (size_t)v * terms * n2, terms,
+                    incident + (size_t)v * terms * 3u);
+    return;
+  }
+  const int locate_sources = scene->bounces > 0u;
+  float light[PRT_SF_LANES][PRT_SF_MAX_COEFFS * 3u];
+  for (uint32_t first = first_vertex; first < end; first += PRT_SF_LANES) {
+    const uint32_t count = end - first < PRT_SF_LANES ? end - first : PRT_SF_LANES;
+    shadowed_light(scene, receiver, first, count, locate_sources, light);
+    for (uint32_t lane = 0; lane < count; ++lane) {
+      const uint32_t v = first + lane;
+      if (locate_sources) receiver->located[v] = scene->frame;
+      /* L_k(x) = T_k(x) . L */
+      scene->kernels->transfer_dot(object->transfer + (size_t)v * terms * n2, n2, terms,
+                                   light[lane], incident + (size_t)v * terms * 3u);
     }
-    /* L_k(x) = T_k(x) . L */
-    scene->kernels->transfer_dot(object->transfer + (size_t)v * terms * n2, n2, terms, light, out);
   }
 }
 
@@ -139,9 +230,42 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
     }
 }
 
+/* Marks the source's SRF points some receiver's cell reads this frame, or every point when a
+ * receiver vertex that it reaches has no cells this frame (its bounces locate afresh). */
+static void mark_needed(const prt_shadowfield_scene* scene, uint32_t instance) {
+  prt_sf_instance* source = &scene->instances[instance];
+  const prt_sf_shells* grid = &scene->objects[source->object]->srf_shells;
+  const uint64_t points = prt_sf_point_count(grid);
+  memset(source->needed, 0, points);
+  for (uint32_t i = 0; i < scene->instance_count; ++i) {
+    const prt_sf_instance* receiver = &scene->instances[i];
+    const uint32_t vertices = scene->objects[receiver->object]->vertex_count;
+    for (uint32_t q = 0; q < receiver->pair_count; ++q) {
+      const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
+      if (pair->other != instance || !pair->lights) continue;
+      for (uint32_t v = 0; v < vertices; ++v) {
+        if (receiver->located[v] != scene->frame) {
+          memset(source->needed, 1, points);
+          return;
+        }
+        const prt_sf_cell* cell = &cell_row(scene, receiver, v)[q];
+        if (cell->count == 0u) continue;
+        prt_sf_lookup lookup;
+        prt_sf_cell_lookup(grid, cell, &lookup);
+        for (uint32_t e = 0; e < lookup.count; ++e) source->needed[lookup.index[e]] = 1u;
+      }
+    }
+  }
+}
+
 void prt_sf_project_weights(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {
-  const prt_sf_instance* source = &scene->instances[instance];
+  prt_sf_instance* source = &scene->instances[instance];
   if (!source->is_source) return;
+  /* The cells are the frame's from its direct pass on, so the marks serve every pass. */
+  if (source->needed_frame != scene->frame) {
+    mark_needed(scene, instance);
+    source->needed_frame = scene->frame;
+  }
   const prt_sf_object* object = scene->objects[source->object];
   const float* incident =
       source->incident + (size_t)pass * object->vertex_count * object->terms * 3u;
@@ -155,12 +279,21 @@ uint64_t prt_sf_field_points(const prt_shadowfield_scene* scene, uint32_t instan
   return prt_sf_point_count(&scene->objects[source->object]->srf_shells);
 }
 
+/* Only the points prt_sf_project_weights marked: the others are never read this frame. Each
+ * point's value is the same whatever run it is cast in. */
 void prt_sf_cast_field(const prt_shadowfield_scene* scene, uint32_t instance, uint64_t first,
                        uint64_t count) {
   const prt_sf_instance* source = &scene->instances[instance];
   if (!source->is_source) return;
-  scene->kernels->cast_field(scene->objects[source->object], source->weights, source->field, first,
-                             count);
+  const prt_sf_object* object = scene->objects[source->object];
+  const uint64_t end = first + count;
+  for (uint64_t p = first; p < end;) {
+    while (p < end && !source->needed[p]) ++p;
+    const uint64_t start = p;
+    while (p < end && source->needed[p]) ++p;
+    if (p > start)
+      scene->kernels->cast_field(object, source->weights, source->field, start, p - start);
+  }
 }
 
 void prt_sf_project_instance(const prt_shadowfield_scene* scene, uint32_t pass, uint32_t instance) {

@@ -26,8 +26,8 @@ void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, f
 
 /* The band blocks of the SH rotation by `rotation` (row-major 3x3): prt_sh_rotate of the basis
  * vectors, one channel each, gives the matrix's columns. */
-static void rotation_blocks(uint32_t order, const float rotation[9], float* blocks,
-                            float* columns) {
+static void rotation_blocks(uint32_t order, const float rotation[9], float* blocks, float* columns,
+                            float* padded, float* padded_back) {
   const uint32_t n2 = order * order;
   float identity[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS],
       matrix[PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS];
@@ -35,15 +35,22 @@ static void rotation_blocks(uint32_t order, const float rotation[9], float* bloc
   for (uint32_t i = 0; i < n2; ++i) identity[i * n2 + i] = 1.0f;
   prt_sh_rotate(order, rotation, identity, matrix, n2);
   float* block = blocks;
+  memset(padded, 0, PRT_SF_PADDED_ROTATION_FLOATS * sizeof(float));
+  memset(padded_back, 0, PRT_SF_PADDED_ROTATION_FLOATS * sizeof(float));
   for (uint32_t l = 0; l < order; ++l) {
-    const uint32_t width = 2u * l + 1u, base = l * l;
+    const uint32_t width = 2u * l + 1u, base = l * l, pad = (width + 7u) / 8u * 8u;
     for (uint32_t a = 0; a < width; ++a)
       for (uint32_t b = 0; b < width; ++b) {
-        block[a * width + b] = matrix[(base + a) * n2 + base + b];
-        columns[b * width + a] = matrix[(base + a) * n2 + base + b];
+        const float m = matrix[(base + a) * n2 + base + b];
+        block[a * width + b] = m;
+        columns[b * width + a] = m;
+        padded[b * pad + a] = m;
+        padded_back[a * pad + b] = m;
       }
     block += width * width;
     columns += width * width;
+    padded += width * pad;
+    padded_back += width * pad;
   }
 }
 
@@ -86,9 +93,15 @@ static void fill_pair(const prt_shadowfield_scene* scene, uint32_t i, uint32_t j
   const prt_sf_instance* receiver = &scene->instances[i];
   const prt_sf_instance* other = &scene->instances[j];
   float other_t[9], rotation[9], receiver_t[9];
+  const prt_sf_object* other_object = scene->objects[other->object];
   pair->other = j;
   pair->occludes = occludes;
   pair->lights = lights;
+  pair->oof_log_span = prt_sf_log_span(&other_object->oof_shells);
+  pair->srf_log_span = lights ? prt_sf_log_span(&other_object->srf_shells) : 0.0;
+  pair->fields_share_sphere =
+      occludes && lights &&
+      prt_sf_shells_share_sphere(&other_object->oof_shells, &other_object->srf_shells);
   /* p = R_j^T (s_i R_i x + t_i - t_j) / s_j */
   transpose3(other->rotation, other_t);
   multiply3(other_t, receiver->rotation, rotation);
@@ -102,7 +115,8 @@ static void fill_pair(const prt_shadowfield_scene* scene, uint32_t i, uint32_t j
   /* A field in j's frame seen in i's: rotation R_i^T R_j. */
   transpose3(receiver->rotation, receiver_t);
   multiply3(receiver_t, other->rotation, rotation);
-  rotation_blocks(scene->order, rotation, pair->sh_rotation, pair->sh_rotation_columns);
+  rotation_blocks(scene->order, rotation, pair->sh_rotation, pair->sh_rotation_columns,
+                  pair->padded_columns, pair->padded_columns_back);
 }
 
 /* Visits every interacting pair in receiver order; with `pairs` NULL only counts them. */
@@ -154,6 +168,52 @@ static void light_product(const prt_sf_gaunt* gaunt, const float* light, float* 
       for (uint32_t c = 0; c < 3u; ++c)
         matrix[((size_t)c * n2 + k) * n2 + gaunt->j[e]] +=
             gaunt->value[e] * light[3u * gaunt->i[e] + c];
+}
+
+/* Room for every receiver vertex's row of cells (prepare's pairs) and, for a receiver of fewer
+ * terms than colours, of turned transfers; each receiver's start in both. */
+static prt_result reserve_cells(prt_shadowfield_scene* scene) {
+  size_t count = 0, floats = 0;
+  const uint32_t n2 = scene->order * scene->order;
+  for (uint32_t i = 0; i < scene->instance_count; ++i) {
+    prt_sf_instance* instance = &scene->instances[i];
+    const prt_sf_object* object = scene->objects[instance->object];
+    const size_t row_count = (size_t)object->vertex_count * instance->pair_count;
+    instance->cell_first = count;
+    instance->turned_first = floats;
+    count += row_count;
+    if (object->terms < 3u) floats += row_count * object->terms * n2;
+  }
+  if (count > scene->cell_capacity) {
+    prt_sf_cell* cells =
+        (prt_sf_cell*)prt_internal_alloc(&scene->allocator, count * sizeof(prt_sf_cell), 16);
+    if (!cells) return PRT_ERROR_OUT_OF_MEMORY;
+    if (scene->cells)
+      prt_internal_free(&scene->allocator, scene->cells,
+                        scene->cell_capacity * sizeof(prt_sf_cell));
+    scene->cells = cells;
+    scene->cell_capacity = count;
+  }
+  if (floats > scene->turned_capacity) {
+    float* turned = (float*)prt_internal_alloc(&scene->allocator, floats * sizeof(float), 16);
+    if (!turned) return PRT_ERROR_OUT_OF_MEMORY;
+    if (scene->turned)
+      prt_internal_free(&scene->allocator, scene->turned, scene->turned_capacity * sizeof(float));
+    scene->turned = turned;
+    scene->turned_capacity = floats;
+  }
+  return PRT_OK;
+}
+
+/* A new stamp for the frame, so no cell located before it is read; after 2^32 - 1 frames the
+ * stamps start again from cleared ones. */
+static void next_frame(prt_shadowfield_scene* scene) {
+  if (++scene->frame != 0u) return;
+  for (uint32_t i = 0; i < scene->instance_count; ++i) {
+    const prt_sf_instance* instance = &scene->instances[i];
+    memset(instance->located, 0, scene->objects[instance->object]->vertex_count * sizeof(uint32_t));
+  }
+  scene->frame = 1u;
 }
 
 static int all_finite(const float* values, size_t count) {
@@ -236,6 +296,9 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
   if (reserve_pairs(scene, find_pairs(scene, NULL)) != PRT_OK)
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield pairs");
   scene->pair_count = find_pairs(scene, scene->pairs);
+  if (reserve_cells(scene) != PRT_OK)
+    return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield cells");
+  next_frame(scene);
   memcpy(scene->eye, eye, sizeof scene->eye);
   scene->bounces = bounces;
   scene->kernels = kernels;

@@ -19,11 +19,41 @@ static void read_rows_scalar(const float* field, uint64_t plane, uint32_t planes
   }
 }
 
+/* The dots whole, in lane 0. */
+static void read_dot_scalar(const float* field, uint64_t plane, uint32_t width,
+                            const prt_sf_lookup* lookup, const float* transfer, uint32_t terms,
+                            float* partial) {
+  float local[3u * PRT_SF_MAX_COEFFS];
+  read_rows_scalar(field, plane, 3u, width, lookup, local);
+  for (uint32_t k = 0; k < terms; ++k)
+    for (uint32_t c = 0; c < 3u; ++c) {
+      float sum = 0.0f;
+      for (uint32_t i = 0; i < width; ++i) sum += transfer[k * width + i] * local[c * width + i];
+      partial[(3u * k + c) * PRT_SF_LANES] += sum;
+    }
+}
+
+static void reduce_lanes_scalar(const float* partial, uint32_t count, float* out) {
+  for (uint32_t r = 0; r < count; ++r) {
+    float sum = 0.0f;
+    for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) sum += partial[r * PRT_SF_LANES + lane];
+    out[r] = sum;
+  }
+}
+
 static void rotate_scalar(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                           uint32_t planes) {
   const uint32_t n2 = order * order;
   for (uint32_t c = 0; c < planes; ++c)
     prt_sf_rotate_apply(order, pair->sh_rotation, in + c * n2, out + c * n2, 1u);
+}
+
+/* The column-major blocks read row-major are the transpose's, the inverse rotation. */
+static void rotate_back_scalar(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                               uint32_t planes) {
+  const uint32_t n2 = order * order;
+  for (uint32_t c = 0; c < planes; ++c)
+    prt_sf_rotate_apply(order, pair->sh_rotation_columns, in + c * n2, out + c * n2, 1u);
 }
 
 static void light_times_scalar(const float* matrix, uint32_t n2, const float* visibility,
@@ -35,6 +65,21 @@ static void light_times_scalar(const float* matrix, uint32_t n2, const float* vi
       for (uint32_t j = 0; j < n2; ++j) sum += row[j] * visibility[j];
       light[c * n2 + k] = sum;
     }
+}
+
+static void multiply_lanes_scalar(const prt_sf_gaunt* gaunt, float* a, const float* b,
+                                  uint32_t mask) {
+  const uint32_t n2 = gaunt->order * gaunt->order;
+  float left[PRT_SF_MAX_COEFFS], right[PRT_SF_MAX_COEFFS], product[PRT_SF_MAX_COEFFS];
+  for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+    if (!(mask >> lane & 1u)) continue;
+    for (uint32_t k = 0; k < n2; ++k) {
+      left[k] = a[k * PRT_SF_LANES + lane];
+      right[k] = b[k * PRT_SF_LANES + lane];
+    }
+    prt_sf_sh_multiply(gaunt, left, right, product);
+    for (uint32_t k = 0; k < n2; ++k) a[k * PRT_SF_LANES + lane] = product[k];
+  }
 }
 
 static void transfer_dot_scalar(const float* transfer, uint32_t n2, uint32_t terms,
@@ -76,5 +121,7 @@ static void cast_field_scalar(const prt_sf_object* object, const float* weights,
   }
 }
 
-const prt_sf_kernels prt_sf_kernels_scalar = {read_rows_scalar, rotate_scalar, light_times_scalar,
-                                              transfer_dot_scalar, cast_field_scalar};
+const prt_sf_kernels prt_sf_kernels_scalar = {
+    read_rows_scalar,    rotate_scalar,         rotate_back_scalar,
+    light_times_scalar,  multiply_lanes_scalar, read_dot_scalar,
+    reduce_lanes_scalar, transfer_dot_scalar,   cast_field_scalar};

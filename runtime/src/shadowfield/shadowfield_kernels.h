@@ -12,9 +12,14 @@
 
 #include <prt/format/shadowfield_shells.h>
 
+#include "shadowfield_gaunt.h"
 #include "shadowfield_object.h"
 
 struct prt_sf_pair;
+
+/* The vertices the direct pass takes at once: their visibilities are lane-interleaved,
+ * [coefficient * PRT_SF_LANES + lane], so one triple product serves them all. */
+#define PRT_SF_LANES 8u
 
 typedef struct prt_sf_kernels {
   /* out[c width + i] = sum_e weight_e field[c plane + index_e width + i] for the lookup's points
@@ -25,9 +30,22 @@ typedef struct prt_sf_kernels {
    * to i's); out may not alias in. */
   void (*rotate)(const struct prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                  uint32_t planes);
+  /* The same by the inverse rotation (i's frame to j's, the transpose); out may not alias in. */
+  void (*rotate_back)(const struct prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                      uint32_t planes);
   /* light_rgb[3 k + c] = sum_j matrix[(c n2 + k) n2 + j] visibility[j]: the environment times a
    * visibility (the instance's light_product). */
   void (*light_times)(const float* matrix, uint32_t n2, const float* visibility, float* light_rgb);
+  /* a = a x b (prt_sf_sh_multiply) in the lanes whose bit is set in `mask`, the others left as
+   * they are; a and b lane-interleaved (PRT_SF_LANES). */
+  void (*multiply_lanes)(const prt_sf_gaunt* gaunt, float* a, const float* b, uint32_t mask);
+  /* A read_rows of the 3 colour planes dotted with `terms` (1 or 2) transfer vectors (width
+   * floats each), the sums kept in lanes: partial[(3 k + c) PRT_SF_LANES + lane] += a share of
+   * transfer_k . (sum_e weight_e field[c plane + index_e width + .]), whose lanes add up to it. */
+  void (*read_dot)(const float* field, uint64_t plane, uint32_t width, const prt_sf_lookup* lookup,
+                   const float* transfer, uint32_t terms, float* partial);
+  /* out[r] = the sum of partial[r PRT_SF_LANES + lane] over the lanes, for r < count. */
+  void (*reduce_lanes)(const float* partial, uint32_t count, float* out);
   /* out[3 k + c] = sum_i transfer[k n2 + i] light_rgb[3 i + c] for the terms k < terms. */
   void (*transfer_dot)(const float* transfer, uint32_t n2, uint32_t terms, const float* light_rgb,
                        float* out);

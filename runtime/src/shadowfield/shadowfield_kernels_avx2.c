@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* Technique `shadowfield`'s inner loops for AVX2 + FMA (this file is compiled with -mavx2 -mfma
- * and only called when the CPU has both; shadowfield_kernels.h): eight coefficients a lane, a
- * masked load for a row's last partial group, dot products summed by one tree for eight rows. */
+ * and only called when the CPU has both; shadowfield_kernels.h): eight coefficients a lane (eight
+ * vertices for the triple product), a masked load for a row's last partial group, dot products
+ * summed by one tree for eight rows. */
 #include <immintrin.h>
 #include <math.h>
 #include <string.h>
@@ -57,27 +58,70 @@ static void read_rows_avx2(const float* field, uint64_t plane, uint32_t planes, 
     }
 }
 
-/* Band by band with the blocks column-major: out_band = sum_b in_b column_b, the planes' sums
- * side by side so that their multiply-adds overlap. */
-static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
-                        uint32_t planes) {
+/* Each group of 8 coefficients of a plane is read into a register and multiplied into the
+ * terms' lane sums there, so neither the read values nor a dot's horizontal sum go through
+ * memory per source. */
+static void read_dot_avx2(const float* field, uint64_t plane, uint32_t width,
+                          const prt_sf_lookup* lookup, const float* transfer, uint32_t terms,
+                          float* partial) {
+  for (uint32_t c = 0; c < 3u; ++c) {
+    __m256 sums[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()};
+    for (uint32_t i = 0; i < width; i += 8u) {
+      const uint32_t left = width - i;
+      __m256 acc = _mm256_setzero_ps();
+      for (uint32_t e = 0; e < lookup->count; ++e) {
+        const float* row = field + c * plane + lookup->index[e] * width + i;
+        acc = _mm256_fmadd_ps(_mm256_set1_ps(lookup->weight[e]), load_part(row, left), acc);
+      }
+      for (uint32_t k = 0; k < terms && k < 2u; ++k)
+        sums[k] = _mm256_fmadd_ps(load_part(transfer + k * width + i, left), acc, sums[k]);
+    }
+    for (uint32_t k = 0; k < terms && k < 2u; ++k) {
+      float* at = partial + (3u * k + c) * PRT_SF_LANES;
+      _mm256_storeu_ps(at, _mm256_add_ps(_mm256_loadu_ps(at), sums[k]));
+    }
+  }
+}
+
+static void reduce_lanes_avx2(const float* partial, uint32_t count, float* out) {
+  for (uint32_t r = 0; r < count; r += 8u) {
+    __m256 acc[8];
+    for (uint32_t q = 0; q < 8u; ++q)
+      acc[q] =
+          r + q < count ? _mm256_loadu_ps(partial + (r + q) * PRT_SF_LANES) : _mm256_setzero_ps();
+    store_part(out + r, count - r, sum8(acc));
+  }
+}
+
+/* Band by band with the columns padded to whole vectors: out_band = sum_b in_b column_b, the
+ * planes' sums side by side so that their multiply-adds overlap; only the stores are masked. */
+static void rotate_padded(const float* block, uint32_t order, const float* in, float* out,
+                          uint32_t planes) {
   const uint32_t n2 = order * order;
-  const float* block = pair->sh_rotation_columns;
   for (uint32_t l = 0; l < order; ++l) {
-    const uint32_t width = 2u * l + 1u, base = l * l;
+    const uint32_t width = 2u * l + 1u, base = l * l, pad = (width + 7u) / 8u * 8u;
     for (uint32_t a = 0; a < width; a += 8u) {
-      const uint32_t left = width - a;
       __m256 acc[3] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
       for (uint32_t b = 0; b < width; ++b) {
-        const __m256 column = load_part(block + b * width + a, left);
+        const __m256 column = _mm256_loadu_ps(block + b * pad + a);
         for (uint32_t c = 0; c < planes && c < 3u; ++c)
           acc[c] = _mm256_fmadd_ps(_mm256_set1_ps(in[c * n2 + base + b]), column, acc[c]);
       }
       for (uint32_t c = 0; c < planes && c < 3u; ++c)
-        store_part(out + c * n2 + base + a, left, acc[c]);
+        store_part(out + c * n2 + base + a, width - a, acc[c]);
     }
-    block += width * width;
+    block += width * pad;
   }
+}
+
+static void rotate_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                        uint32_t planes) {
+  rotate_padded(pair->padded_columns, order, in, out, planes);
+}
+
+static void rotate_back_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                             uint32_t planes) {
+  rotate_padded(pair->padded_columns_back, order, in, out, planes);
 }
 
 /* out[r] = rows_at[r] . vectors_at[r] (n floats each) for r < count, eight dots per tree,
@@ -102,6 +146,31 @@ static void light_times_avx2(const float* matrix, uint32_t n2, const float* visi
     vectors[r] = visibility;
   }
   dots(rows, vectors, 3u * n2, n2, light);
+}
+
+/* One lane a vertex: each non-zero Gaunt coefficient is one multiply and one multiply-add for
+ * all eight, against the scalar form's per-vertex sparse loop. */
+static void multiply_lanes_avx2(const prt_sf_gaunt* gaunt, float* a, const float* b,
+                                uint32_t mask) {
+  const uint32_t n2 = gaunt->order * gaunt->order;
+  __m256 product[PRT_SF_MAX_COEFFS];
+  for (uint32_t k = 0; k < n2; ++k) {
+    __m256 acc = _mm256_setzero_ps();
+    for (uint32_t e = gaunt->k_start[k]; e < gaunt->k_start[k + 1u]; ++e) {
+      const __m256 ca = _mm256_mul_ps(_mm256_set1_ps(gaunt->value[e]),
+                                      _mm256_loadu_ps(a + gaunt->i[e] * PRT_SF_LANES));
+      acc = _mm256_fmadd_ps(ca, _mm256_loadu_ps(b + gaunt->j[e] * PRT_SF_LANES), acc);
+    }
+    product[k] = acc;
+  }
+  const __m256 keep = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
+                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+                         _mm256_setzero_si256()));
+  for (uint32_t k = 0; k < n2; ++k) {
+    float* at = a + k * PRT_SF_LANES;
+    _mm256_storeu_ps(at, _mm256_blendv_ps(product[k], _mm256_loadu_ps(at), keep));
+  }
 }
 
 static void transfer_dot_avx2(const float* transfer, uint32_t n2, uint32_t terms,
@@ -154,5 +223,6 @@ static void cast_field_avx2(const prt_sf_object* object, const float* weights, f
   }
 }
 
-const prt_sf_kernels prt_sf_kernels_avx2 = {read_rows_avx2, rotate_avx2, light_times_avx2,
-                                            transfer_dot_avx2, cast_field_avx2};
+const prt_sf_kernels prt_sf_kernels_avx2 = {
+    read_rows_avx2, rotate_avx2,       rotate_back_avx2,  light_times_avx2, multiply_lanes_avx2,
+    read_dot_avx2,  reduce_lanes_avx2, transfer_dot_avx2, cast_field_avx2};

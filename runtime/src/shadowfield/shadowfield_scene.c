@@ -41,6 +41,15 @@ static void free_floats(const prt_allocator* allocator, float* data, size_t coun
   if (data) prt_internal_free(allocator, data, count * sizeof(float));
 }
 
+/* An instance's frame stamps, one per vertex (at least one, so the allocation is never 0). */
+static size_t stamp_bytes(uint32_t vertex_count) {
+  return (vertex_count > 0u ? vertex_count : 1u) * sizeof(uint32_t);
+}
+
+static void free_stamps(const prt_allocator* allocator, uint32_t* data, uint32_t vertex_count) {
+  if (data) prt_internal_free(allocator, data, stamp_bytes(vertex_count));
+}
+
 void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
   if (!scene) return;
   const prt_allocator* allocator = &scene->allocator;
@@ -49,10 +58,17 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     free_floats(allocator, instance->incident, instance->incident_floats);
     free_floats(allocator, instance->weights, instance->weights_floats);
     free_floats(allocator, instance->field, instance->field_floats);
+    if (instance->needed)
+      prt_internal_free(allocator, instance->needed,
+                        prt_sf_point_count(&scene->objects[instance->object]->srf_shells));
     free_floats(allocator, instance->light_product, instance->light_product_floats);
+    free_stamps(allocator, instance->located, scene->objects[instance->object]->vertex_count);
   }
   if (scene->pairs)
     prt_internal_free(allocator, scene->pairs, scene->pair_capacity * sizeof(prt_sf_pair));
+  if (scene->cells)
+    prt_internal_free(allocator, scene->cells, scene->cell_capacity * sizeof(prt_sf_cell));
+  free_floats(allocator, scene->turned, scene->turned_capacity);
   prt_sf_gaunt_free(allocator, &scene->gaunt);
   if (scene->objects)
     prt_internal_free(allocator, scene->objects,
@@ -81,6 +97,10 @@ static const char* object_problem(const prt_sf_object* o) {
   if (o->basis_size > 0u && (!o->basis || !o->vertex_weights || !o->basis_inverse ||
                              !shells_ok(&o->srf_shells) || !o->srf))
     return "a radiance basis without its source fields";
+  /* The frame's cells (prt_sf_cell) index grid points in 32 bits. */
+  if (prt_sf_point_count(&o->oof_shells) > UINT32_MAX ||
+      (o->basis_size > 0u && prt_sf_point_count(&o->srf_shells) > UINT32_MAX))
+    return "a grid of 2^32 points or more";
   return NULL;
 }
 
@@ -183,19 +203,28 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
   instance->incident = alloc_floats(&scene->allocator, instance->incident_floats);
   instance->light_product_floats = (size_t)3u * n2 * n2;
   instance->light_product = alloc_floats(&scene->allocator, instance->light_product_floats);
-  int failed = instance->incident == NULL || instance->light_product == NULL;
+  instance->located =
+      (uint32_t*)prt_internal_alloc(&scene->allocator, stamp_bytes(o->vertex_count), 16);
+  if (instance->located) memset(instance->located, 0, stamp_bytes(o->vertex_count));
+  int failed =
+      instance->incident == NULL || instance->light_product == NULL || instance->located == NULL;
   if (o->basis_size > 0u) {
     instance->weights_floats = 2u * (size_t)o->basis_size * o->terms * 3u;
     instance->weights = alloc_floats(&scene->allocator, instance->weights_floats);
     instance->field_floats = (size_t)prt_sf_point_count(&o->srf_shells) * n2 * 3u;
     instance->field = alloc_floats(&scene->allocator, instance->field_floats);
-    failed = failed || !instance->weights || !instance->field;
+    instance->needed =
+        (uint8_t*)prt_internal_alloc(&scene->allocator, prt_sf_point_count(&o->srf_shells), 16);
+    failed = failed || !instance->weights || !instance->field || !instance->needed;
   }
   if (failed) {
     free_floats(&scene->allocator, instance->incident, instance->incident_floats);
     free_floats(&scene->allocator, instance->weights, instance->weights_floats);
     free_floats(&scene->allocator, instance->field, instance->field_floats);
+    if (instance->needed)
+      prt_internal_free(&scene->allocator, instance->needed, prt_sf_point_count(&o->srf_shells));
     free_floats(&scene->allocator, instance->light_product, instance->light_product_floats);
+    free_stamps(&scene->allocator, instance->located, o->vertex_count);
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield instance buffers");
   }
   scene->prepared = 0u;

@@ -13,15 +13,47 @@
 #define PRT_SF_MAX_COEFFS (PRT_SF_GAUNT_MAX_ORDER * PRT_SF_GAUNT_MAX_ORDER)
 /* An SH rotation up to order 6 as its band blocks: sum over l < 6 of (2l + 1)^2. */
 #define PRT_SF_ROTATION_FLOATS 286u
+/* The same with each block's columns padded with zeros to a multiple of 8 floats: sum over
+ * l < 6 of (2l + 1) x 8 ceil((2l + 1) / 8). */
+#define PRT_SF_PADDED_ROTATION_FLOATS 448u
 #define PRT_SF_PASSES (PRT_SHADOWFIELD_MAX_BOUNCES + 1u)
 /* The most BRDF terms an object may have (the baker's default is 4). */
 #define PRT_SF_MAX_TERMS 64u
+
+/* A lookup of prt_sf_locate in compact form: the corner of the first of its 4 or 8 grid points
+ * and the fractions its weights are made of. */
+typedef struct prt_sf_cell {
+  uint32_t first; /* grid point of (shell, face, i, j) */
+  uint32_t count; /* 0, 4 or 8, as prt_sf_lookup::count */
+  float shell_frac, fi, fj;
+} prt_sf_cell;
+
+/* log(outer / inner) of a grid, as prt_sf_locate takes it. */
+double prt_sf_log_span(const prt_sf_shells* grid);
+/* prt_sf_locate(grid, p) in compact form (log_span from prt_sf_log_span); prt_sf_cell_lookup
+ * rebuilds its lookup bitwise (but for `inside`, which it leaves 0). Grids of fewer than 2^32
+ * points (the format's limits keep them far below). */
+void prt_sf_cell_locate(const prt_sf_shells* grid, double log_span, const float p[3],
+                        prt_sf_cell* out);
+void prt_sf_cell_lookup(const prt_sf_shells* grid, const prt_sf_cell* cell, prt_sf_lookup* out);
+/* Whether two grids have one centre, radius and inner shell (an object's OOF and SRF usually
+ * do), so that a point's distance and log radius serve both. */
+int prt_sf_shells_share_sphere(const prt_sf_shells* a, const prt_sf_shells* b);
+/* prt_sf_cell_locate in grids a and b that share their sphere, with one square root and at most
+ * one logarithm. */
+void prt_sf_cell_locate_two(const prt_sf_shells* a, double log_span_a, const prt_sf_shells* b,
+                            double log_span_b, const float p[3], prt_sf_cell* out_a,
+                            prt_sf_cell* out_b);
 
 /* Receiver instance i and another instance j that affects it. */
 typedef struct prt_sf_pair {
   uint32_t other;
   uint32_t occludes; /* within j's OOF: j shadows i */
   uint32_t lights;   /* within j's SRF and j has a basis: j lights i */
+  /* prt_sf_log_span of j's OOF and SRF grids, and whether they share their sphere
+   * (prt_sf_shells_share_sphere) when both are read. */
+  double oof_log_span, srf_log_span;
+  uint32_t fields_share_sphere;
   float to_other[9]; /* row-major: i's local frame to j's, p = to_other x + offset */
   float offset[3];
   /* SH rotation from j's frame to i's (R_i^T R_j), band blocks row-major. */
@@ -29,6 +61,10 @@ typedef struct prt_sf_pair {
   /* The same band blocks column-major (each block's [b width + a] = row a, column b), for the
    * SIMD kernels. */
   float sh_rotation_columns[PRT_SF_ROTATION_FLOATS];
+  /* For the SIMD kernels: the columns padded (column b of band l at [b pad(2l + 1) + a]) of the
+   * rotation and of its inverse (the transpose), so whole vectors load without masks. */
+  float padded_columns[PRT_SF_PADDED_ROTATION_FLOATS];
+  float padded_columns_back[PRT_SF_PADDED_ROTATION_FLOATS];
 } prt_sf_pair;
 
 typedef struct prt_sf_instance {
@@ -46,16 +82,30 @@ typedef struct prt_sf_instance {
    * [(c points + p) n^2 + coef]; NULL when the object has no basis. */
   float* field;
   size_t field_floats;
+  /* Per SRF point, 1 when some receiver's cell reads it this frame (needed_frame): the field is
+   * cast at those points only. NULL when the object has no basis. */
+  uint8_t* needed;
+  uint32_t needed_frame;
 
   /* The triple product with the frame's light as a matrix, one plane per colour:
    * [(c n^2 + k) n^2 + j] = sum_i C_ijk light_i,c, so that light x V = this . V. */
   float* light_product;
   size_t light_product_floats;
 
+  /* The frame stamp of each vertex's row of cells (scene->cells), set by its direct pass: a row
+   * is read by the bounces only when its stamp is the prepared frame's. */
+  uint32_t* located;
+
   /* Per frame (prepare). */
   float light[PRT_SF_MAX_COEFFS * 3u]; /* the environment in this instance's frame */
   uint32_t pair_first, pair_count;
   uint32_t is_source; /* some pair reads its field */
+  /* Where this receiver's cells start in scene->cells: vertex v's row of pair_count cells (the
+   * SRF lookup of each of its pairs) begins at cell_first + v pair_count. */
+  size_t cell_first;
+  /* A receiver of fewer terms than colours: where its transfer turned into each source's frame
+   * starts in scene->turned (vertex v, pair q: turned_first + (v pair_count + q) terms n^2). */
+  size_t turned_first;
 } prt_sf_instance;
 
 struct prt_shadowfield_scene {
@@ -69,6 +119,15 @@ struct prt_shadowfield_scene {
   prt_sf_gaunt gaunt;
   prt_sf_pair* pairs;
   uint32_t pair_count, pair_capacity;
+  /* Each receiver vertex's SRF lookups in its pairs' sources, located once per frame by the
+   * direct pass (they depend only on the placements) and read by every bounce. */
+  prt_sf_cell* cells;
+  size_t cell_capacity;
+  /* Diffuse receivers' transfer turned into each source's frame (R^T T), by the direct pass
+   * with the cells and read by every bounce. */
+  float* turned;
+  size_t turned_capacity;
+  uint32_t frame; /* the prepared frame's stamp, never 0 */
 
   /* The prepared frame. */
   uint32_t prepared;

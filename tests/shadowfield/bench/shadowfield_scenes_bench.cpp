@@ -145,7 +145,7 @@ struct LoadedScene {
   std::vector<std::vector<float>> out;
   std::vector<float*> out_pointers;
   size_t baked_bytes = 0, runtime_bytes = 0, peak_bytes = 0;
-  size_t streamed_bytes = 0;  // the SRF rows every projection of a frame reads
+  size_t streamed_bytes = 0;  // the SRF rows the projections of a frame read
   uint32_t vertices = 0;
 
   explicit LoadedScene(const std::string& name) {
@@ -293,9 +293,13 @@ void BM_Frame(benchmark::State& state, const std::string& name, prt_backend back
   for (uint32_t i = 0; i < s.scene->instance_count; ++i) {
     const prt_sf_instance& instance = s.scene->instances[i];
     const prt_sf_object* object = s.scene->objects[instance.object];
-    if (instance.is_source)
-      s.streamed_bytes += sizeof(float) * settings.bounces * object->basis_size * object->terms *
-                          prt_sf_point_count(&object->srf_shells) * object->order * object->order;
+    if (!instance.is_source) continue;
+    // The last frame's casts: only the SRF points its receivers read.
+    uint64_t points = 0;
+    for (uint64_t p = 0; p < prt_sf_point_count(&object->srf_shells); ++p)
+      points += instance.needed[p] ? 1u : 0u;
+    s.streamed_bytes += sizeof(float) * settings.bounces * object->basis_size * object->terms *
+                        points * object->order * object->order;
   }
   s.peak_bytes = s.counter.peak;
   record(state, name + "/" + backend_name(backend) + "/" + std::to_string(threads), wall, cpu,

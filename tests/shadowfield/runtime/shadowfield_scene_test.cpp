@@ -508,5 +508,47 @@ TEST(ShadowfieldScene, AWorkerPoolGivesTheOneThreadResult) {
   }
 }
 
+// A source's field is cast only at the points receivers' cells read: after a frame, every point
+// that some cell reads holds bitwise what casting the whole field gives.
+TEST(ShadowfieldScene, EveryFieldPointACellReadsIsCast) {
+  BusyScene busy;
+  const std::vector<float> light = test_light(4);
+  busy.scene.shade(light, kNearEye, 2);
+  const prt_shadowfield_scene* scene = busy.scene.scene;
+  const uint32_t n2 = scene->order * scene->order;
+  uint64_t checked = 0;
+  for (uint32_t s = 0; s < scene->instance_count; ++s) {
+    const prt_sf_instance& source = scene->instances[s];
+    if (!source.is_source) continue;
+    const prt_sf_object* object = scene->objects[source.object];
+    const uint64_t points = prt_sf_point_count(&object->srf_shells);
+    std::vector<float> whole(points * n2 * 3);
+    scene->kernels->cast_field(object, source.weights, whole.data(), 0, points);
+    for (uint32_t r = 0; r < scene->instance_count; ++r) {
+      const prt_sf_instance& receiver = scene->instances[r];
+      const uint32_t vertices = scene->objects[receiver.object]->vertex_count;
+      for (uint32_t q = 0; q < receiver.pair_count; ++q) {
+        const prt_sf_pair& pair = scene->pairs[receiver.pair_first + q];
+        if (pair.other != s || !pair.lights) continue;
+        for (uint32_t v = 0; v < vertices; ++v) {
+          ASSERT_EQ(receiver.located[v], scene->frame);
+          const prt_sf_cell& cell = scene->cells[receiver.cell_first + v * receiver.pair_count + q];
+          prt_sf_lookup lookup{};
+          prt_sf_cell_lookup(&object->srf_shells, &cell, &lookup);
+          for (uint32_t e = 0; e < lookup.count; ++e)
+            for (uint32_t c = 0; c < 3; ++c)
+              for (uint32_t k = 0; k < n2; ++k) {
+                const size_t at = (c * points + lookup.index[e]) * n2 + k;
+                ASSERT_EQ(source.field[at], whole[at])
+                    << "source " << s << " point " << lookup.index[e];
+                ++checked;
+              }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
 }  // namespace
 }  // namespace prt::test

@@ -11,8 +11,10 @@
 
 #include <prt/prt.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -94,6 +96,55 @@ TEST(ShadowfieldSimdKernels, ReadRowsAgreeForEveryWidth) {
   }
 }
 
+// A bounce's read of three colour planes dotted with one or two transfer vectors, summed over
+// two sources in lanes and reduced: within the bound of the whole sum (8 weighted rows, then the
+// dot over the width, then the two sources), against the scalar table and against the same
+// sums taken here in double.
+TEST(ShadowfieldSimdKernels, ReadDotAgreesForEveryWidth) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t width : {4u, 9u, 16u, 25u, 36u})
+    for (const uint32_t terms : {1u, 2u}) {
+      const uint64_t points = 37;
+      const std::vector<float> field = random_floats(3 * points * width, width + 70);
+      const std::vector<float> transfer = random_floats(terms * width, width + 80);
+      prt_sf_lookup lookups[2]{};
+      for (uint32_t s = 0; s < 2; ++s) {
+        lookups[s].count = s == 0 ? 8 : 4;
+        for (uint32_t e = 0; e < lookups[s].count; ++e) {
+          lookups[s].index[e] = (e * 7 + 5 * s + 1) % points;
+          lookups[s].weight[e] = 0.04f + 0.03f * float(e + s);
+        }
+      }
+      std::vector<float> outputs[2];
+      const prt_sf_kernels* tables[2] = {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2};
+      for (uint32_t t = 0; t < 2; ++t) {
+        std::vector<float> partial(3 * terms * PRT_SF_LANES, 0.0f);
+        for (const prt_sf_lookup& lookup : lookups)
+          tables[t]->read_dot(field.data(), points * width, width, &lookup, transfer.data(), terms,
+                              partial.data());
+        outputs[t].assign(3 * terms, 0.0f);
+        tables[t]->reduce_lanes(partial.data(), 3 * terms, outputs[t].data());
+      }
+      std::vector<double> magnitude(3 * terms, 0.0), exact(3 * terms, 0.0);
+      for (uint32_t k = 0; k < terms; ++k)
+        for (uint32_t c = 0; c < 3; ++c)
+          for (const prt_sf_lookup& lookup : lookups)
+            for (uint32_t e = 0; e < lookup.count; ++e)
+              for (uint32_t i = 0; i < width; ++i) {
+                const double product = double(transfer[k * width + i]) * lookup.weight[e] *
+                                       field[c * points * width + lookup.index[e] * width + i];
+                magnitude[3 * k + c] += std::fabs(product);
+                exact[3 * k + c] += product;
+              }
+      // Each product: two multiplications; sums of 8 rows, width values, 2 sources and 8 lanes.
+      const double n = 2.0 + 8.0 + width + 2.0 + 8.0;
+      check_within(outputs[0], outputs[1], magnitude, n);
+      for (uint32_t r = 0; r < 3 * terms; ++r)
+        for (uint32_t t = 0; t < 2; ++t)
+          EXPECT_LE(std::fabs(outputs[t][r] - exact[r]), gamma(n) * magnitude[r]) << r;
+    }
+}
+
 TEST(ShadowfieldSimdKernels, LightTimesAndTransferAgree) {
   SKIP_WITHOUT_AVX2();
   for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
@@ -159,6 +210,98 @@ TEST(ShadowfieldSimdKernels, RotationsAgree) {
       }
     }
     check_within(scalar, simd, magnitude, 2 * order - 1);
+  }
+}
+
+// The inverse rotation (a receiver's transfer turned into a source's frame): the backends agree
+// within the bound of the transpose's sums, and turning back undoes the rotation up to the
+// rounding of the blocks' orthogonality.
+TEST(ShadowfieldSimdKernels, RotationsBackAgreeAndUndoTheRotation) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t order : {3u, 4u, 6u}) {
+    SyntheticObject a = make_patch(order, 2), b = make_patch(order, 2);
+    TestScene s(2);
+    const float axis[3] = {-0.36f, 0.8f, 0.48f};
+    float turn[9];
+    axis_rotation(axis, 2.1f, turn);
+    s.add_instance(s.add_object(a), make_transform(identity_rotation(), 0, 0, 0));
+    s.add_instance(s.add_object(b), make_transform(turn, 0.2f, -0.4f, 0.1f));
+    const std::vector<float> light = test_light(order);
+    const float eye[3] = {0, 3, 1};
+    ASSERT_EQ(prt_shadowfield_prepare(s.scene, light.data(), eye, nullptr), PRT_OK);
+    ASSERT_GT(s.scene->pair_count, 0u);
+    const prt_sf_pair* pair = &s.scene->pairs[0];
+    const uint32_t n2 = order * order;
+    const std::vector<float> in = random_floats(2 * n2, order + 40);
+    std::vector<float> scalar(2 * n2), simd(2 * n2);
+    prt_sf_kernels_scalar.rotate_back(pair, order, in.data(), scalar.data(), 2);
+    prt_sf_kernels_avx2.rotate_back(pair, order, in.data(), simd.data(), 2);
+    // Row a of the transpose is column a of the row-major blocks.
+    std::vector<double> magnitude(2 * n2, 0.0);
+    for (uint32_t c = 0; c < 2; ++c) {
+      const float* block = pair->sh_rotation;
+      for (uint32_t l = 0; l < order; ++l) {
+        const uint32_t width = 2 * l + 1, base = l * l;
+        for (uint32_t r = 0; r < width; ++r)
+          for (uint32_t q = 0; q < width; ++q)
+            magnitude[c * n2 + base + r] +=
+                std::fabs(double(block[q * width + r]) * in[c * n2 + base + q]);
+        block += width * width;
+      }
+    }
+    check_within(scalar, simd, magnitude, 2 * order - 1);
+    // Inputs within [-1, 1]: the round trip stays within a few float steps of 1 (measured up to
+    // 1.8e-7 over these orders).
+    for (const prt_sf_kernels* kernels : {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2}) {
+      std::vector<float> turned(2 * n2), back(2 * n2);
+      kernels->rotate(pair, order, in.data(), turned.data(), 2);
+      kernels->rotate_back(pair, order, turned.data(), back.data(), 2);
+      for (uint32_t e = 0; e < 2 * n2; ++e) EXPECT_NEAR(back[e], in[e], 5e-7) << "value " << e;
+    }
+  }
+}
+
+// The triple product eight vertices at a time: in the masked lanes the SIMD kernel is within the
+// bound of each coefficient's sparse sum of the scalar one, which is prt_sf_sh_multiply lane by
+// lane; the other lanes keep their bits on both.
+TEST(ShadowfieldSimdKernels, MultiplyLanesAgreesAndKeepsTheOtherLanes) {
+  SKIP_WITHOUT_AVX2();
+  prt_allocator allocator{};
+  allocator.alloc = [](void*, size_t size, size_t) -> void* { return std::malloc(size); };
+  allocator.free = [](void*, void* p, size_t) { std::free(p); };
+  for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
+    prt_sf_gaunt gaunt{};
+    ASSERT_EQ(prt_sf_gaunt_build(&allocator, order, &gaunt), PRT_OK);
+    const uint32_t n2 = order * order, mask = 0xB5u;
+    const std::vector<float> a = random_floats(n2 * PRT_SF_LANES, order + 50);
+    const std::vector<float> b = random_floats(n2 * PRT_SF_LANES, order + 60);
+    std::vector<float> scalar = a, simd = a;
+    prt_sf_kernels_scalar.multiply_lanes(&gaunt, scalar.data(), b.data(), mask);
+    prt_sf_kernels_avx2.multiply_lanes(&gaunt, simd.data(), b.data(), mask);
+    std::vector<float> masked_scalar, masked_simd;
+    std::vector<double> magnitude;
+    uint32_t longest = 0;
+    for (uint32_t k = 0; k < n2; ++k) {
+      longest = std::max(longest, gaunt.k_start[k + 1] - gaunt.k_start[k]);
+      for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+        const size_t at = k * PRT_SF_LANES + lane;
+        if (!(mask >> lane & 1u)) {
+          EXPECT_EQ(scalar[at], a[at]);
+          EXPECT_EQ(simd[at], a[at]);
+          continue;
+        }
+        double sum = 0.0;
+        for (uint32_t e = gaunt.k_start[k]; e < gaunt.k_start[k + 1]; ++e)
+          sum += std::fabs(double(gaunt.value[e]) * a[gaunt.i[e] * PRT_SF_LANES + lane] *
+                           b[gaunt.j[e] * PRT_SF_LANES + lane]);
+        magnitude.push_back(sum);
+        masked_scalar.push_back(scalar[at]);
+        masked_simd.push_back(simd[at]);
+      }
+    }
+    // Each product has two multiplications: a sum of m of them is within gamma_(m + 2).
+    check_within(masked_scalar, masked_simd, magnitude, longest + 2);
+    prt_sf_gaunt_free(&allocator, &gaunt);
   }
 }
 
