@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Technique `shadowfield`'s scene at the extremes of its inputs (issue 15, "Extremes"): a
 // receiver inside a blocker's inner shell (the stated fallback), a blocker scaled 10x, 50
-// instances of one object, a single object, no instances; and the errors of bad arguments.
+// instances of one object, a single object, no instances, glossy views from behind and at grazing
+// angles; and the errors of bad arguments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -244,6 +246,53 @@ TEST(ShadowfieldExtremes, AGlossyVertexSeenFromBelowIsBlackAndFromItselfIsLit) {
       for (float value : out) EXPECT_EQ(value, 0.0f);
     else
       EXPECT_GT(out[0], 0.0f);
+  }
+}
+
+// The glossy output at views from just above the tangent plane to just below it: one BRDF term,
+// so the output is g(wo) times the term's light, and g is read between its table's smallest and
+// largest entries (bilinear weights are convex). Against the same vertex under a constant table.
+TEST(ShadowfieldExtremes, AGlossyVertexAtGrazingViewsStaysWithinItsTable) {
+  SyntheticObject patch = make_patch(4, 1);  // one vertex at the origin, normal +Y
+  patch.glossy = 1;
+  patch.brdf_grid = 4;
+  const std::vector<float> light = test_light(4);
+  const float above[3] = {0.0f, 3.0f, 0.0f};
+  patch.g_table.assign(16, 1.0f);
+  std::vector<float> unit;
+  {
+    TestScene s(1);
+    s.add_instance(s.add_object(patch), make_transform(identity_rotation(), 0, 0, 0));
+    unit = s.shade(light, above, 0)[0];
+  }
+  ASSERT_GT(unit[0], 0.0f);
+  float smallest = 1e30f, largest = 0.0f;
+  patch.g_table.clear();
+  for (uint32_t cell = 0; cell < 16; ++cell) {
+    patch.g_table.push_back(1.0f + 0.1f * float(cell));
+    smallest = std::min(smallest, patch.g_table.back());
+    largest = std::max(largest, patch.g_table.back());
+  }
+  const float rounding = 4.0f * std::numeric_limits<float>::epsilon();
+  std::vector<float> near_horizon;
+  for (const float height : {1e-2f, 1e-5f, 1e-9f, 1e-30f, 0.0f, -1e-30f, -1e-5f}) {
+    TestScene s(1);
+    s.add_instance(s.add_object(patch), make_transform(identity_rotation(), 0, 0, 0));
+    const float eye[3] = {3.0f, height, 1.0f};
+    const std::vector<float> out = s.shade(light, eye, 0)[0];
+    ASSERT_TRUE(all_finite(out)) << height;
+    for (int c = 0; c < 3; ++c) {
+      if (height <= 0.0f) {
+        EXPECT_EQ(out[c], 0.0f) << height;  // in the plane or behind: seen from behind
+        continue;
+      }
+      EXPECT_GE(out[c], smallest * unit[c] * (1.0f - rounding)) << height;
+      EXPECT_LE(out[c], largest * unit[c] * (1.0f + rounding)) << height;
+    }
+    if (height == 1e-5f) near_horizon = out;
+    if (height == 1e-30f) {  // the read converges to the table's rim as the view sinks
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(out[c], near_horizon[c], 4e-6f * unit[c]) << c;
+    }
   }
 }
 
