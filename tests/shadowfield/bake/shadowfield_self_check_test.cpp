@@ -51,7 +51,7 @@ TEST(ShadowfieldSelfCheck, PassesOnItsOwnBlobAtBothBitDepths) {
 // twice the half step the bound allows for it, under the constant light of the check.
 TEST(ShadowfieldSelfCheck, FailsWhenATransferValueIsOffByTwoSteps) {
   GlossyQuad quad(8);
-  const std::size_t n2 = 9, terms = 2, vertex = 4;
+  const std::size_t n2 = 9, terms = quad.object.material.terms(), vertex = 4;
   const float step = quad.quantized.transfer.scales[0];
   ASSERT_GT(step, 0.0f);
   quad.object.transfer[vertex * terms * n2] += 2.0f * step;
