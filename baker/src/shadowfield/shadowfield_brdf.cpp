@@ -235,7 +235,7 @@ void append_rows(const std::string& model, double parameter, const BrdfFunction&
     row.model = model;
     row.parameter = parameter;
     row.requested_terms = terms;
-    row.terms = whole_pair_terms(full.singular_values, terms);
+    row.terms = whole_pair_terms(full.singular_values, terms, SeparableBrdfOptions{}.max_terms);
     row.errors = reference.measure(truncate_separable_brdf(full, row.terms));
     rows->push_back(row);
   }
@@ -375,15 +375,21 @@ double SeparableBrdf::relative_error() const {
   return total > 0.0 ? std::sqrt(tail / total) : 0.0;
 }
 
-std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::uint32_t terms) {
-  if (terms >= singular_values.size()) return terms;
-  const auto one_group = [&](std::uint32_t k) {
-    return singular_values[k] - singular_values[k + 1] <=
-           kSingularValuePairTolerance * singular_values[k];
+std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::uint32_t terms,
+                               std::uint32_t max_terms) {
+  const std::size_t count = singular_values.size();
+  if (terms >= count) return terms;
+  // Whether keeping n terms cuts between two groups.
+  const auto whole = [&](std::size_t n) {
+    return n >= count || singular_values[n - 1] - singular_values[n] >
+                             kSingularValuePairTolerance * singular_values[n - 1];
   };
-  std::uint32_t kept = terms;
-  while (kept > 0 && one_group(kept - 1)) --kept;
-  return kept > 0 ? kept : terms;
+  const std::size_t most = std::min<std::size_t>(count, std::max(terms, max_terms));
+  for (std::size_t n = terms; n <= most; ++n)
+    if (whole(n)) return std::uint32_t(n);
+  for (std::size_t n = terms - 1; n >= 1; --n)
+    if (whole(n)) return std::uint32_t(n);
+  return terms;
 }
 
 std::vector<double> tabulate_brdf(const BrdfFunction& f, const HemisphereGrid& grid) {
@@ -413,7 +419,7 @@ SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& o
   Eigen::BDCSVD<Eigen::MatrixXd> svd(weighted, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& sigma = svd.singularValues();
   result.singular_values.assign(sigma.data(), sigma.data() + sigma.size());
-  result.terms = whole_pair_terms(result.singular_values, options.terms);
+  result.terms = whole_pair_terms(result.singular_values, options.terms, options.max_terms);
 
   const Eigen::VectorXd root = sigma.head(result.terms).cwiseSqrt() / std::sqrt(cell);
   Eigen::MatrixXd u = svd.matrixU().leftCols(result.terms) * root.asDiagonal();

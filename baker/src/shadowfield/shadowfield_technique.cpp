@@ -66,8 +66,7 @@ class ShadowfieldBake final : public TechniqueBake {
     OptionList list;
     list.add("--brdf", &brdf_, "lambert, phong:N[,ks[,kd]] or ggx:ALPHA[,F0]");
     list.add("--order", &s.fields.order, "SH order n of the fields and transfer").range(2, 6);
-    list.add("--terms", &s.brdf.terms,
-             "Separable BRDF terms K, at most: a pair is kept whole (glossy only)")
+    list.add("--terms", &s.brdf.terms, "Separable BRDF terms K; a pair is completed (glossy only)")
         .range(1, 8);
     list.add("--brdf-grid", &s.brdf.grid_size, "The BRDF table's hemisphere grid G (G x G)")
         .range(4, 64);

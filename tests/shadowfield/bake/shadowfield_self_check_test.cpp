@@ -19,7 +19,9 @@ struct GlossyQuad {
 
   explicit GlossyQuad(int bits) {
     ShadowfieldBakeSettings settings = small_bake_settings(3);
-    settings.brdf.terms = 2;
+    // One term: K = 2 is completed to GGX's three (its order-1 pair whole), and with three the
+    // two-step error below stays within the self-check's bound at that vertex.
+    settings.brdf.terms = 1;
     settings.brdf.grid_size = 8;
     settings.fields.oof_shells = 2;
     settings.fields.oof_face_size = 2;

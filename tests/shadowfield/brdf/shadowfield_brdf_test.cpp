@@ -242,19 +242,26 @@ double change_under_turns(const SeparableBrdf& brdf) {
 
 // ---- Factorisation -----------------------------------------------------------------------------
 
-TEST(WholePairs, AGroupOfEqualSingularValuesIsKeptOrDroppedWhole) {
+TEST(WholePairs, AGroupOfEqualSingularValuesIsCompletedOrDroppedWhole) {
   const std::vector<double> sigma = {1.0, 0.8, 0.8, 0.5, 0.3, 0.3, 0.3, 0.1};
-  const std::uint32_t expected[] = {1, 1, 3, 4, 4, 4, 7, 8};
+  // Completed up to 8 terms.
+  const std::uint32_t up[] = {1, 3, 3, 4, 7, 7, 7, 8};
   for (std::uint32_t terms = 1; terms <= 8; ++terms)
-    EXPECT_EQ(whole_pair_terms(sigma, terms), expected[terms - 1]) << "K = " << terms;
-  EXPECT_EQ(whole_pair_terms(sigma, 9), 9u);
+    EXPECT_EQ(whole_pair_terms(sigma, terms, 8), up[terms - 1]) << "K = " << terms;
+  // Completing the group of three would pass 5 (or K itself): dropped instead.
+  const std::uint32_t down[] = {1, 3, 3, 4, 4, 4, 7, 8};
+  for (std::uint32_t terms = 1; terms <= 8; ++terms)
+    EXPECT_EQ(whole_pair_terms(sigma, terms, 5), down[terms - 1]) << "K = " << terms;
+  EXPECT_EQ(whole_pair_terms(sigma, 2, 2), 1u);
+  EXPECT_EQ(whole_pair_terms(sigma, 9, 8), 9u);
   // Within the tolerance counts as equal, beyond it does not.
   const double close = 1.0 - 0.5 * kSingularValuePairTolerance;
   const double apart = 1.0 - 2.0 * kSingularValuePairTolerance;
-  EXPECT_EQ(whole_pair_terms({2.0, 1.0, close, 0.5}, 2), 1u);
-  EXPECT_EQ(whole_pair_terms({2.0, 1.0, apart, 0.5}, 2), 2u);
-  // A spectrum flat to within the tolerance from the first value on: K as asked.
-  EXPECT_EQ(whole_pair_terms({1.0, close, close * close, 0.5}, 2), 2u);
+  EXPECT_EQ(whole_pair_terms({2.0, 1.0, close, 0.5}, 2, 2), 1u);
+  EXPECT_EQ(whole_pair_terms({2.0, 1.0, apart, 0.5}, 2, 2), 2u);
+  // A spectrum flat to within the tolerance beyond reach either way: K as asked.
+  EXPECT_EQ(whole_pair_terms({1.0, close, close * close, 0.5}, 2, 3), 3u);
+  EXPECT_EQ(whole_pair_terms({1.0, close, close * close, 0.5}, 2, 2), 2u);
 }
 
 // The grid's cells lie on rings of 4, 12, 20, ... evenly spaced azimuths: only 4-fold symmetric.
@@ -306,11 +313,12 @@ TEST(WholePairs, TheGridSplitsPairsByLessThanTheToleranceAndKeepsOthersApart) {
 
 // A tangent frame turned about the normal reads the approximation at (w, wo) turned the other
 // way. The first term (order 0) has no azimuth: its change is the grid's and the interpolation's
-// alone, the floor. Kept in whole pairs, the approximation changes by less than three times the
-// floor (measured: under twice); cut through a pair, by more than ten times it (measured: over
-// fifteen). The default grid and K = 4 cut GGX 0.3's order-2 pair, not Phong 10's (its fourth
-// term is its second of order 0); the app's tiny bake (K = 2 on an 8 x 8 grid) cuts the order-1
-// pair of the procedural sphere's Phong 10.
+// alone, the floor. Kept in whole pairs, the approximation changes by less than five times the
+// floor (measured: under four, on the 8 x 8 grid where the order-1 terms interpolate worse than
+// the order-0 one; under twice on the default grid); cut through a pair, by more than ten times
+// it (measured: over fifteen). The default grid and K = 4 cut GGX 0.3's order-2 pair, not Phong
+// 10's (its fourth term is its second of order 0); the app's tiny bake (K = 2 on an 8 x 8 grid)
+// cuts the order-1 pair of the procedural sphere's Phong 10. Both are completed.
 TEST(WholePairs, KeptTermsDoNotChangeWhenTheFrameTurnsAboutTheNormal) {
   struct Case {
     const char* name;
@@ -319,9 +327,9 @@ TEST(WholePairs, KeptTermsDoNotChangeWhenTheFrameTurnsAboutTheNormal) {
     std::uint32_t kept;
   };
   const Case cases[] = {
-      {"GGX 0.3, default", brdf_function(GgxBrdf{0.3, 0.04}), {}, 3},
+      {"GGX 0.3, default", brdf_function(GgxBrdf{0.3, 0.04}), {}, 5},
       {"Phong 10, default", brdf_function(PhongBrdf{10.0, 1.0, 0.0}), {}, 4},
-      {"Phong 10 + diffuse, tiny", brdf_function(PhongBrdf{10.0, 0.7, 0.3}), {8, 2}, 1},
+      {"Phong 10 + diffuse, tiny", brdf_function(PhongBrdf{10.0, 0.7, 0.3}), {8, 2}, 3},
   };
   for (const Case& c : cases) {
     const SeparableBrdf brdf = separate_brdf(c.f, c.options);
@@ -331,8 +339,8 @@ TEST(WholePairs, KeptTermsDoNotChangeWhenTheFrameTurnsAboutTheNormal) {
     const double change = change_under_turns(brdf);
     std::printf("%s: kept %u of %u, change under turns %.3e (floor %.3e)", c.name, brdf.terms,
                 c.options.terms, change, floor);
-    EXPECT_LT(change, 3.0 * floor) << c.name;
-    if (brdf.terms < c.options.terms) {
+    EXPECT_LT(change, 5.0 * floor) << c.name;
+    if (brdf.terms != c.options.terms) {
       // The same SVD, cut where K asked.
       const SeparableBrdf full =
           separate_brdf(c.f, {c.options.grid_size, c.options.grid_size * c.options.grid_size});

@@ -72,7 +72,8 @@ void square_from_hemisphere(const glm::dvec3& direction, double* a, double* b);
 
 struct SeparableBrdfOptions {
   std::uint32_t grid_size = 32;  // the HemisphereGrid's size, 4..64 (the SVD is count()^2)
-  std::uint32_t terms = 4;       // K, 1..count(): the most terms kept (see whole_pair_terms)
+  std::uint32_t terms = 4;       // K, 1..count(): the fewest terms kept (see whole_pair_terms)
+  std::uint32_t max_terms = 8;   // the most that completing a pair may reach (a blob holds 8)
 };
 
 // An isotropic BRDF's terms come singly (azimuthal order m = 0) or in pairs of equal singular
@@ -86,12 +87,15 @@ struct SeparableBrdfOptions {
 // the lobes grids 8 to 32 resolve (the brdf tests measure both on grids 8 and 16).
 constexpr double kSingularValuePairTolerance = 1.5e-3;
 
-// How many of `terms` leading terms to keep so that no group of singular values (above) is cut:
-// `terms` when the cut falls between groups, else the start of the group it cuts (fewer terms,
-// so K stays an upper bound on the data and the run-time cost). When even the first group is
-// longer than `terms` (a spectrum flat to within the tolerance: a lobe far narrower than the
-// grid, which K terms cannot hold anyway), `terms` as asked.
-std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::uint32_t terms);
+// How many leading terms to keep so that no group of singular values (above) is cut: `terms`
+// when the cut falls between groups, else the end of the group it cuts, if that is at most
+// max(terms, max_terms); else the start of that group (the last whole group before it). Rounding
+// up keeps K's accuracy at least: dropping half of a pair loses the half of it that an
+// approximation cut through the pair had on average over the frame's turns. When no whole count
+// is within reach (a spectrum flat to within the tolerance: a lobe far narrower than the grid,
+// which K terms cannot hold anyway), `terms` as asked.
+std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::uint32_t terms,
+                               std::uint32_t max_terms);
 
 // f(w, wo) ~ sum_k g_k(wo) h_k(w) with g_k, h_k sampled at the grid's cell centres. The table
 // A(i, j) = sqrt(dw_i) f(w_j, wo_i) sqrt(dw_j) (rows outgoing, columns incident) has Frobenius
@@ -101,7 +105,7 @@ std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::
 // positive.
 struct SeparableBrdf {
   HemisphereGrid grid;
-  std::uint32_t terms = 0;              // kept: whole_pair_terms(singular_values, requested_terms)
+  std::uint32_t terms = 0;              // kept (whole_pair_terms)
   std::uint32_t requested_terms = 0;    // K as asked
   std::vector<double> outgoing;         // g: terms x grid.count(), term-major
   std::vector<double> incident;         // h: terms x grid.count(), term-major
@@ -125,8 +129,8 @@ struct SeparableBrdf {
 
 // f tabulated on the grid, unweighted: table[i count + j] = f(w_j, wo_i).
 std::vector<double> tabulate_brdf(const BrdfFunction& f, const HemisphereGrid& grid);
-// The truncated SVD of f's table, cut at whole_pair_terms(options.terms). Throws Error for a bad
-// grid or term count.
+// The truncated SVD of f's table, cut at whole_pair_terms(options.terms, options.max_terms).
+// Throws Error for a bad grid or term count.
 SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& options);
 // The first `terms` terms of an approximation (the truncation of the same SVD), exactly that many
 // whether or not the cut splits a pair.
