@@ -234,8 +234,9 @@ void append_rows(const std::string& model, double parameter, const BrdfFunction&
     SeparableBrdfErrorRow row;
     row.model = model;
     row.parameter = parameter;
-    row.terms = terms;
-    row.errors = reference.measure(truncate_separable_brdf(full, terms));
+    row.requested_terms = terms;
+    row.terms = whole_pair_terms(full.singular_values, terms, SeparableBrdfOptions{}.max_terms);
+    row.errors = reference.measure(truncate_separable_brdf(full, row.terms));
     rows->push_back(row);
   }
 }
@@ -374,6 +375,23 @@ double SeparableBrdf::relative_error() const {
   return total > 0.0 ? std::sqrt(tail / total) : 0.0;
 }
 
+std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::uint32_t terms,
+                               std::uint32_t max_terms) {
+  const std::size_t count = singular_values.size();
+  if (terms >= count) return terms;
+  // Whether keeping n terms cuts between two groups.
+  const auto whole = [&](std::size_t n) {
+    return n >= count || singular_values[n - 1] - singular_values[n] >
+                             kSingularValuePairTolerance * singular_values[n - 1];
+  };
+  const std::size_t most = std::min<std::size_t>(count, std::max(terms, max_terms));
+  for (std::size_t n = terms; n <= most; ++n)
+    if (whole(n)) return std::uint32_t(n);
+  for (std::size_t n = terms - 1; n >= 1; --n)
+    if (whole(n)) return std::uint32_t(n);
+  return terms;
+}
+
 std::vector<double> tabulate_brdf(const BrdfFunction& f, const HemisphereGrid& grid) {
   const std::uint32_t count = grid.count();
   std::vector<glm::dvec3> directions(count);
@@ -389,7 +407,7 @@ SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& o
   check_options(options);
   SeparableBrdf result;
   result.grid.size = options.grid_size;
-  result.terms = options.terms;
+  result.requested_terms = options.terms;
   const Eigen::Index count = result.grid.count();
   // Every cell has the same solid angle, so sqrt(dw_i) sqrt(dw_j) is one factor.
   const double cell = result.grid.solid_angle();
@@ -401,10 +419,11 @@ SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& o
   Eigen::BDCSVD<Eigen::MatrixXd> svd(weighted, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& sigma = svd.singularValues();
   result.singular_values.assign(sigma.data(), sigma.data() + sigma.size());
+  result.terms = whole_pair_terms(result.singular_values, options.terms, options.max_terms);
 
-  const Eigen::VectorXd root = sigma.head(options.terms).cwiseSqrt() / std::sqrt(cell);
-  Eigen::MatrixXd u = svd.matrixU().leftCols(options.terms) * root.asDiagonal();
-  Eigen::MatrixXd v = svd.matrixV().leftCols(options.terms) * root.asDiagonal();
+  const Eigen::VectorXd root = sigma.head(result.terms).cwiseSqrt() / std::sqrt(cell);
+  Eigen::MatrixXd u = svd.matrixU().leftCols(result.terms) * root.asDiagonal();
+  Eigen::MatrixXd v = svd.matrixV().leftCols(result.terms) * root.asDiagonal();
   fix_signs(u, v);
   // Column-major u and v store each term's samples contiguously: term-major as is.
   result.outgoing.assign(u.data(), u.data() + u.size());
@@ -418,6 +437,7 @@ SeparableBrdf truncate_separable_brdf(const SeparableBrdf& brdf, std::uint32_t t
                 std::to_string(brdf.terms) + " terms");
   SeparableBrdf result = brdf;
   result.terms = terms;
+  result.requested_terms = terms;
   result.outgoing.resize(std::size_t(terms) * brdf.grid.count());
   result.incident.resize(std::size_t(terms) * brdf.grid.count());
   return result;

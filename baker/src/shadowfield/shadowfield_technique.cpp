@@ -66,7 +66,8 @@ class ShadowfieldBake final : public TechniqueBake {
     OptionList list;
     list.add("--brdf", &brdf_, "lambert, phong:N[,ks[,kd]] or ggx:ALPHA[,F0]");
     list.add("--order", &s.fields.order, "SH order n of the fields and transfer").range(2, 6);
-    list.add("--terms", &s.brdf.terms, "Separable BRDF terms K (glossy only)").range(1, 8);
+    list.add("--terms", &s.brdf.terms, "Separable BRDF terms K; a pair is completed (glossy only)")
+        .range(1, 8);
     list.add("--brdf-grid", &s.brdf.grid_size, "The BRDF table's hemisphere grid G (G x G)")
         .range(4, 64);
     list.add("--shells", &s.fields.oof_shells, "Occlusion field shells").range(1, 64);
@@ -159,6 +160,7 @@ class ShadowfieldBake final : public TechniqueBake {
          {{"brdf", brdf_},
           {"order", s.fields.order},
           {"terms", o.material.terms()},
+          {"terms_requested", o.material.glossy ? o.material.brdf.requested_terms : 1u},
           {"brdf_grid", s.brdf.grid_size},
           {"oof", shells_json(o.oof_shells)},
           {"srf", shells_json(o.srf_shells)},

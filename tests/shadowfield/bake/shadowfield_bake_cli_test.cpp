@@ -71,7 +71,9 @@ TEST(ShadowfieldBakeCommand, SameBytesOnOneAndTwoThreadsAndAReport) {
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(report));
   EXPECT_EQ(json["technique"], "shadowfield");
   EXPECT_EQ(json["settings"]["order"], 3);
-  EXPECT_EQ(json["settings"]["terms"], 2);
+  // K = 2 would cut Phong's pair of order-1 terms: the pair is completed.
+  EXPECT_EQ(json["settings"]["terms"], 3);
+  EXPECT_EQ(json["settings"]["terms_requested"], 2);
   EXPECT_EQ(json["settings"]["bits"], 8);
   EXPECT_EQ(json["settings"]["oof"]["shells"], 2);
   EXPECT_EQ(json["blob"]["bytes"], bytes.size());

@@ -71,10 +71,12 @@ struct Placed {
 };
 
 // Every instance's outgoing radiance (vertex-major RGB) towards `eye` after `bounces`, through
-// the runtime: blobs loaded at full validation, one object each, instances unrotated at scale 1.
+// the runtime on `backend`: blobs loaded at full validation, one object each, instances
+// unrotated at scale 1.
 inline std::vector<std::vector<float>> shade_instances(
     const std::vector<std::vector<std::uint8_t>>& blobs, const std::vector<Placed>& instances,
-    const std::vector<float>& light, const glm::vec3& eye, std::uint32_t bounces) {
+    const std::vector<float>& light, const glm::vec3& eye, std::uint32_t bounces,
+    prt_backend backend = PRT_BACKEND_CPU) {
   auto [context, made] = prt::create_context();
   EXPECT_EQ(made, PRT_OK);
   std::vector<prt::AssetPtr> assets;
@@ -108,7 +110,7 @@ inline std::vector<std::vector<float>> shade_instances(
   prt_shadowfield_settings settings{};
   settings.struct_size = sizeof settings;
   settings.bounces = bounces;
-  settings.backend = PRT_BACKEND_CPU;
+  settings.backend = backend;
   const float eye_xyz[3] = {eye.x, eye.y, eye.z};
   EXPECT_EQ(prt_shadowfield_shade(raw, light.data(), eye_xyz, &settings, out.data()), PRT_OK)
       << prt_context_last_message(context.get());

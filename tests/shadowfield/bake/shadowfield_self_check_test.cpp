@@ -19,7 +19,9 @@ struct GlossyQuad {
 
   explicit GlossyQuad(int bits) {
     ShadowfieldBakeSettings settings = small_bake_settings(3);
-    settings.brdf.terms = 2;
+    // One term: K = 2 is completed to GGX's three (its order-1 pair whole), and with three the
+    // two-step error below stays within the self-check's bound at that vertex.
+    settings.brdf.terms = 1;
     settings.brdf.grid_size = 8;
     settings.fields.oof_shells = 2;
     settings.fields.oof_face_size = 2;
@@ -51,7 +53,7 @@ TEST(ShadowfieldSelfCheck, PassesOnItsOwnBlobAtBothBitDepths) {
 // twice the half step the bound allows for it, under the constant light of the check.
 TEST(ShadowfieldSelfCheck, FailsWhenATransferValueIsOffByTwoSteps) {
   GlossyQuad quad(8);
-  const std::size_t n2 = 9, terms = 2, vertex = 4;
+  const std::size_t n2 = 9, terms = quad.object.material.terms(), vertex = 4;
   const float step = quad.quantized.transfer.scales[0];
   ASSERT_GT(step, 0.0f);
   quad.object.transfer[vertex * terms * n2] += 2.0f * step;

@@ -72,8 +72,30 @@ void square_from_hemisphere(const glm::dvec3& direction, double* a, double* b);
 
 struct SeparableBrdfOptions {
   std::uint32_t grid_size = 32;  // the HemisphereGrid's size, 4..64 (the SVD is count()^2)
-  std::uint32_t terms = 4;       // K, 1..count()
+  std::uint32_t terms = 4;       // K, 1..count(): the fewest terms kept (see whole_pair_terms)
+  std::uint32_t max_terms = 8;   // the most that completing a pair may reach (a blob holds 8)
 };
+
+// An isotropic BRDF's terms come singly (azimuthal order m = 0) or in pairs of equal singular
+// value (a(theta) cos(m phi), a(theta) sin(m phi)). A pair kept whole sums to a function of the
+// azimuth difference, so the approximation does not change when the tangent frame turns about
+// the normal; half a pair does, and shows as a seam where the frame flips. Singular values whose
+// relative gap (s_k - s_k+1) / s_k is within this tolerance count as one group. The grid has
+// only 4-fold symmetry (its rings hold 4, 12, 20, ... cells): that keeps odd-m pairs equal to
+// rounding but splits even-m pairs a little (cos 4 phi meets m = 0 on the innermost ring). The
+// tolerance lies between the largest such split and the smallest gap between distinct terms of
+// the lobes grids 8 to 32 resolve (the brdf tests measure both on grids 8 and 16).
+constexpr double kSingularValuePairTolerance = 1.5e-3;
+
+// How many leading terms to keep so that no group of singular values (above) is cut: `terms`
+// when the cut falls between groups, else the end of the group it cuts, if that is at most
+// max(terms, max_terms); else the start of that group (the last whole group before it). Rounding
+// up keeps K's accuracy at least: dropping half of a pair loses the half of it that an
+// approximation cut through the pair had on average over the frame's turns. When no whole count
+// is within reach (a spectrum flat to within the tolerance: a lobe far narrower than the grid,
+// which K terms cannot hold anyway), `terms` as asked.
+std::uint32_t whole_pair_terms(const std::vector<double>& singular_values, std::uint32_t terms,
+                               std::uint32_t max_terms);
 
 // f(w, wo) ~ sum_k g_k(wo) h_k(w) with g_k, h_k sampled at the grid's cell centres. The table
 // A(i, j) = sqrt(dw_i) f(w_j, wo_i) sqrt(dw_j) (rows outgoing, columns incident) has Frobenius
@@ -83,7 +105,8 @@ struct SeparableBrdfOptions {
 // positive.
 struct SeparableBrdf {
   HemisphereGrid grid;
-  std::uint32_t terms = 0;
+  std::uint32_t terms = 0;              // kept (whole_pair_terms)
+  std::uint32_t requested_terms = 0;    // K as asked
   std::vector<double> outgoing;         // g: terms x grid.count(), term-major
   std::vector<double> incident;         // h: terms x grid.count(), term-major
   std::vector<double> singular_values;  // all of them, descending (not only the kept ones)
@@ -106,9 +129,11 @@ struct SeparableBrdf {
 
 // f tabulated on the grid, unweighted: table[i count + j] = f(w_j, wo_i).
 std::vector<double> tabulate_brdf(const BrdfFunction& f, const HemisphereGrid& grid);
-// The truncated SVD of f's table. Throws Error for a bad grid or term count.
+// The truncated SVD of f's table, cut at whole_pair_terms(options.terms, options.max_terms).
+// Throws Error for a bad grid or term count.
 SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& options);
-// The first `terms` terms of an approximation (the truncation of the same SVD).
+// The first `terms` terms of an approximation (the truncation of the same SVD), exactly that many
+// whether or not the cut splits a pair.
 SeparableBrdf truncate_separable_brdf(const SeparableBrdf& brdf, std::uint32_t terms);
 
 // How far sum_k g_k h_k is from f.
@@ -133,11 +158,13 @@ SeparableBrdfErrors measure_separable_brdf(const BrdfFunction& f, const Separabl
                                            const SeparableBrdf& full_rank);
 
 // The errors of K in {1, 2, 4, 8, 16} for Phong n in {1, 4, 10, 16, 64, 256, 1000} and GGX alpha
-// in {0.5, 0.3, 0.1}, one SVD per model on options' grid (options.terms is ignored).
+// in {0.5, 0.3, 0.1}, one SVD per model on options' grid (options.terms is ignored), each K cut
+// at whole pairs as separate_brdf cuts it.
 struct SeparableBrdfErrorRow {
   std::string model;       // "phong" or "ggx"
   double parameter = 0.0;  // n or alpha
-  std::uint32_t terms = 0;
+  std::uint32_t requested_terms = 0;
+  std::uint32_t terms = 0;  // kept
   SeparableBrdfErrors errors;
 };
 std::vector<SeparableBrdfErrorRow> separable_brdf_error_table(const SeparableBrdfOptions& options);
