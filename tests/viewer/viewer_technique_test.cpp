@@ -137,7 +137,7 @@ TEST(PrtViewTechnique, AnotherTechniquesOptionIsIgnoredWithAWarning) {
 
 // The golden shadowfield blob (the quad scene as one glossy object) drawn as one instance in its
 // own frame: the header line, and the same radiance from the scalar and the best CPU backend
-// (the SIMD kernels sum in another order: a few float roundings apart).
+// (the SIMD kernels sum in another order: float roundings apart).
 TEST(PrtViewTechnique, ShadowfieldDrawsItsObjectAlone) {
   const std::string blob = golden("shadowfield_quad.prtk");
   const prt_test::CommandResult run = view_frames(blob, "--backend cpu", "shadowfield_header");
@@ -151,7 +151,7 @@ TEST(PrtViewTechnique, ShadowfieldDrawsItsObjectAlone) {
   const std::vector<float> best = view_vertices(blob, sky, "shadowfield_auto", "--backend auto");
   ASSERT_EQ(cpu.size(), 24u);
   ASSERT_EQ(best.size(), 24u);
-  EXPECT_LT(relative_difference(best, cpu), 1e-6);
+  EXPECT_LT(relative_difference(best, cpu), 5e-7);
   for (const float x : cpu) EXPECT_TRUE(std::isfinite(x));
 }
 
