@@ -9,7 +9,6 @@ const Technique& sh_technique();       // baker/src/sh/sh_technique.cpp
 const Technique& wavelet_technique();  // baker/src/wavelet/wavelet_technique.cpp
 const Technique& pose_technique();     // baker/src/pose/pose_technique.cpp
 const Technique& cloth_technique();    // baker/src/cloth/cloth_technique.cpp
-// Staged (PRT_STAGED_TECHNIQUES): its baker folder is built, so it is listed already.
 const Technique& shadowfield_technique();  // baker/src/shadowfield/shadowfield_technique.cpp
 
 const std::vector<const Technique*>& techniques() {

@@ -4,6 +4,7 @@
 #include "cloth/cloth_view.hpp"
 #include "pose/pose_view.hpp"
 #include "sh/sh_view.hpp"
+#include "shadowfield/shadowfield_view.hpp"
 #include "view_techniques.hpp"
 #include "wavelet/wavelet_view.hpp"
 
@@ -15,6 +16,7 @@ const std::vector<MakeViewTechnique>& view_technique_table() {
       make_wavelet_view,
       make_pose_view,
       make_cloth_view,
+      make_shadowfield_view,
   };
   return kTable;
 }

@@ -40,14 +40,15 @@ void ViewerSlot::prepare_light(prt::sample::Sample& sample) {
 
 GLuint ViewerSlot::shade(prt::sample::Sample& sample, bool keep_radiance) {
   prepare_light(sample);
+  // Before either backend: a view-dependent technique's GL shader reads the eye too.
+  const glm::vec3 eye = sample.camera().camera(1.0f).eye;  // the aspect does not move the eye
+  technique_->set_eye(&eye.x);
   if (sample.backend() == prt::sample::Backend::Gl) {
     const GLuint buffer = shade_gl(sample, keep_radiance);
     if (buffer) return buffer;
   }
   const std::uint32_t vertices = scene_->vertex_count();
   const prt_backend backend = prt::sample::runtime_backend(sample.backend());
-  const glm::vec3 eye = sample.camera().camera(1.0f).eye;  // the aspect does not move the eye
-  technique_->set_eye(&eye.x);
   const prt_result result = sample.time_shading(
       [&] { return technique_->shade(*scene_, backend, 0, vertices, radiance_.data()); });
   if (result != PRT_OK)

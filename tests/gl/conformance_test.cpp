@@ -11,6 +11,7 @@ std::vector<Case> sh_cases();
 std::vector<Case> wavelet_cases();
 std::vector<Case> pose_cases();
 std::vector<Case> cloth_cases();
+std::vector<Case> shadowfield_cases();
 }  // namespace prt_conformance
 
 namespace {
@@ -25,6 +26,7 @@ const TechniqueCases kTechniques[] = {
     {"Wavelet", prt_conformance::wavelet_cases},
     {"Pose", prt_conformance::pose_cases},
     {"Cloth", prt_conformance::cloth_cases},
+    {"Shadowfield", prt_conformance::shadowfield_cases},
 };
 
 class ConformanceCase : public ::testing::Test {

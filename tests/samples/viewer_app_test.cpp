@@ -99,4 +99,11 @@ TEST(PrtViewerBackends, GoldenShAndWaveletBlobsLookTheSameOnEveryBackend) {
   expect_backends_agree(prt_view_test::golden("wavelet_quad.prtk"), sky, "golden_wavelet");
 }
 
+// A glossy shadowfield object's radiance depends on the eye, which its GL shader reads as well:
+// the golden quad, seen from the camera, agrees on every backend.
+TEST(PrtViewerBackends, GoldenShadowfieldBlobLooksTheSameOnEveryBackend) {
+  const std::string sky = prt_view_test::write_test_sky();
+  expect_backends_agree(prt_view_test::golden("shadowfield_quad.prtk"), sky, "golden_shadowfield");
+}
+
 }  // namespace

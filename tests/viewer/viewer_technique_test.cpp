@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <prt/format/blob_writer.hpp>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -63,9 +64,10 @@ TEST(PrtViewTechnique, BlobWithSeveralIsDrawnWithTheFirstUnlessOneIsNamed) {
 TEST(PrtViewTechnique, MeshOnlyBlobFailsSayingItHoldsNoTechnique) {
   const prt_test::CommandResult run = view_frames(golden("tiny.prtk"), "", "mesh_only");
   EXPECT_EQ(run.exit_code, 1) << run.output;
-  EXPECT_NE(run.output.find("tiny.prtk: nothing prt-view can draw: the blob holds only a mesh, no "
-                            "technique section (prt-view draws sh, wavelet, pose, cloth)"),
-            std::string::npos)
+  EXPECT_NE(
+      run.output.find("tiny.prtk: nothing prt-view can draw: the blob holds only a mesh, no "
+                      "technique section (prt-view draws sh, wavelet, pose, cloth, shadowfield)"),
+      std::string::npos)
       << run.output;
 }
 
@@ -94,10 +96,10 @@ TEST(PrtViewTechnique, UnknownTechniqueNameIsABadArgument) {
 TEST(PrtViewTechnique, HelpListsTheTechniquesAndTheirOptions) {
   const prt_test::CommandResult run = run_view("--help", "help");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  for (const char* text :
-       {"--technique", "wavelet options:", "--light-coefficients",
-        "Techniques: sh, wavelet, pose, cloth. A blob holding several is drawn with the "
-        "first of them unless --technique picks another"})
+  for (const char* text : {"--technique", "wavelet options:", "--light-coefficients",
+                           "Techniques: sh, wavelet, pose, cloth, shadowfield. A blob holding "
+                           "several is drawn with the "
+                           "first of them unless --technique picks another"})
     EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
 }
 
@@ -131,6 +133,26 @@ TEST(PrtViewTechnique, AnotherTechniquesOptionIsIgnoredWithAWarning) {
   EXPECT_EQ(own.exit_code, 0) << own.output;
   EXPECT_EQ(own.output.find("ignored"), std::string::npos) << own.output;
   EXPECT_NE(own.output.find("6 + 5 light coefficients kept"), std::string::npos) << own.output;
+}
+
+// The golden shadowfield blob (the quad scene as one glossy object) drawn as one instance in its
+// own frame: the header line, and the same radiance from the scalar and the best CPU backend
+// (the SIMD kernels sum in another order: float roundings apart).
+TEST(PrtViewTechnique, ShadowfieldDrawsItsObjectAlone) {
+  const std::string blob = golden("shadowfield_quad.prtk");
+  const prt_test::CommandResult run = view_frames(blob, "--backend cpu", "shadowfield_header");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("shadowfield_quad.prtk: 8 vertices, 4 triangles, shadowfield order 3, "
+                            "glossy (2 BRDF term(s)), basis 2, 8-bit; one instance"),
+            std::string::npos)
+      << run.output;
+  const std::string sky = write_test_sky();
+  const std::vector<float> cpu = view_vertices(blob, sky, "shadowfield_cpu", "--backend cpu");
+  const std::vector<float> best = view_vertices(blob, sky, "shadowfield_auto", "--backend auto");
+  ASSERT_EQ(cpu.size(), 24u);
+  ASSERT_EQ(best.size(), 24u);
+  EXPECT_LT(relative_difference(best, cpu), 5e-7);
+  for (const float x : cpu) EXPECT_TRUE(std::isfinite(x));
 }
 
 }  // namespace
