@@ -47,10 +47,10 @@ static float* turned_transfer(const prt_shadowfield_scene* scene, const prt_sf_i
 /* Step 2 for vertices [first, first + count) (count <= PRT_SF_LANES), one lane each: the
  * environment times every blocker's visibility, in the receiver's frame, into
  * light[lane][c n^2 + k] (one plane of coefficients per colour). Each lane's visibilities are
- * multiplied in the pairs' order, as vertex by vertex. With `locate_sources`, also locates each
- * vertex in every source's SRF grid into its row of cells, which the bounces read, and for a
- * receiver of fewer terms than colours turns its transfer into each source's frame that reaches
- * it. */
+ * multiplied in the pairs' order, as vertex by vertex, and each blocker's reads are turned for
+ * all lanes by one rotation. With `locate_sources`, also locates each vertex in every source's
+ * SRF grid into its row of cells, which the bounces read, and for a receiver of fewer terms than
+ * colours turns its transfer into each source's frame that reaches it. */
 static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                            uint32_t first, uint32_t count, int locate_sources,
                            float light[][PRT_SF_MAX_COEFFS * 3u]) {
@@ -59,15 +59,17 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
   const uint32_t order = scene->order, n2 = order * order, terms = object->terms;
   const int turn_transfer = locate_sources && terms < 3u;
   float visibility[PRT_SF_MAX_COEFFS * PRT_SF_LANES], next[PRT_SF_MAX_COEFFS * PRT_SF_LANES];
-  float local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
-  /* The SIMD product computes every lane: the idle ones hold zeros, not garbage. */
+  float unturned[PRT_SF_MAX_COEFFS * PRT_SF_LANES], local[PRT_SF_MAX_COEFFS];
+  /* The SIMD product and rotation compute every lane: the idle ones hold zeros, not garbage. */
   memset(visibility, 0, (size_t)n2 * PRT_SF_LANES * sizeof(float));
   memset(next, 0, (size_t)n2 * PRT_SF_LANES * sizeof(float));
+  memset(unturned, 0, (size_t)n2 * PRT_SF_LANES * sizeof(float));
   uint32_t blocked = 0u; /* lanes with a visibility so far */
   for (uint32_t q = 0; q < receiver->pair_count; ++q) {
     const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
     const prt_sf_object* other = scene->objects[scene->instances[pair->other].object];
-    uint32_t multiply = 0u; /* lanes whose visibility this blocker multiplies */
+    uint32_t multiply = 0u;      /* lanes whose visibility this blocker multiplies */
+    uint32_t first_blocked = 0u; /* lanes this blocker is the first to shadow */
     for (uint32_t lane = 0; lane < count; ++lane) {
       const uint32_t v = first + lane;
       float p[3];
@@ -88,13 +90,19 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
         prt_sf_cell_locate(&other->oof_shells, pair->oof_log_span, p, &cell);
       if (cell.count == 0u) continue;
       read_cell(kernels, &other->oof_shells, other->oof, n2, 1u, &cell, local);
-      kernels->rotate(pair, order, local, turned, 1u);
-      float* into = blocked >> lane & 1u ? next : visibility;
-      for (uint32_t k = 0; k < n2; ++k) into[k * PRT_SF_LANES + lane] = turned[k];
-      if (blocked >> lane & 1u) multiply |= 1u << lane;
-      blocked |= 1u << lane;
+      for (uint32_t k = 0; k < n2; ++k) unturned[k * PRT_SF_LANES + lane] = local[k];
+      if (blocked >> lane & 1u)
+        multiply |= 1u << lane;
+      else
+        first_blocked |= 1u << lane;
     }
-    if (multiply) kernels->multiply_lanes(&scene->gaunt, visibility, next, multiply);
+    /* A lane's first blocker is its visibility, a later one multiplies it. */
+    if (first_blocked) kernels->rotate_lanes(pair, order, unturned, visibility, first_blocked);
+    if (multiply) {
+      kernels->rotate_lanes(pair, order, unturned, next, multiply);
+      kernels->multiply_lanes(&scene->gaunt, visibility, next, multiply);
+    }
+    blocked |= first_blocked;
   }
   for (uint32_t lane = 0; lane < count; ++lane) {
     if (!(blocked >> lane & 1u)) {

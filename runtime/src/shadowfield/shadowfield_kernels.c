@@ -56,6 +56,18 @@ static void rotate_back_scalar(const prt_sf_pair* pair, uint32_t order, const fl
     prt_sf_rotate_apply(order, pair->sh_rotation_columns, in + c * n2, out + c * n2, 1u);
 }
 
+static void rotate_lanes_scalar(const prt_sf_pair* pair, uint32_t order, const float* in,
+                                float* out, uint32_t mask) {
+  const uint32_t n2 = order * order;
+  float local[PRT_SF_MAX_COEFFS], turned[PRT_SF_MAX_COEFFS];
+  for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+    if (!(mask >> lane & 1u)) continue;
+    for (uint32_t k = 0; k < n2; ++k) local[k] = in[k * PRT_SF_LANES + lane];
+    prt_sf_rotate_apply(order, pair->sh_rotation, local, turned, 1u);
+    for (uint32_t k = 0; k < n2; ++k) out[k * PRT_SF_LANES + lane] = turned[k];
+  }
+}
+
 static void light_times_scalar(const float* matrix, uint32_t n2, const float* visibility,
                                float* light) {
   for (uint32_t c = 0; c < 3u; ++c)
@@ -122,6 +134,6 @@ static void cast_field_scalar(const prt_sf_object* object, const float* weights,
 }
 
 const prt_sf_kernels prt_sf_kernels_scalar = {
-    read_rows_scalar,    rotate_scalar,         rotate_back_scalar,
-    light_times_scalar,  multiply_lanes_scalar, read_dot_scalar,
-    reduce_lanes_scalar, transfer_dot_scalar,   cast_field_scalar};
+    read_rows_scalar,    rotate_scalar,         rotate_back_scalar, rotate_lanes_scalar,
+    light_times_scalar,  multiply_lanes_scalar, read_dot_scalar,    reduce_lanes_scalar,
+    transfer_dot_scalar, cast_field_scalar};

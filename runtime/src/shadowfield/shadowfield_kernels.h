@@ -33,6 +33,11 @@ typedef struct prt_sf_kernels {
   /* The same by the inverse rotation (i's frame to j's, the transpose); out may not alias in. */
   void (*rotate_back)(const struct prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                       uint32_t planes);
+  /* rotate's single plane in the lanes whose bit is set in `mask`, the others of `out` left as
+   * they are; in and out lane-interleaved (PRT_SF_LANES), out may not alias in. Each lane's
+   * values are rotate's bits for that lane alone. */
+  void (*rotate_lanes)(const struct prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                       uint32_t mask);
   /* light_rgb[3 k + c] = sum_j matrix[(c n2 + k) n2 + j] visibility[j]: the environment times a
    * visibility (the instance's light_product). */
   void (*light_times)(const float* matrix, uint32_t n2, const float* visibility, float* light_rgb);

@@ -124,6 +124,30 @@ static void rotate_back_avx2(const prt_sf_pair* pair, uint32_t order, const floa
   rotate_padded(pair->padded_columns_back, order, in, out, planes);
 }
 
+/* One output coefficient for all eight lanes per register: out_a = sum_b column_b[a] in_b, the
+ * same multiply-adds in the same order as rotate_padded's lane a, so each lane's bits are
+ * rotate's; a blend keeps the lanes outside the mask. */
+static void rotate_lanes_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
+                              uint32_t mask) {
+  const __m256 keep = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
+                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+                         _mm256_setzero_si256()));
+  const float* block = pair->padded_columns;
+  for (uint32_t l = 0; l < order; ++l) {
+    const uint32_t width = 2u * l + 1u, base = l * l, pad = (width + 7u) / 8u * 8u;
+    for (uint32_t a = 0; a < width; ++a) {
+      __m256 acc = _mm256_setzero_ps();
+      for (uint32_t b = 0; b < width; ++b)
+        acc = _mm256_fmadd_ps(_mm256_loadu_ps(in + (base + b) * PRT_SF_LANES),
+                              _mm256_broadcast_ss(block + b * pad + a), acc);
+      float* at = out + (base + a) * PRT_SF_LANES;
+      _mm256_storeu_ps(at, _mm256_blendv_ps(acc, _mm256_loadu_ps(at), keep));
+    }
+    block += width * pad;
+  }
+}
+
 /* out[r] = rows_at[r] . vectors_at[r] (n floats each) for r < count, eight dots per tree,
  * stored straight into out. */
 static void dots(const float* const* rows_at, const float* const* vectors_at, uint32_t count,
@@ -224,5 +248,5 @@ static void cast_field_avx2(const prt_sf_object* object, const float* weights, f
 }
 
 const prt_sf_kernels prt_sf_kernels_avx2 = {
-    read_rows_avx2, rotate_avx2,       rotate_back_avx2,  light_times_avx2, multiply_lanes_avx2,
-    read_dot_avx2,  reduce_lanes_avx2, transfer_dot_avx2, cast_field_avx2};
+    read_rows_avx2,      rotate_avx2,   rotate_back_avx2,  rotate_lanes_avx2, light_times_avx2,
+    multiply_lanes_avx2, read_dot_avx2, reduce_lanes_avx2, transfer_dot_avx2, cast_field_avx2};

@@ -261,6 +261,44 @@ TEST(ShadowfieldSimdKernels, RotationsBackAgreeAndUndoTheRotation) {
   }
 }
 
+// A blocker's reads turned eight vertices at a time (the direct pass): on each backend, the
+// masked lanes hold that backend's rotation of the lane alone, bit for bit (so the frame's
+// bounds against the scalar rotation carry over), and the other lanes keep their bits.
+TEST(ShadowfieldSimdKernels, RotateLanesIsTheRotationLaneByLane) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t order : {3u, 4u, 6u}) {
+    SyntheticObject a = make_patch(order, 2), b = make_patch(order, 2);
+    TestScene s(2);
+    const float axis[3] = {0.64f, -0.48f, 0.6f};
+    float turn[9];
+    axis_rotation(axis, 1.3f, turn);
+    s.add_instance(s.add_object(a), make_transform(identity_rotation(), 0, 0, 0));
+    s.add_instance(s.add_object(b), make_transform(turn, -0.3f, 0.2f, 0.4f));
+    const std::vector<float> light = test_light(order);
+    const float eye[3] = {0, 3, 1};
+    ASSERT_EQ(prt_shadowfield_prepare(s.scene, light.data(), eye, nullptr), PRT_OK);
+    ASSERT_GT(s.scene->pair_count, 0u);
+    const prt_sf_pair* pair = &s.scene->pairs[0];
+    const uint32_t n2 = order * order, mask = 0x5Bu;
+    const std::vector<float> in = random_floats(n2 * PRT_SF_LANES, order + 70);
+    const std::vector<float> before = random_floats(n2 * PRT_SF_LANES, order + 80);
+    for (const prt_sf_kernels* kernels : {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2}) {
+      std::vector<float> out = before;
+      kernels->rotate_lanes(pair, order, in.data(), out.data(), mask);
+      for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+        std::vector<float> plane(n2), turned(n2);
+        for (uint32_t k = 0; k < n2; ++k) plane[k] = in[k * PRT_SF_LANES + lane];
+        kernels->rotate(pair, order, plane.data(), turned.data(), 1);
+        for (uint32_t k = 0; k < n2; ++k) {
+          const size_t at = k * PRT_SF_LANES + lane;
+          EXPECT_EQ(out[at], mask >> lane & 1u ? turned[k] : before[at])
+              << "order " << order << " lane " << lane << " coefficient " << k;
+        }
+      }
+    }
+  }
+}
+
 // The triple product eight vertices at a time: in the masked lanes the SIMD kernel is within the
 // bound of each coefficient's sparse sum of the scalar one, which is prt_sf_sh_multiply lane by
 // lane; the other lanes keep their bits on both.
