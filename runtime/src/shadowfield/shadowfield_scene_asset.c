@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* A loaded asset's shadowfield object into a scene (prt_shadowfield_scene_add_object). */
 #include "../internal.h"
-#include "shadowfield_scene.h"
 #include "shadowfield_asset_internal.h"
+#include "shadowfield_scene.h"
 
 prt_result prt_shadowfield_scene_add_object(prt_shadowfield_scene* scene, const prt_asset* asset,
                                             uint32_t* out_object) {
