@@ -58,11 +58,9 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     free_floats(allocator, instance->incident, instance->incident_floats);
     free_floats(allocator, instance->weights, instance->weights_floats);
     free_floats(allocator, instance->field, instance->field_floats);
-    if (instance->needed)
-      prt_internal_free(allocator, instance->needed,
-                        prt_sf_point_count(&scene->objects[instance->object]->srf_shells));
+    if (instance->needed) prt_internal_free(allocator, instance->needed, instance->needed_bytes);
     free_floats(allocator, instance->light_product, instance->light_product_floats);
-    free_stamps(allocator, instance->located, scene->objects[instance->object]->vertex_count);
+    if (instance->located) prt_internal_free(allocator, instance->located, instance->located_bytes);
   }
   if (scene->pairs)
     prt_internal_free(allocator, scene->pairs, scene->pair_capacity * sizeof(prt_sf_pair));
@@ -203,8 +201,8 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
   instance->incident = alloc_floats(&scene->allocator, instance->incident_floats);
   instance->light_product_floats = (size_t)3u * n2 * n2;
   instance->light_product = alloc_floats(&scene->allocator, instance->light_product_floats);
-  instance->located =
-      (uint32_t*)prt_internal_alloc(&scene->allocator, stamp_bytes(o->vertex_count), 16);
+  instance->located_bytes = stamp_bytes(o->vertex_count);
+  instance->located = (uint32_t*)prt_internal_alloc(&scene->allocator, instance->located_bytes, 16);
   if (instance->located) memset(instance->located, 0, stamp_bytes(o->vertex_count));
   int failed =
       instance->incident == NULL || instance->light_product == NULL || instance->located == NULL;
@@ -213,8 +211,8 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
     instance->weights = alloc_floats(&scene->allocator, instance->weights_floats);
     instance->field_floats = (size_t)prt_sf_point_count(&o->srf_shells) * n2 * 3u;
     instance->field = alloc_floats(&scene->allocator, instance->field_floats);
-    instance->needed =
-        (uint8_t*)prt_internal_alloc(&scene->allocator, prt_sf_point_count(&o->srf_shells), 16);
+    instance->needed_bytes = prt_sf_point_count(&o->srf_shells);
+    instance->needed = (uint8_t*)prt_internal_alloc(&scene->allocator, instance->needed_bytes, 16);
     failed = failed || !instance->weights || !instance->field || !instance->needed;
   }
   if (failed) {

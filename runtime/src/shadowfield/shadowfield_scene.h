@@ -85,6 +85,7 @@ typedef struct prt_sf_instance {
   /* Per SRF point, 1 when some receiver's cell reads it this frame (needed_frame): the field is
    * cast at those points only. NULL when the object has no basis. */
   uint8_t* needed;
+  size_t needed_bytes; /* kept so that destroying the scene reads no object */
   uint32_t needed_frame;
 
   /* The triple product with the frame's light as a matrix, one plane per colour:
@@ -95,6 +96,7 @@ typedef struct prt_sf_instance {
   /* The frame stamp of each vertex's row of cells (scene->cells), set by its direct pass: a row
    * is read by the bounces only when its stamp is the prepared frame's. */
   uint32_t* located;
+  size_t located_bytes;
 
   /* Per frame (prepare). */
   float light[PRT_SF_MAX_COEFFS * 3u]; /* the environment in this instance's frame */
