@@ -44,13 +44,21 @@ static float* turned_transfer(const prt_shadowfield_scene* scene, const prt_sf_i
 
 /* ---- Gather --------------------------------------------------------------------------------- */
 
+/* a += b in the lanes of `mask` (lane-interleaved, n2 coefficients). */
+static void add_lanes(uint32_t n2, float* a, const float* b, uint32_t mask) {
+  for (uint32_t k = 0; k < n2; ++k)
+    for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane)
+      if (mask >> lane & 1u) a[k * PRT_SF_LANES + lane] += b[k * PRT_SF_LANES + lane];
+}
+
 /* Step 2 for vertices [first, first + count) (count <= PRT_SF_LANES), one lane each: the
  * environment times every blocker's visibility, in the receiver's frame, into
  * light[lane][c n^2 + k] (one plane of coefficients per colour). Each lane's visibilities are
- * multiplied in the pairs' order, as vertex by vertex, and each blocker's reads are turned for
- * all lanes by one rotation. With `locate_sources`, also locates each vertex in every source's
- * SRF grid into its row of cells, which the bounces read, and for a receiver of fewer terms than
- * colours turns its transfer into each source's frame that reaches it. */
+ * multiplied in the pairs' order, as vertex by vertex, or with the log-space product their logs
+ * summed and exponentiated once; each blocker's reads are turned for all lanes by one rotation.
+ * With `locate_sources`, also locates each vertex in every source's SRF grid into its row of cells,
+ * which the bounces read, and for a receiver of fewer terms than colours turns its transfer into
+ * each source's frame that reaches it. */
 static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
                            uint32_t first, uint32_t count, int locate_sources,
                            float light[][PRT_SF_MAX_COEFFS * 3u]) {
@@ -58,6 +66,7 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
   const prt_sf_object* object = scene->objects[receiver->object];
   const uint32_t order = scene->order, n2 = order * order, terms = object->terms;
   const int turn_transfer = locate_sources && terms < 3u;
+  const int log_product = scene->product == PRT_SHADOWFIELD_PRODUCT_LOG;
   float visibility[PRT_SF_MAX_COEFFS * PRT_SF_LANES], next[PRT_SF_MAX_COEFFS * PRT_SF_LANES];
   float unturned[PRT_SF_MAX_COEFFS * PRT_SF_LANES], local[PRT_SF_MAX_COEFFS];
   /* The SIMD product and rotation compute every lane: the idle ones hold zeros, not garbage. */
@@ -67,7 +76,9 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
   uint32_t blocked = 0u; /* lanes with a visibility so far */
   for (uint32_t q = 0; q < receiver->pair_count; ++q) {
     const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
-    const prt_sf_object* other = scene->objects[scene->instances[pair->other].object];
+    const uint32_t other_object = scene->instances[pair->other].object;
+    const prt_sf_object* other = scene->objects[other_object];
+    const float* oof = log_product ? scene->log_fields[other_object].values : other->oof;
     uint32_t multiply = 0u;      /* lanes whose visibility this blocker multiplies */
     uint32_t first_blocked = 0u; /* lanes this blocker is the first to shadow */
     for (uint32_t lane = 0; lane < count; ++lane) {
@@ -89,7 +100,7 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
       if (!(source_cell && pair->fields_share_sphere))
         prt_sf_cell_locate(&other->oof_shells, pair->oof_log_span, p, &cell);
       if (cell.count == 0u) continue;
-      read_cell(kernels, &other->oof_shells, other->oof, n2, 1u, &cell, local);
+      read_cell(kernels, &other->oof_shells, oof, n2, 1u, &cell, local);
       for (uint32_t k = 0; k < n2; ++k) unturned[k * PRT_SF_LANES + lane] = local[k];
       if (blocked >> lane & 1u)
         multiply |= 1u << lane;
@@ -100,10 +111,14 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
     if (first_blocked) kernels->rotate_lanes(pair, order, unturned, visibility, first_blocked);
     if (multiply) {
       kernels->rotate_lanes(pair, order, unturned, next, multiply);
-      kernels->multiply_lanes(&scene->gaunt, visibility, next, multiply);
+      if (log_product)
+        add_lanes(n2, visibility, next, multiply);
+      else
+        kernels->multiply_lanes(&scene->gaunt, visibility, next, multiply);
     }
     blocked |= first_blocked;
   }
+  if (log_product && blocked) kernels->exp_lanes(&scene->exp_rule, visibility, blocked);
   for (uint32_t lane = 0; lane < count; ++lane) {
     if (!(blocked >> lane & 1u)) {
       for (uint32_t c = 0; c < 3u; ++c)

@@ -13,8 +13,7 @@
  * non-zero coefficient up to order 6 is orders of magnitude above it). */
 #define SF_GAUNT_TINY 1e-5
 
-/* The Gauss-Legendre nodes and weights of `count` points on [-1, 1] (Newton on P_count). */
-static void gauss_legendre(uint32_t count, double* nodes, double* weights) {
+void prt_sf_gauss_legendre(uint32_t count, double* nodes, double* weights) {
   for (uint32_t r = 0; r < count; ++r) {
     double x = cos(SF_PI * (r + 0.75) / (count + 0.5));
     double derivative = 1.0;
@@ -43,7 +42,7 @@ static void integrate(uint32_t order, double* dense) {
   const uint32_t degree = 3u * (order - 1u);
   const uint32_t z_nodes = degree / 2u + 1u, phi_nodes = degree + 1u;
   double nodes[PRT_SF_GAUNT_MAX_ORDER * 2u], weights[PRT_SF_GAUNT_MAX_ORDER * 2u];
-  gauss_legendre(z_nodes, nodes, weights);
+  prt_sf_gauss_legendre(z_nodes, nodes, weights);
   for (uint32_t a = 0; a < z_nodes; ++a) {
     const double z = nodes[a], sin_theta = sqrt(1.0 - z * z);
     for (uint32_t b = 0; b < phi_nodes; ++b) {

@@ -5,7 +5,7 @@
  * order n projected back to order n is out_k = sum_ij C_ijk a_i b_j.
  *
  * Multiplying many blockers' visibilities one after another truncates after each product; the
- * log-space product (Ren et al. 2006) is the alternative for many blockers, not written yet. */
+ * log-space product (shadowfield_log.h) is the option for many blockers. */
 #ifndef PRT_RUNTIME_SHADOWFIELD_GAUNT_H
 #define PRT_RUNTIME_SHADOWFIELD_GAUNT_H
 
@@ -32,6 +32,9 @@ typedef struct prt_sf_gaunt {
  * PRT_ERROR_OUT_OF_MEMORY. On failure *out is empty (safe to free). */
 prt_result prt_sf_gaunt_build(const prt_allocator* allocator, uint32_t order, prt_sf_gaunt* out);
 void prt_sf_gaunt_free(const prt_allocator* allocator, prt_sf_gaunt* gaunt);
+
+/* The Gauss-Legendre nodes and weights of `count` points on [-1, 1] (Newton on P_count). */
+void prt_sf_gauss_legendre(uint32_t count, double* nodes, double* weights);
 
 /* out = the product of a and b (order^2 coefficients each) projected to the order; out may not
  * alias a or b. */

@@ -133,7 +133,23 @@ static void cast_field_scalar(const prt_sf_object* object, const float* weights,
   }
 }
 
+static void exp_lanes_scalar(const prt_sf_sphere_rule* rule, float* lanes, uint32_t mask) {
+  const uint32_t n2 = rule->order * rule->order, directions = rule->directions;
+  for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+    if (!(mask >> lane & 1u)) continue;
+    float out[PRT_SF_MAX_COEFFS] = {0.0f};
+    for (uint32_t d = 0; d < directions; ++d) {
+      const float* y = rule->eval + (size_t)d * n2;
+      float value = 0.0f;
+      for (uint32_t i = 0; i < n2; ++i) value += y[i] * lanes[i * PRT_SF_LANES + lane];
+      const float e = prt_sf_exp(value);
+      for (uint32_t i = 0; i < n2; ++i) out[i] += rule->project[(size_t)i * directions + d] * e;
+    }
+    for (uint32_t i = 0; i < n2; ++i) lanes[i * PRT_SF_LANES + lane] = out[i];
+  }
+}
+
 const prt_sf_kernels prt_sf_kernels_scalar = {
     read_rows_scalar,    rotate_scalar,         rotate_back_scalar, rotate_lanes_scalar,
     light_times_scalar,  multiply_lanes_scalar, read_dot_scalar,    reduce_lanes_scalar,
-    transfer_dot_scalar, cast_field_scalar};
+    transfer_dot_scalar, cast_field_scalar,     exp_lanes_scalar};

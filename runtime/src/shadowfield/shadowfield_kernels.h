@@ -13,6 +13,7 @@
 #include <prt/format/shadowfield_shells.h>
 
 #include "shadowfield_gaunt.h"
+#include "shadowfield_log.h"
 #include "shadowfield_object.h"
 
 struct prt_sf_pair;
@@ -58,6 +59,10 @@ typedef struct prt_sf_kernels {
    * prt_sf_instance::field). */
   void (*cast_field)(const prt_sf_object* object, const float* weights, float* field,
                      uint64_t first, uint64_t count);
+  /* The log-space product's exponential in the lanes whose bit is set in `mask`, the others left
+   * as they are: each lane's summed log (order^2 coefficients, lane-interleaved) becomes the
+   * projection of its exponential, sum_d project[i D + d] prt_sf_exp(sum_j eval[d n2 + j] f_j). */
+  void (*exp_lanes)(const prt_sf_sphere_rule* rule, float* lanes, uint32_t mask);
 } prt_sf_kernels;
 
 extern const prt_sf_kernels prt_sf_kernels_scalar;

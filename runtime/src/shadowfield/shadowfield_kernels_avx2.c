@@ -247,6 +247,47 @@ static void cast_field_avx2(const prt_sf_object* object, const float* weights, f
   }
 }
 
+/* prt_sf_exp's steps in eight lanes. */
+static __m256 exp8(__m256 x) {
+  x = _mm256_min_ps(_mm256_max_ps(x, _mm256_set1_ps(-87.0f)), _mm256_set1_ps(88.0f));
+  const __m256 k = _mm256_round_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504088896341f)),
+                                   _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  __m256 r = _mm256_fnmadd_ps(k, _mm256_set1_ps(0.693145751953125f), x);
+  r = _mm256_fnmadd_ps(k, _mm256_set1_ps(1.428606765330187045e-06f), r);
+  static const float kCoefficients[8] = {1.0f / 5040.0f, 1.0f / 720.0f, 1.0f / 120.0f, 1.0f / 24.0f,
+                                         1.0f / 6.0f,    0.5f,          1.0f,          1.0f};
+  __m256 p = _mm256_set1_ps(kCoefficients[0]);
+  for (int c = 1; c < 8; ++c) p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(kCoefficients[c]));
+  const __m256i bits =
+      _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvtps_epi32(k), _mm256_set1_epi32(127)), 23);
+  return _mm256_mul_ps(p, _mm256_castsi256_ps(bits));
+}
+
+static void exp_lanes_avx2(const prt_sf_sphere_rule* rule, float* lanes, uint32_t mask) {
+  const uint32_t n2 = rule->order * rule->order, directions = rule->directions;
+  __m256 in[PRT_SF_MAX_COEFFS], out[PRT_SF_MAX_COEFFS];
+  for (uint32_t i = 0; i < n2; ++i) {
+    in[i] = _mm256_loadu_ps(lanes + i * PRT_SF_LANES);
+    out[i] = _mm256_setzero_ps();
+  }
+  for (uint32_t d = 0; d < directions; ++d) {
+    const float* y = rule->eval + (size_t)d * n2;
+    __m256 value = _mm256_setzero_ps();
+    for (uint32_t i = 0; i < n2; ++i) value = _mm256_fmadd_ps(_mm256_set1_ps(y[i]), in[i], value);
+    const __m256 e = exp8(value);
+    for (uint32_t i = 0; i < n2; ++i)
+      out[i] =
+          _mm256_fmadd_ps(_mm256_set1_ps(rule->project[(size_t)i * directions + d]), e, out[i]);
+  }
+  const __m256 keep = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
+                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+                         _mm256_setzero_si256()));
+  for (uint32_t i = 0; i < n2; ++i)
+    _mm256_storeu_ps(lanes + i * PRT_SF_LANES, _mm256_blendv_ps(out[i], in[i], keep));
+}
+
 const prt_sf_kernels prt_sf_kernels_avx2 = {
-    read_rows_avx2,      rotate_avx2,   rotate_back_avx2,  rotate_lanes_avx2, light_times_avx2,
-    multiply_lanes_avx2, read_dot_avx2, reduce_lanes_avx2, transfer_dot_avx2, cast_field_avx2};
+    read_rows_avx2,    rotate_avx2,         rotate_back_avx2, rotate_lanes_avx2,
+    light_times_avx2,  multiply_lanes_avx2, read_dot_avx2,    reduce_lanes_avx2,
+    transfer_dot_avx2, cast_field_avx2,     exp_lanes_avx2};

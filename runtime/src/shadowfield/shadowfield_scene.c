@@ -29,7 +29,11 @@ prt_result prt_shadowfield_scene_create(prt_context* context, uint32_t max_insta
       allocator, (size_t)max_instances * sizeof(const prt_sf_object*), 16);
   scene->instances = (prt_sf_instance*)prt_internal_alloc(
       allocator, (size_t)max_instances * sizeof(prt_sf_instance), 16);
-  if (!scene->objects || !scene->instances) {
+  scene->log_fields = (prt_sf_log_field*)prt_internal_alloc(
+      allocator, (size_t)max_instances * sizeof(prt_sf_log_field), 16);
+  if (scene->log_fields)
+    memset(scene->log_fields, 0, (size_t)max_instances * sizeof(prt_sf_log_field));
+  if (!scene->objects || !scene->instances || !scene->log_fields) {
     prt_shadowfield_scene_destroy(scene);
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield scene");
   }
@@ -68,6 +72,11 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     prt_internal_free(allocator, scene->cells, scene->cell_capacity * sizeof(prt_sf_cell));
   free_floats(allocator, scene->turned, scene->turned_capacity);
   prt_sf_gaunt_free(allocator, &scene->gaunt);
+  if (scene->log_fields) {
+    prt_sf_scene_free_log_fields(scene);
+    prt_internal_free(allocator, scene->log_fields,
+                      (size_t)scene->max_instances * sizeof(prt_sf_log_field));
+  }
   if (scene->objects)
     prt_internal_free(allocator, scene->objects,
                       (size_t)scene->max_instances * sizeof(const prt_sf_object*));
@@ -124,6 +133,18 @@ prt_result prt_internal_sf_scene_add_object(prt_shadowfield_scene* scene,
     scene->order = object->order;
   }
   scene->objects[scene->object_count] = object;
+  if (scene->product == PRT_SHADOWFIELD_PRODUCT_LOG) {
+    ++scene->object_count;
+    const prt_result built = prt_sf_scene_build_log_fields(scene);
+    --scene->object_count;
+    if (built != PRT_OK && scene->object_count == 0u) {
+      /* The scene takes its order from its first object: it has none yet. */
+      prt_sf_sphere_rule_free(&scene->allocator, &scene->exp_rule);
+      prt_sf_gaunt_free(&scene->allocator, &scene->gaunt);
+      scene->order = 0u;
+    }
+    if (built != PRT_OK) return built;
+  }
   *out_object = scene->object_count++;
   return PRT_OK;
 }

@@ -8,6 +8,7 @@
 
 #include "shadowfield_gaunt.h"
 #include "shadowfield_kernels.h"
+#include "shadowfield_log.h"
 #include "shadowfield_object.h"
 
 #define PRT_SF_MAX_COEFFS (PRT_SF_GAUNT_MAX_ORDER * PRT_SF_GAUNT_MAX_ORDER)
@@ -110,6 +111,13 @@ typedef struct prt_sf_instance {
   size_t turned_first;
 } prt_sf_instance;
 
+/* An object's log occlusion field (shadowfield_log.h), its size kept so that freeing it reads no
+ * object. */
+typedef struct prt_sf_log_field {
+  float* values; /* OOF points x n^2, NULL when not computed */
+  size_t floats;
+} prt_sf_log_field;
+
 struct prt_shadowfield_scene {
   prt_context* context;
   prt_allocator allocator;
@@ -130,6 +138,11 @@ struct prt_shadowfield_scene {
   float* turned;
   size_t turned_capacity;
   uint32_t frame; /* the prepared frame's stamp, never 0 */
+  /* How blockers combine; with PRT_SHADOWFIELD_PRODUCT_LOG every object's log field (one per
+   * object slot) and the exponential's rule (once the scene has an order). */
+  prt_shadowfield_product product;
+  prt_sf_log_field* log_fields;
+  prt_sf_sphere_rule exp_rule;
 
   /* The prepared frame. */
   uint32_t prepared;
@@ -142,6 +155,13 @@ struct prt_shadowfield_scene {
  * (it must outlive the scene). Records failures in the scene's context. */
 prt_result prt_internal_sf_scene_add_object(prt_shadowfield_scene* scene,
                                             const prt_sf_object* object, uint32_t* out_object);
+
+/* The log-space product's state for objects added so far, when the scene's product is LOG
+ * (shadowfield_scene_product.c): the exponential's rule and each object's log field, built where
+ * missing. Records failures in the scene's context. */
+prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene);
+/* Frees every log field and the exponential's rule. */
+void prt_sf_scene_free_log_fields(prt_shadowfield_scene* scene);
 
 /* Rotates `in` (order^2 coefficients x channels, coefficient-major) by band blocks. */
 void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, float* out,

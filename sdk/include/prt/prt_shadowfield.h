@@ -89,6 +89,27 @@ PRT_API prt_result prt_shadowfield_scene_set_transform(prt_shadowfield_scene* sc
                                                        uint32_t instance,
                                                        const prt_shadowfield_transform* transform);
 
+/* How a receiver combines the visibilities of the instances that shadow it
+ * (docs/shadowfield/design.md, "Many blockers"). */
+typedef enum prt_shadowfield_product {
+  /* One SH triple product per blocker after the first: the default. */
+  PRT_SHADOWFIELD_PRODUCT_TRIPLE = 0,
+  /* The blockers' log visibilities summed and one exponential taken: the cost of a vertex
+   * hardly grows with its blockers, so it pays where vertices have many; it reads every
+   * visibility below 1 % as 1 %. */
+  PRT_SHADOWFIELD_PRODUCT_LOG = 1
+} prt_shadowfield_product;
+
+/* Sets the scene's product for the frames to come. PRT_SHADOWFIELD_PRODUCT_LOG computes each
+ * object's log occlusion field now, and for objects added later when they are added: as many
+ * floats as the object's occlusion field, and work that grows with its points (load time, not
+ * frame time). TRIPLE frees them. A GL shader made before the change must be made again.
+ * PRT_ERROR_INVALID_ARGUMENT for an unknown product, PRT_ERROR_OUT_OF_MEMORY (the scene keeps
+ * its previous product). */
+PRT_API prt_result prt_shadowfield_scene_set_product(prt_shadowfield_scene* scene,
+                                                     prt_shadowfield_product product);
+PRT_API prt_shadowfield_product prt_shadowfield_scene_product(const prt_shadowfield_scene* scene);
+
 PRT_API uint32_t prt_shadowfield_scene_order(const prt_shadowfield_scene* scene);
 PRT_API uint32_t prt_shadowfield_scene_instance_count(const prt_shadowfield_scene* scene);
 /* Vertices of an instance's object; 0 for an unknown instance. */

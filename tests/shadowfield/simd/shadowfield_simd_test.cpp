@@ -343,6 +343,53 @@ TEST(ShadowfieldSimdKernels, MultiplyLanesAgreesAndKeepsTheOtherLanes) {
   }
 }
 
+// The log-space product's exponential eight vertices at a time. Each output sums D terms
+// p_d exp(x_d) with x_d a sum of n^2 products; an error eps in x_d moves its term by about
+// |x_d| eps, and the exponential adds a few ulps: within gamma_(n^2 + D + 4) of
+// sum_d |p_d| exp(x_d) (1 + sum_j |y_dj f_j|). The other lanes keep their bits on both.
+TEST(ShadowfieldSimdKernels, ExpLanesAgreesAndKeepsTheOtherLanes) {
+  SKIP_WITHOUT_AVX2();
+  prt_allocator allocator{};
+  allocator.alloc = [](void*, size_t size, size_t) -> void* { return std::malloc(size); };
+  allocator.free = [](void*, void* p, size_t) { std::free(p); };
+  for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
+    prt_sf_sphere_rule rule{};
+    ASSERT_EQ(prt_sf_exp_rule_build(&allocator, order, &rule), PRT_OK);
+    const uint32_t n2 = order * order, mask = 0x6Du;
+    std::vector<float> a = random_floats(n2 * PRT_SF_LANES, order + 70);
+    for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) a[lane] -= 6.0f;  // logs mostly < 0
+    std::vector<float> scalar = a, simd = a;
+    prt_sf_kernels_scalar.exp_lanes(&rule, scalar.data(), mask);
+    prt_sf_kernels_avx2.exp_lanes(&rule, simd.data(), mask);
+    std::vector<float> masked_scalar, masked_simd;
+    std::vector<double> magnitude;
+    for (uint32_t i = 0; i < n2; ++i)
+      for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+        const size_t at = i * PRT_SF_LANES + lane;
+        if (!(mask >> lane & 1u)) {
+          EXPECT_EQ(scalar[at], a[at]);
+          EXPECT_EQ(simd[at], a[at]);
+          continue;
+        }
+        double sum = 0.0;
+        for (uint32_t d = 0; d < rule.directions; ++d) {
+          double x = 0.0, size = 0.0;
+          for (uint32_t j = 0; j < n2; ++j) {
+            x += double(rule.eval[d * n2 + j]) * a[j * PRT_SF_LANES + lane];
+            size += std::fabs(double(rule.eval[d * n2 + j]) * a[j * PRT_SF_LANES + lane]);
+          }
+          sum +=
+              std::fabs(double(rule.project[i * rule.directions + d])) * std::exp(x) * (1.0 + size);
+        }
+        magnitude.push_back(sum);
+        masked_scalar.push_back(scalar[at]);
+        masked_simd.push_back(simd[at]);
+      }
+    check_within(masked_scalar, masked_simd, magnitude, n2 + rule.directions + 4);
+    prt_sf_sphere_rule_free(&allocator, &rule);
+  }
+}
+
 // A field of 5 shells of 6 x 3 x 3 points (270, not a multiple of any block), cast over the
 // whole grid and over a range that starts and ends inside blocks.
 TEST(ShadowfieldSimdKernels, CastFieldAgrees) {
@@ -491,6 +538,27 @@ TEST(ShadowfieldSimdFrame, AgreesWithScalar) {
     EXPECT_LE(difference, bound) << "order " << order;
     EXPECT_GT(max_abs(scalar), 0.1);  // lit: the comparison is not of zeros
     RecordProperty("order" + std::to_string(order) + "_difference_over_bound",
+                   std::to_string(difference / bound));
+  }
+}
+
+// The same frame with the log-space product: the exponential adds its D directions' terms to
+// each blocked vertex's light.
+TEST(ShadowfieldSimdFrame, AgreesWithScalarWithTheLogProduct) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t order : {2u, 4u, 6u}) {
+    FrameScene s(order, PRT_SIMD_ISA_AUTO);
+    ASSERT_EQ(prt_shadowfield_scene_set_product(s.scene, PRT_SHADOWFIELD_PRODUCT_LOG), PRT_OK);
+    const std::vector<float> scalar = s.shade(PRT_BACKEND_CPU);
+    const std::vector<float> simd = s.shade(PRT_BACKEND_SIMD);
+    const double n2 = order * order;
+    const double terms =
+        4.0 * (8.0 + 2.0 * n2 + s.source.vertex_count) + s.scene->exp_rule.directions;
+    const double bound = 2.0 * std::sqrt(terms) * kUnit * max_abs(scalar);
+    const double difference = max_difference(scalar, simd);
+    EXPECT_LE(difference, bound) << "order " << order;
+    EXPECT_GT(max_abs(scalar), 0.1);
+    RecordProperty("log_order" + std::to_string(order) + "_difference_over_bound",
                    std::to_string(difference / bound));
   }
 }
