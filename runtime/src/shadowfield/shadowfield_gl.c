@@ -52,7 +52,17 @@ prt_result prt_gl_shadowfield_read(prt_gl_shadowfield* shader, uint32_t instance
 
 /* ---- create ------------------------------------------------------------------------------- */
 
+/* Words of the Gaunt buffer: the tensor, then with the log-space product the exponential's
+ * rule (its eval, then its project table). */
+static uint64_t gaunt_words(const prt_shadowfield_scene* scene) {
+  const uint64_t n2 = (uint64_t)scene->order * scene->order;
+  return n2 + 1u + 2u * (uint64_t)scene->gaunt.count +
+         2u * (uint64_t)scene->exp_rule.directions * n2;
+}
+
 static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
+  const uint32_t n2 = s->scene->order * s->scene->order, directions = s->scene->exp_rule.directions;
+  const uint32_t exp_eval = n2 + 1u + 2u * s->scene->gaunt.count;
   char header[2048];
   snprintf(header, sizeof header,
            "#version 430 core\n#define LOCAL_SIZE %u\n"
@@ -66,7 +76,9 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            "#define FIELD %uu\n#define FIELD_PLANE %uu\n#define SH_ROTATION %uu\n"
            "#define PAIR_FLOATS %uu\n#define SRF %uu\n#define BASIS %uu\n#define OWN_FIELD %uu\n"
            "#define FIELD_POINTS %uu\n#define BASIS_VALUES %uu\n"
-           "#define VERTEX_WEIGHTS %uu\n#define BASIS_INVERSE %uu\n",
+           "#define VERTEX_WEIGHTS %uu\n#define BASIS_INVERSE %uu\n"
+           "#define LOG_PRODUCT %u\n#define EXP_DIRECTIONS %uu\n#define EXP_EVAL %uu\n"
+           "#define EXP_PROJECT %uu\n",
            PRT_SF_GL_LOCAL_SIZE, PRT_SF_GL_VERTICES, PRT_SF_GL_TERMS, PRT_SF_GL_GLOSSY,
            PRT_SF_GL_BRDF_GRID, PRT_SF_GL_POSITIONS, PRT_SF_GL_NORMALS, PRT_SF_GL_ALBEDO,
            PRT_SF_GL_TRANSFER, PRT_SF_GL_G_TABLE, PRT_SF_GL_INCIDENT, PRT_SF_GL_OUTPUT,
@@ -76,7 +88,9 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            PRT_SF_GL_OOF, PRT_SF_GL_SRF_GRID, PRT_SF_GL_FIELD, PRT_SF_GL_FIELD_PLANE,
            PRT_SF_GL_SH_ROTATION, PRT_SF_GL_PAIR_FLOATS, PRT_SF_GL_SRF, PRT_SF_GL_BASIS,
            PRT_SF_GL_OWN_FIELD, PRT_SF_GL_FIELD_POINTS, PRT_SF_GL_BASIS_VALUES,
-           PRT_SF_GL_VERTEX_WEIGHTS, PRT_SF_GL_BASIS_INVERSE);
+           PRT_SF_GL_VERTEX_WEIGHTS, PRT_SF_GL_BASIS_INVERSE,
+           s->product == PRT_SHADOWFIELD_PRODUCT_LOG ? 1u : 0u, directions, exp_eval,
+           exp_eval + directions * n2);
   const prt_GLchar* sources[2] = {header, prt_sf_gl_shader_source};
   const prt_result r =
       prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
@@ -142,8 +156,7 @@ static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[PRT_SF_GL_BUFFER_COUNT
       PRT_SF_GL_LOCAL_SIZE;
   s->radiance_vertices = (uint32_t)radiance;
   bytes[PRT_SF_GL_BUFFER_OBJECTS] = 4u * objects;
-  bytes[PRT_SF_GL_BUFFER_GAUNT] =
-      4u * (scene->order * scene->order + 1u + 2u * (uint64_t)scene->gaunt.count);
+  bytes[PRT_SF_GL_BUFFER_GAUNT] = 4u * gaunt_words(scene);
   bytes[PRT_SF_GL_BUFFER_FIELDS] = 4u * fields;
   bytes[PRT_SF_GL_BUFFER_INCIDENT] = 4u * incident;
   bytes[PRT_SF_GL_BUFFER_RADIANCE] = 12u * radiance;
@@ -175,7 +188,9 @@ static void upload_objects(const prt_gl_shadowfield* s) {
     if (object->glossy)
       prt_sf_gl_upload(gl, at->g_table, object->g_table,
                        (uint64_t)object->terms * object->brdf_grid * object->brdf_grid);
-    prt_sf_gl_upload(gl, at->oof, object->oof, prt_sf_point_count(&object->oof_shells) * n2);
+    const float* oof =
+        s->product == PRT_SHADOWFIELD_PRODUCT_LOG ? s->scene->log_fields[o].values : object->oof;
+    prt_sf_gl_upload(gl, at->oof, oof, prt_sf_point_count(&object->oof_shells) * n2);
     if (!object->basis_size) continue;
     prt_sf_gl_upload(gl, at->srf, object->srf, srf_floats(object));
     prt_sf_gl_upload(gl, at->basis, object->basis, (uint64_t)object->basis_size * v);
@@ -185,9 +200,11 @@ static void upload_objects(const prt_gl_shadowfield* s) {
   }
 }
 
-/* k_start, then per coefficient i | j << 8 and the value's bits. */
+/* k_start, then per coefficient i | j << 8 and the value's bits; then the exponential's rule
+ * (gaunt_words). */
 static prt_result upload_gaunt(prt_context* context, prt_gl_shadowfield* s, uint64_t bytes) {
   const prt_sf_gaunt* gaunt = &s->scene->gaunt;
+  const prt_sf_sphere_rule* rule = &s->scene->exp_rule;
   const uint32_t n2 = gaunt->order * gaunt->order;
   uint32_t* words = (uint32_t*)prt_internal_alloc(&s->allocator, (size_t)bytes, 16);
   if (!words)
@@ -198,6 +215,12 @@ static prt_result upload_gaunt(prt_context* context, prt_gl_shadowfield* s, uint
   for (uint32_t e = 0; e < gaunt->count; ++e) {
     words[n2 + 1u + 2u * e] = (uint32_t)gaunt->i[e] | (uint32_t)gaunt->j[e] << 8u;
     memcpy(&words[n2 + 2u + 2u * e], &gaunt->value[e], sizeof(float));
+  }
+  const size_t rule_floats = (size_t)rule->directions * n2;
+  if (rule_floats) {
+    uint32_t* at = &words[n2 + 1u + 2u * gaunt->count];
+    memcpy(at, rule->eval, rule_floats * sizeof(float));
+    memcpy(at + rule_floats, rule->project, rule_floats * sizeof(float));
   }
   s->gl.BufferSubData(PRT_GL_SHADER_STORAGE_BUFFER, 0, (prt_GLsizeiptr)bytes, words);
   prt_internal_free(&s->allocator, words, (size_t)bytes);
@@ -268,6 +291,7 @@ prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader
   s->scene = scene;
   s->object_count = scene->object_count;
   s->instance_count = scene->instance_count;
+  s->product = scene->product;
   s->objects =
       (prt_sf_gl_object*)allocate_zeroed(&s->allocator, s->object_count * sizeof(prt_sf_gl_object));
   s->instances = (prt_sf_gl_instance*)allocate_zeroed(

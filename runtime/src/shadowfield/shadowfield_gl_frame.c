@@ -201,6 +201,11 @@ prt_result prt_gl_shadowfield_shade(prt_gl_shadowfield* shader, const float* lig
     return prt_internal_fail(scene->context, PRT_ERROR_INVALID_OPERATION,
                              "%s: the scene gained objects or instances since the create call",
                              FUNCTION_SHADE);
+  if (scene->product != shader->product)
+    return prt_internal_fail(scene->context, PRT_ERROR_INVALID_OPERATION,
+                             "%s: the scene's product changed since the create call (create the "
+                             "shader again)",
+                             FUNCTION_SHADE);
   prt_shadowfield_settings copy;
   const prt_shadowfield_settings* cpu_settings;
   prt_result r = prepare_settings(scene->context, settings, &copy, &cpu_settings);

@@ -1,13 +1,14 @@
 /* SPDX-License-Identifier: MIT */
 /* The compute shader of the shadowfield GL backend (shadowfield_gl.c): one invocation per vertex
  * of one instance, in one of three stages, each the scalar evaluation's (shadowfield_eval.c)
- * step for that vertex: the direct light (OOF reads, rotations and triple products, then the
- * transfer dot), a bounce (SRF reads of the sources' fields, rotated, then the transfer dot) and
- * the outgoing radiance (g table, passes summed, albedo); and a source's projection on its basis
- * (one invocation per basis function, term and colour: B W r, then A^-1 of that), kept at the
- * start of the scratch buffer, and the field it casts from those weights (one invocation per SRF
- * point and coefficient). The instance's record (its header
- * and pairs, shadowfield_gl_internal.h) is read from the frame buffer at `record`.
+ * step for that vertex: the direct light (OOF reads, rotations and triple products, or with the
+ * log-space product log reads summed and one exponential, then the transfer dot), a bounce (SRF
+ * reads of the sources' fields, rotated, then the transfer dot) and the outgoing radiance (g table,
+ * passes summed, albedo); and a source's projection on its basis (one invocation per basis
+ * function, term and colour: B W r, then A^-1 of that), kept at the start of the scratch buffer,
+ * and the field it casts from those weights (one invocation per SRF point and coefficient). The
+ * instance's record (its header and pairs, shadowfield_gl_internal.h) is read from the frame buffer
+ * at `record`.
  *
  * Each invocation keeps its SH vectors in its own rows of a scratch buffer and the loops run to
  * uniform bounds: llvmpipe turns private arrays indexed at run time into chains of selects and
@@ -166,6 +167,23 @@ const char prt_sf_gl_shader_source[] =
     "  return vec3(scratch[l], scratch[l + 1u], scratch[l + 2u]);\n"
     "}\n"
     "\n"
+    "/* The log-space product: VISIBILITY holds the summed logs; it becomes the projection of\n"
+    " * their exponential (the CPU's exp_lanes) by the rule after the tensor in gaunt[]. */\n"
+    "float rule_word(uint i) { return uintBitsToFloat(gaunt[i]); }\n"
+    "void exp_visibility() {\n"
+    "  uint v = row + VISIBILITY * n2, o = row + PRODUCT_ROW * n2;\n"
+    "  for (uint i = 0u; i < n2; ++i) scratch[o + i] = 0.0;\n"
+    "  for (uint d = 0u; d < EXP_DIRECTIONS; ++d) {\n"
+    "    float value = 0.0;\n"
+    "    for (uint i = 0u; i < n2; ++i) value += rule_word(EXP_EVAL + d * n2 + i) * scratch[v + "
+    "i];\n"
+    "    float e = exp(clamp(value, -87.0, 88.0));\n"
+    "    for (uint i = 0u; i < n2; ++i)\n"
+    "      scratch[o + i] += rule_word(EXP_PROJECT + i * EXP_DIRECTIONS + d) * e;\n"
+    "  }\n"
+    "  for (uint i = 0u; i < n2; ++i) scratch[v + i] = scratch[o + i];\n"
+    "}\n"
+    "\n"
     "/* ---- gather ---- */\n"
     "/* The environment times every blocker's visibility at x, in the receiver's frame. */\n"
     "void shadowed_light(vec3 x) {\n"
@@ -186,6 +204,10 @@ const char prt_sf_gl_shader_source[] =
     "    if (!blocked) {\n"
     "      rotate_sh(pair + SH_ROTATION, LOCAL, VISIBILITY);\n"
     "      blocked = true;\n"
+    "    } else if (LOG_PRODUCT != 0) {\n"
+    "      rotate_sh(pair + SH_ROTATION, LOCAL, TURNED);\n"
+    "      for (uint i = 0u; i < n2; ++i) scratch[row + VISIBILITY * n2 + i] +=\n"
+    "          scratch[row + TURNED * n2 + i];\n"
     "    } else {\n"
     "      rotate_sh(pair + SH_ROTATION, LOCAL, TURNED);\n"
     "      sh_multiply(VISIBILITY, TURNED, PRODUCT_ROW);\n"
@@ -197,6 +219,7 @@ const char prt_sf_gl_shader_source[] =
     "    for (uint k = 0u; k < n2; ++k) set_light(k, word3(LIGHT + 3u * k));\n"
     "    return;\n"
     "  }\n"
+    "  if (LOG_PRODUCT != 0) exp_visibility();\n"
     "  uint visibility = row + VISIBILITY * n2;\n"
     "  for (uint k = 0u; k < n2; ++k) {\n"
     "    vec3 sum = vec3(0.0);\n"

@@ -77,8 +77,9 @@ extern const char prt_sf_gl_shader_source[];
 
 /* The buffers, by their binding in the shader. */
 enum {
-  PRT_SF_GL_BUFFER_OBJECTS = 0,  /* every object's vertices, transfer, g table and OOF */
-  PRT_SF_GL_BUFFER_GAUNT = 1,    /* the triple-product tensor */
+  PRT_SF_GL_BUFFER_OBJECTS = 0,  /* every object's vertices, transfer, g table and OOF (or its
+                                    log field with the log-space product) */
+  PRT_SF_GL_BUFFER_GAUNT = 1,    /* the triple-product tensor, then the exponential's rule */
   PRT_SF_GL_BUFFER_FIELDS = 2,   /* every source's field of the last projected pass */
   PRT_SF_GL_BUFFER_INCIDENT = 3, /* every instance's light per pass, vertex and term */
   PRT_SF_GL_BUFFER_RADIANCE = 4, /* every instance's outgoing radiance */
@@ -114,6 +115,7 @@ struct prt_gl_shadowfield {
   prt_gl_functions gl;
   prt_shadowfield_scene* scene;
   uint32_t object_count, instance_count; /* the scene's when created */
+  prt_shadowfield_product product;       /* the scene's when created */
   prt_GLuint program;
   prt_GLuint buffers[PRT_SF_GL_BUFFER_COUNT];
   prt_sf_gl_object* objects;

@@ -474,6 +474,34 @@ TEST(ShadowfieldGl, BadCreatesAreRefused) {
   prt_gl_shadowfield_destroy(nullptr);
 }
 
+// The log-space product: GL sums the logs and takes the exponential at the same directions,
+// with GLSL's exp (not correctly rounded) where the CPU has its polynomial.
+TEST(ShadowfieldGl, TheLogProductAgreesWithScalar) {
+  PRT_REQUIRE_GL(context);
+  for (const uint32_t order : {2u, 4u, 6u})
+    for (const bool glossy : {false, true}) {
+      GlScene busy(order, glossy);
+      ASSERT_EQ(prt_shadowfield_scene_set_product(busy.scene.scene, PRT_SHADOWFIELD_PRODUCT_LOG),
+                PRT_OK);
+      EXPECT_LT(agreement(busy.scene, context.gl, test_light(order), kNearEye), kTolerance)
+          << order << (glossy ? " glossy" : " diffuse");
+    }
+}
+
+TEST(ShadowfieldGl, AProductChangedAfterCreateIsRefused) {
+  PRT_REQUIRE_GL(context);
+  GlScene busy(4, false);
+  GlShadowfieldPtr shader = create(busy.scene.scene, context.gl);
+  ASSERT_TRUE(shader);
+  ASSERT_EQ(prt_shadowfield_scene_set_product(busy.scene.scene, PRT_SHADOWFIELD_PRODUCT_LOG),
+            PRT_OK);
+  const auto light = test_light(4);
+  const prt_shadowfield_settings settings = settings_for(1);
+  EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &settings),
+            PRT_ERROR_INVALID_OPERATION);
+  EXPECT_NE(std::strstr(prt_context_last_message(busy.scene.context), "product changed"), nullptr);
+}
+
 TEST(ShadowfieldGl, InstancesAddedAfterCreateAreRefused) {
   PRT_REQUIRE_GL(context);
   GlScene busy(4, false);
