@@ -2,8 +2,10 @@
 // prt_bench_shadowfield: the cost of technique `shadowfield`'s scene on the backend AUTO picks
 // (SIMD where usable), one thread, on synthetic objects with the default field sizes (OOF 16
 // shells of 6 x 16 x 16 points, SRF 8 shells of 6 x 8 x 8, N = 16, SH order 4):
-//   Direct/b:  pass 0 of a 32 x 32 receiver under b blockers; the counter is the time per
-//              receiver vertex per blocker;
+//   Direct/b/product: pass 0 of a 32 x 32 receiver under b blockers, blockers combined by
+//              triple products (0) or the log-space product (1); the counter is the time per
+//              receiver vertex per blocker: where the log product's line falls below the triple
+//              product's is the blocker count from which it pays;
 //   Bounce/k:  pass 1 of that receiver lit by one source of k BRDF terms; the time per vertex
 //              per source (the source's field read at the vertex, rotated, dotted with T);
 //   Project/k: one source's basis weights and field (its cost does not depend on receivers);
@@ -74,6 +76,7 @@ void BM_Direct(benchmark::State& state) {
   const uint32_t blockers = uint32_t(state.range(0));
   SyntheticObject receiver = make_object(32, 1), blocker = make_object(4, 1);
   TestScene s(blockers + 1);
+  prt_shadowfield_scene_set_product(s.scene, prt_shadowfield_product(state.range(1)));
   s.add_instance(s.add_object(receiver), make_transform(identity_rotation(), 0, 0, 0));
   const uint32_t blocker_id = s.add_object(blocker);
   for (uint32_t b = 0; b < blockers; ++b)
@@ -84,7 +87,11 @@ void BM_Direct(benchmark::State& state) {
       double(receiver.vertex_count) * blockers,
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_Direct)->Arg(1)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Direct)
+    ->ArgNames({"blockers", "product"})
+    ->ArgsProduct({{1, 2, 4, 8, 16, 32},
+                   {PRT_SHADOWFIELD_PRODUCT_TRIPLE, PRT_SHADOWFIELD_PRODUCT_LOG}})
+    ->Unit(benchmark::kMicrosecond);
 
 // A receiver and one source of `terms` terms, prepared for one bounce, the source projected.
 struct BounceScene {
