@@ -265,6 +265,9 @@ void add_measure_subcommand(CLI::App& app, CommandEnv& env) {
   cmd->add_option("--env", options->env, "An environment map file, or 'sky'; default: the scene's");
   cmd->add_option("--eye", options->eye, "x,y,z world position; default: the scene's camera");
   cmd->add_option("--shared", options->shared, "The shared assets folder")->capture_default_str();
+  cmd->add_flag("--log-product", s.log_product,
+                "The runtime combines blockers by the log-space product (default: triple "
+                "products)");
   cmd->callback([options, &env] { run_shadowfield_measure(*options, env); });
 }
 

@@ -97,6 +97,9 @@ class ShadowfieldApp : public prt::sample::SampleApp {
     app.add_option("--bounces", bounces_, "Light bounces between instances (0: direct light only)")
         ->check(CLI::Range(0, kMostLiveBounces))
         ->capture_default_str();
+    app.add_flag("--log-product", log_product_,
+                 "Combine the blockers' visibilities by the log-space product (for scenes where "
+                 "vertices have many blockers) instead of triple products");
     app.add_option("--threads", threads_,
                    "Threads sharing a frame's shading (prt_shadowfield_shade_workers; 1: the "
                    "calling thread alone, 0: one per core)")
@@ -156,6 +159,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   void start(prt::sample::Sample& sample) override {
     scene_ = read_scene_file(scene_path_);
     world_ = std::make_unique<ShadowfieldWorld>(scene_);
+    if (log_product_) set_product();
     mesh_ = world_->make_mesh();
     reference_mesh_ = world_->make_mesh();
     heat_mesh_ = world_->make_mesh();
@@ -173,11 +177,13 @@ class ShadowfieldApp : public prt::sample::SampleApp {
       check_runtime(prt_workers_create(world_->context(), &desc, &workers_), "prt_workers_create");
     }
     sample.backend_unusable(prt::sample::Backend::Gl,
-                            "shadowfield has no GL backend yet: the CPU shades, the GPU draws");
-    std::printf("%s: %zu objects, %zu instances, %u vertices, SH order %u, %u thread(s)\n",
-                scene_.path.c_str(), scene_.objects.size(), scene_.instances.size(),
-                world_->vertex_count(), world_->order(),
-                workers_ ? prt_workers_thread_count(workers_) : 1u);
+                            "this app shades on the CPU backends (prt-viewer shows "
+                            "shadowfield's GL backend): the CPU shades, the GPU draws");
+    std::printf(
+        "%s: %zu objects, %zu instances, %u vertices, SH order %u, %u thread(s), %s product\n",
+        scene_.path.c_str(), scene_.objects.size(), scene_.instances.size(), world_->vertex_count(),
+        world_->order(), workers_ ? prt_workers_thread_count(workers_) : 1u,
+        log_product_ ? "log-space" : "triple");
     if (scene_.env != "builtin:sky" && sample.environments().size() == 1 &&
         sample.environments().current_path() == sky_path())
       std::printf("%s: the scene is lit by %s; without --env MAP the built-in sky lights it\n",
@@ -228,6 +234,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
     float t = float(time_);
     if (ImGui::SliderFloat("time (s)", &t, 0.0f, world_->period(), "%.2f")) time_ = t;
     ImGui::SliderInt("bounces", &bounces_, 0, kMostLiveBounces);
+    if (ImGui::Checkbox("log-space product", &log_product_)) set_product();
     if (ImGui::Button("undo the drags")) std::fill(offsets_.begin(), offsets_.end(), glm::vec3(0));
     int mode = static_cast<int>(mode_);
     const char* modes[] = {"runtime only", "side by side", "split screen", "error heat map"};
@@ -296,6 +303,7 @@ class ShadowfieldApp : public prt::sample::SampleApp {
   std::vector<std::string> move_options_;
   std::vector<Move> moves_;
   int bounces_ = 1, reference_spp_ = 256;
+  bool log_product_ = false;
   unsigned threads_ = 0;
   double time_ = 0.0, time_step_ = 0.0, frame_ms_ = 0.0;
   float speed_ = 1.0f, divider_ = 0.5f, error_scale_ = 0.25f;
@@ -384,6 +392,14 @@ class ShadowfieldApp : public prt::sample::SampleApp {
     light_version_ = envs.light_version();
   }
 
+  // The scene's product as the option or the panel sets it (the log fields are made here, once).
+  void set_product() {
+    check_runtime(prt_shadowfield_scene_set_product(
+                      world_->scene(),
+                      log_product_ ? PRT_SHADOWFIELD_PRODUCT_LOG : PRT_SHADOWFIELD_PRODUCT_TRIPLE),
+                  "prt_shadowfield_scene_set_product");
+  }
+
   void shade(prt::sample::Sample& sample) {
     prt_shadowfield_settings settings = prt::sized<prt_shadowfield_settings>();
     settings.bounces = std::uint32_t(bounces_);
@@ -404,8 +420,8 @@ class ShadowfieldApp : public prt::sample::SampleApp {
 
   void overlay(prt::sample::Sample& sample) {
     char line[200];
-    std::snprintf(line, sizeof line, "t %.2f s%s | bounces %d | %s, %u thread(s) | frame %.1f ms",
-                  time_, paused_ ? " (paused)" : "", bounces_,
+    std::snprintf(line, sizeof line, "t %.2f s%s | bounces %d%s | %s, %u thread(s) | frame %.1f ms",
+                  time_, paused_ ? " (paused)" : "", bounces_, log_product_ ? " | log product" : "",
                   prt::sample::backend_name(sample.backend()),
                   workers_ ? prt_workers_thread_count(workers_) : 1u, frame_ms_);
     sample.overlay_line(line);

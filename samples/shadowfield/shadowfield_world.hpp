@@ -33,6 +33,7 @@ class ShadowfieldWorld {
   ShadowfieldWorld& operator=(const ShadowfieldWorld&) = delete;
 
   prt_context* context() const { return context_; }
+  prt_shadowfield_scene* scene() const { return scene_; }
   std::uint32_t order() const { return order_; }
   std::uint32_t vertex_count() const { return vertex_count_; }
   // The longest loop of the scene's paths (the time slider's range).

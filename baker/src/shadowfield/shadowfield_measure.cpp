@@ -207,10 +207,13 @@ std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
     const ShadowfieldSceneDescription& description,
     const std::vector<std::vector<std::uint8_t>>& blobs, const std::vector<float>& light_sh,
     std::uint32_t light_order, float time, const std::vector<std::uint32_t>& bounces,
-    const glm::vec3& eye, double* seconds) {
+    const glm::vec3& eye, double* seconds, bool log_product) {
   if (bounces.empty()) throw Error("shadowfield shade: no bounce count");
   const RuntimeScene runtime(description, blobs, time);
   prt_shadowfield_scene* scene = runtime.scene.get();
+  if (log_product)
+    trade::check_runtime(prt_shadowfield_scene_set_product(scene, PRT_SHADOWFIELD_PRODUCT_LOG),
+                         "prt_shadowfield_scene_set_product");
   const std::uint32_t order = prt_shadowfield_scene_order(scene);
   if (order > light_order || light_sh.size() < std::size_t(order) * order * 3)
     throw Error("shadowfield shade: the light's SH order is below the blobs'");
@@ -245,8 +248,9 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
   std::vector<ShadowfieldMeasureRow> rows;
   for (const float time : settings.times) {
     double seconds_runtime = 0.0;
-    const std::vector<std::vector<glm::vec3>> runtime = shade_shadowfield_scene(
-        description, blobs, light, env_sh.order, time, settings.bounces, eye, &seconds_runtime);
+    const std::vector<std::vector<glm::vec3>> runtime =
+        shade_shadowfield_scene(description, blobs, light, env_sh.order, time, settings.bounces,
+                                eye, &seconds_runtime, settings.log_product);
     const PlacedScene placed = place_shadowfield_scene(description, time);
     for (std::size_t b = 0; b < settings.bounces.size(); ++b) {
       const auto start = std::chrono::steady_clock::now();

@@ -65,7 +65,7 @@ prt_result prt_sf_log_rule_build(const prt_allocator* allocator, uint32_t order,
 }
 
 void prt_sf_log_of_field(const prt_sf_sphere_rule* fine, const float* field, uint64_t points,
-                         float* out) {
+                         float floor_value, float* out) {
   const uint32_t n2 = fine->order * fine->order, directions = fine->directions;
   for (uint64_t p = 0; p < points; ++p) {
     const float* in = field + p * n2;
@@ -74,8 +74,7 @@ void prt_sf_log_of_field(const prt_sf_sphere_rule* fine, const float* field, uin
       const float* y = fine->eval + (size_t)d * n2;
       float visibility = 0.0f;
       for (uint32_t i = 0; i < n2; ++i) visibility += in[i] * y[i];
-      visibility = visibility > 1.0f ? 1.0f : visibility;
-      visibility = visibility > PRT_SF_LOG_FLOOR ? visibility : PRT_SF_LOG_FLOOR;
+      visibility = visibility > floor_value ? visibility : floor_value;
       const double value = log((double)visibility);
       for (uint32_t i = 0; i < n2; ++i)
         sums[i] += value * fine->project[(size_t)i * directions + d];

@@ -17,8 +17,11 @@
 #include <prt/prt_types.h>
 
 /* Visibility below this is read as this before its log: a blocker that hides a direction
- * entirely leaves exp(log floor) of it, and the log stays finite. */
-#define PRT_SF_LOG_FLOOR 0.01f
+ * entirely leaves this much of it, and the log stays finite. Above it nothing is clamped, not
+ * even the SH's ringing above 1: cutting that would darken every small blocker. Measured on a
+ * half-space blocker at order 4 (docs/shadowfield/design.md, "Many blockers"), a lower floor
+ * leaves a large blocker brighter and a higher one lets more through a small one. */
+#define PRT_SF_LOG_FLOOR 0.03f
 
 /* A product quadrature on the sphere for order n: Gauss-Legendre nodes in cos(theta) times
  * uniform nodes in phi, with y_i at every direction and its weight. */
@@ -39,11 +42,11 @@ void prt_sf_sphere_rule_free(const prt_allocator* allocator, prt_sf_sphere_rule*
 prt_result prt_sf_exp_rule_build(const prt_allocator* allocator, uint32_t order,
                                  prt_sf_sphere_rule* out);
 
-/* out[p n^2 + i] = the SH projection of log(max(V_p, PRT_SF_LOG_FLOOR)) with V_p the visibility
- * of field[p n^2 + .] clamped to at most 1, for `points` points, on a rule finer than the
- * exponential's (`fine`, from prt_sf_log_rule_build). */
+/* out[p n^2 + i] = the SH projection of log(max(V_p, floor_value)) with V_p the visibility of
+ * field[p n^2 + .], for `points` points, on a rule finer than the exponential's (`fine`, from
+ * prt_sf_log_rule_build). */
 void prt_sf_log_of_field(const prt_sf_sphere_rule* fine, const float* field, uint64_t points,
-                         float* out);
+                         float floor_value, float* out);
 prt_result prt_sf_log_rule_build(const prt_allocator* allocator, uint32_t order,
                                  prt_sf_sphere_rule* out);
 

@@ -42,7 +42,7 @@ prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene) {
       break;
     }
     field->floats = floats;
-    prt_sf_log_of_field(&fine, object->oof, points, field->values);
+    prt_sf_log_of_field(&fine, object->oof, points, PRT_SF_LOG_FLOOR, field->values);
   }
   prt_sf_sphere_rule_free(allocator, &fine);
   return result;

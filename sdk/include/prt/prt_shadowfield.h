@@ -95,8 +95,9 @@ typedef enum prt_shadowfield_product {
   /* One SH triple product per blocker after the first: the default. */
   PRT_SHADOWFIELD_PRODUCT_TRIPLE = 0,
   /* The blockers' log visibilities summed and one exponential taken: the cost of a vertex
-   * hardly grows with its blockers, so it pays where vertices have many; it reads every
-   * visibility below 1 % as 1 %. */
+   * hardly grows with its blockers, so it pays where vertices have many small ones. It reads
+   * every visibility below 3 % as 3 %, and a blocker that hides half the sky leaves the light
+   * brighter than the triple product does. */
   PRT_SHADOWFIELD_PRODUCT_LOG = 1
 } prt_shadowfield_product;
 

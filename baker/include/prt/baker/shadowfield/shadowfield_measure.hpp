@@ -51,6 +51,7 @@ struct ShadowfieldMeasureSettings {
   std::uint32_t spp = 1024;                        // the reference's samples per vertex
   std::uint32_t seed = 0;
   std::optional<glm::vec3> eye;  // default: the description's camera eye
+  bool log_product = false;      // the runtime combines blockers by the log-space product
 };
 
 struct ShadowfieldMeasureRow {
@@ -72,13 +73,14 @@ struct ShadowfieldMeasureRow {
 // The runtime's per-vertex radiance, instances in order (as render_shadowfield_reference), of
 // the scene at `time` through pass b for each b of `bounces` (one vector per b). blobs: one
 // baked blob per object of the description, in order; `light_sh` the environment's SH in the
-// runtime's layout (project_env_sh) at least at the blobs' order. Throws Error when a blob does
-// not load or its vertex count is not its object's.
+// runtime's layout (project_env_sh) at least at the blobs' order; log_product: blockers combined
+// by the log-space product. Throws Error when a blob does not load or its vertex count is not
+// its object's.
 std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
     const ShadowfieldSceneDescription& description,
     const std::vector<std::vector<std::uint8_t>>& blobs, const std::vector<float>& light_sh,
     std::uint32_t light_order, float time, const std::vector<std::uint32_t>& bounces,
-    const glm::vec3& eye, double* seconds = nullptr);
+    const glm::vec3& eye, double* seconds = nullptr, bool log_product = false);
 
 // One row per time and bounce count, times in order then bounces in order. Throws Error for
 // bad settings or blobs that do not match the description.
