@@ -57,6 +57,14 @@ std::vector<float> random_floats(size_t count, uint32_t seed) {
   return out;
 }
 
+// The C library's allocator: the kernels load unaligned, so its alignment serves.
+prt_allocator malloc_allocator() {
+  prt_allocator allocator{};
+  allocator.alloc = [](void*, size_t size, size_t) -> void* { return std::malloc(size); };
+  allocator.free = [](void*, void* p, size_t) { std::free(p); };
+  return allocator;
+}
+
 // |a - b| <= 2 gamma_n magnitude for every output; returns the largest ratio of the two sides.
 double check_within(const std::vector<float>& a, const std::vector<float>& b,
                     const std::vector<double>& magnitude, double terms) {
@@ -174,6 +182,28 @@ TEST(ShadowfieldSimdKernels, LightTimesAndTransferAgree) {
   }
 }
 
+// Per output, the sum of |block entry x input| of its row: row a of band l's block from the
+// pair's row-major blocks, or with `transpose` (the inverse rotation) column a.
+std::vector<double> rotation_magnitude(const prt_sf_pair* pair, uint32_t order,
+                                       const std::vector<float>& in, uint32_t planes,
+                                       bool transpose) {
+  const uint32_t n2 = order * order;
+  std::vector<double> magnitude(planes * n2, 0.0);
+  for (uint32_t c = 0; c < planes; ++c) {
+    const float* block = pair->sh_rotation;
+    for (uint32_t l = 0; l < order; ++l) {
+      const uint32_t width = 2 * l + 1, base = l * l;
+      for (uint32_t a = 0; a < width; ++a)
+        for (uint32_t b = 0; b < width; ++b) {
+          const float entry = transpose ? block[b * width + a] : block[a * width + b];
+          magnitude[c * n2 + base + a] += std::fabs(double(entry) * in[c * n2 + base + b]);
+        }
+      block += width * width;
+    }
+  }
+  return magnitude;
+}
+
 // Two patches, the second turned about a tilted axis: the pair's rotation from the frame's
 // preparation, as the kernels read it.
 TEST(ShadowfieldSimdKernels, RotationsAgree) {
@@ -196,20 +226,7 @@ TEST(ShadowfieldSimdKernels, RotationsAgree) {
     std::vector<float> scalar(3 * n2), simd(3 * n2);
     prt_sf_kernels_scalar.rotate(pair, order, in.data(), scalar.data(), 3);
     prt_sf_kernels_avx2.rotate(pair, order, in.data(), simd.data(), 3);
-    // Row a of band l's block times the band's inputs, from the row-major blocks.
-    std::vector<double> magnitude(3 * n2, 0.0);
-    for (uint32_t c = 0; c < 3; ++c) {
-      const float* block = pair->sh_rotation;
-      for (uint32_t l = 0; l < order; ++l) {
-        const uint32_t width = 2 * l + 1, base = l * l;
-        for (uint32_t a = 0; a < width; ++a)
-          for (uint32_t b = 0; b < width; ++b)
-            magnitude[c * n2 + base + a] +=
-                std::fabs(double(block[a * width + b]) * in[c * n2 + base + b]);
-        block += width * width;
-      }
-    }
-    check_within(scalar, simd, magnitude, 2 * order - 1);
+    check_within(scalar, simd, rotation_magnitude(pair, order, in, 3, false), 2 * order - 1);
   }
 }
 
@@ -236,20 +253,7 @@ TEST(ShadowfieldSimdKernels, RotationsBackAgreeAndUndoTheRotation) {
     std::vector<float> scalar(2 * n2), simd(2 * n2);
     prt_sf_kernels_scalar.rotate_back(pair, order, in.data(), scalar.data(), 2);
     prt_sf_kernels_avx2.rotate_back(pair, order, in.data(), simd.data(), 2);
-    // Row a of the transpose is column a of the row-major blocks.
-    std::vector<double> magnitude(2 * n2, 0.0);
-    for (uint32_t c = 0; c < 2; ++c) {
-      const float* block = pair->sh_rotation;
-      for (uint32_t l = 0; l < order; ++l) {
-        const uint32_t width = 2 * l + 1, base = l * l;
-        for (uint32_t r = 0; r < width; ++r)
-          for (uint32_t q = 0; q < width; ++q)
-            magnitude[c * n2 + base + r] +=
-                std::fabs(double(block[q * width + r]) * in[c * n2 + base + q]);
-        block += width * width;
-      }
-    }
-    check_within(scalar, simd, magnitude, 2 * order - 1);
+    check_within(scalar, simd, rotation_magnitude(pair, order, in, 2, true), 2 * order - 1);
     // Inputs within [-1, 1]: the round trip stays within a few float steps of 1 (measured up to
     // 1.8e-7 over these orders).
     for (const prt_sf_kernels* kernels : {&prt_sf_kernels_scalar, &prt_sf_kernels_avx2}) {
@@ -304,9 +308,7 @@ TEST(ShadowfieldSimdKernels, RotateLanesIsTheRotationLaneByLane) {
 // lane; the other lanes keep their bits on both.
 TEST(ShadowfieldSimdKernels, MultiplyLanesAgreesAndKeepsTheOtherLanes) {
   SKIP_WITHOUT_AVX2();
-  prt_allocator allocator{};
-  allocator.alloc = [](void*, size_t size, size_t) -> void* { return std::malloc(size); };
-  allocator.free = [](void*, void* p, size_t) { std::free(p); };
+  const prt_allocator allocator = malloc_allocator();
   for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
     prt_sf_gaunt gaunt{};
     ASSERT_EQ(prt_sf_gaunt_build(&allocator, order, &gaunt), PRT_OK);
@@ -349,9 +351,7 @@ TEST(ShadowfieldSimdKernels, MultiplyLanesAgreesAndKeepsTheOtherLanes) {
 // sum_d |p_d| exp(x_d) (1 + sum_j |y_dj f_j|). The other lanes keep their bits on both.
 TEST(ShadowfieldSimdKernels, ExpLanesAgreesAndKeepsTheOtherLanes) {
   SKIP_WITHOUT_AVX2();
-  prt_allocator allocator{};
-  allocator.alloc = [](void*, size_t size, size_t) -> void* { return std::malloc(size); };
-  allocator.free = [](void*, void* p, size_t) { std::free(p); };
+  const prt_allocator allocator = malloc_allocator();
   for (const uint32_t order : {2u, 3u, 4u, 5u, 6u}) {
     prt_sf_sphere_rule rule{};
     ASSERT_EQ(prt_sf_exp_rule_build(&allocator, order, &rule), PRT_OK);
