@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Technique `shadowfield`'s scripted paths (prt/baker/shadowfield/shadowfield_scenes.hpp):
-// keyframes returned exactly, midpoints against the analytic average and half-angle rotation,
-// the loop's period and its wrap-around segment, slerp's unit length and shorter arc, a constant
-// path, and the errors of bad paths.
+// The scripted rigid paths (prt/io/rigid_path.hpp) that technique `shadowfield`'s scenes and app
+// move instances along: keyframes returned exactly, midpoints against the analytic average and
+// half-angle rotation, the loop's period and its wrap-around segment, slerp's unit length and
+// shorter arc, a constant path, and the errors of bad paths.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,11 +10,10 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "prt/baker/context.hpp"
-#include "prt/baker/shadowfield/shadowfield_scenes.hpp"
 #include "prt/io/error.hpp"
+#include "prt/io/rigid_path.hpp"
 
-namespace prt::bake {
+namespace prt::io {
 namespace {
 
 constexpr float kPi = glm::pi<float>();
@@ -32,8 +31,8 @@ void expect_same_rotation(const glm::quat& a, const glm::quat& b, float toleranc
 }
 
 // Three keyframes at uneven times; the loop returns to the first at time 4.
-ShadowfieldPath three_keyframes() {
-  ShadowfieldPath path;
+RigidPath three_keyframes() {
+  RigidPath path;
   path.duration = 4.0f;
   path.keyframes = {
       {0.0f, {{0.0f, 0.0f, 0.0f}, turn(0.0f, {0, 1, 0}), 1.0f}},
@@ -43,32 +42,32 @@ ShadowfieldPath three_keyframes() {
   return path;
 }
 
-TEST(Path, KeyframesAreReturnedExactly) {
-  const ShadowfieldPath path = three_keyframes();
-  for (const ShadowfieldKeyframe& k : path.keyframes) {
-    const ShadowfieldPlacement p = path.at(k.time);
+TEST(RigidPath, KeyframesAreReturnedExactly) {
+  const RigidPath path = three_keyframes();
+  for (const RigidKeyframe& k : path.keyframes) {
+    const RigidPlacement p = path.at(k.time);
     EXPECT_EQ(p.translation, k.placement.translation);
     EXPECT_EQ(p.scale, k.placement.scale);
     expect_same_rotation(p.rotation, k.placement.rotation, 1e-6f);
   }
 }
 
-TEST(Path, MidpointsAreTheAverageAndTheHalfTurn) {
-  const ShadowfieldPath path = three_keyframes();
-  const ShadowfieldPlacement p = path.at(0.5f);
+TEST(RigidPath, MidpointsAreTheAverageAndTheHalfTurn) {
+  const RigidPath path = three_keyframes();
+  const RigidPlacement p = path.at(0.5f);
   EXPECT_EQ(p.translation, glm::vec3(1.0f, 0.5f, -0.5f));
   EXPECT_FLOAT_EQ(p.scale, 1.5f);
   // Between yaw 0 and a quarter turn: an eighth of a turn about +Y.
   expect_same_rotation(p.rotation, turn(0.25f * kPi, {0, 1, 0}), 1e-6f);
   // A quarter of the way from keyframe 1 to 2 (times 1 and 3).
-  const ShadowfieldPlacement q = path.at(1.5f);
+  const RigidPlacement q = path.at(1.5f);
   EXPECT_FLOAT_EQ(q.translation.x, 2.0f + 0.25f * (-1.0f - 2.0f));
   EXPECT_FLOAT_EQ(q.scale, 2.0f + 0.25f * (0.5f - 2.0f));
 }
 
-TEST(Path, SlerpFollowsTheGreatCircleAtConstantSpeed) {
+TEST(RigidPath, SlerpFollowsTheGreatCircleAtConstantSpeed) {
   // Two turns about one axis: the interpolant is the turn by the interpolated angle.
-  ShadowfieldPath path;
+  RigidPath path;
   path.duration = 2.0f;
   const glm::vec3 axis(0.3f, -0.5f, 0.8f);
   path.keyframes = {{0.0f, {{}, turn(0.2f, axis), 1.0f}}, {1.0f, {{}, turn(1.7f, axis), 1.0f}}};
@@ -77,16 +76,16 @@ TEST(Path, SlerpFollowsTheGreatCircleAtConstantSpeed) {
   }
 }
 
-TEST(Path, LoopsWithItsDurationThroughTheWrapSegment) {
-  const ShadowfieldPath path = three_keyframes();
+TEST(RigidPath, LoopsWithItsDurationThroughTheWrapSegment) {
+  const RigidPath path = three_keyframes();
   // Halfway from the last keyframe (time 3) back to the first (time 4 = 0 + duration).
-  const ShadowfieldPlacement wrap = path.at(3.5f);
+  const RigidPlacement wrap = path.at(3.5f);
   EXPECT_EQ(wrap.translation, glm::vec3(-0.5f, 0.25f, 1.5f));
   EXPECT_FLOAT_EQ(wrap.scale, 0.75f);
   expect_same_rotation(wrap.rotation, turn(0.2f * kPi, {1, 1, 0}), 1e-6f);
   for (float t : {0.25f, 1.5f, 3.5f}) {
     for (float period : {-2.0f, -1.0f, 1.0f, 3.0f}) {
-      const ShadowfieldPlacement a = path.at(t), b = path.at(t + period * path.duration);
+      const RigidPlacement a = path.at(t), b = path.at(t + period * path.duration);
       EXPECT_EQ(a.translation, b.translation) << t << " + " << period << " periods";
       EXPECT_EQ(a.scale, b.scale);
       expect_same_rotation(a.rotation, b.rotation, 1e-6f);
@@ -94,10 +93,10 @@ TEST(Path, LoopsWithItsDurationThroughTheWrapSegment) {
   }
 }
 
-TEST(Path, StaysOnThePathAtExtremeTimes) {
-  const ShadowfieldPath path = three_keyframes();
+TEST(RigidPath, StaysOnThePathAtExtremeTimes) {
+  const RigidPath path = three_keyframes();
   for (float t : {-1e7f, 1e7f, 3e38f, -3e38f, 1e-30f}) {
-    const ShadowfieldPlacement p = path.at(t);
+    const RigidPlacement p = path.at(t);
     EXPECT_TRUE(std::isfinite(p.translation.x + p.translation.y + p.translation.z)) << t;
     EXPECT_NEAR(glm::length(p.rotation), 1.0f, 2.5e-7f) << t;
     EXPECT_GE(p.scale, 0.5f) << t;  // the keyframes' smallest scale
@@ -105,8 +104,8 @@ TEST(Path, StaysOnThePathAtExtremeTimes) {
   }
 }
 
-TEST(Path, WrapsBeforeAFirstKeyframeThatIsNotAtZero) {
-  ShadowfieldPath path;
+TEST(RigidPath, WrapsBeforeAFirstKeyframeThatIsNotAtZero) {
+  RigidPath path;
   path.duration = 4.0f;
   path.keyframes = {{1.0f, {{0.0f, 0.0f, 0.0f}, glm::quat(1, 0, 0, 0), 1.0f}},
                     {3.0f, {{4.0f, 0.0f, 0.0f}, glm::quat(1, 0, 0, 0), 3.0f}}};
@@ -116,8 +115,8 @@ TEST(Path, WrapsBeforeAFirstKeyframeThatIsNotAtZero) {
   EXPECT_EQ(path.at(4.5f).translation, glm::vec3(1.0f, 0.0f, 0.0f));
 }
 
-TEST(Path, SlerpStaysUnitAndTakesTheShorterArc) {
-  ShadowfieldPath path;
+TEST(RigidPath, SlerpStaysUnitAndTakesTheShorterArc) {
+  RigidPath path;
   path.duration = 3.0f;
   path.keyframes = {{0.0f, {{}, turn(2.9f, {1, 2, 3}), 1.0f}},
                     {1.0f, {{}, turn(-2.5f, {-3, 1, 0.5f}), 1.0f}},
@@ -133,20 +132,20 @@ TEST(Path, SlerpStaysUnitAndTakesTheShorterArc) {
   }
 }
 
-TEST(Path, OneKeyframeIsAConstantPlacement) {
-  ShadowfieldPath path;
-  const ShadowfieldPlacement place{{1.0f, 2.0f, 3.0f}, turn(1.0f, {0, 0, 1}), 0.25f};
+TEST(RigidPath, OneKeyframeIsAConstantPlacement) {
+  RigidPath path;
+  const RigidPlacement place{{1.0f, 2.0f, 3.0f}, turn(1.0f, {0, 0, 1}), 0.25f};
   path.keyframes = {{0.0f, place}};
   for (float t : {-100.0f, 0.0f, 0.7f, 1e6f}) {
-    const ShadowfieldPlacement p = path.at(t);
+    const RigidPlacement p = path.at(t);
     EXPECT_EQ(p.translation, place.translation);
     EXPECT_EQ(p.scale, place.scale);
     expect_same_rotation(p.rotation, place.rotation, 1e-6f);
   }
 }
 
-TEST(Path, PlacementAppliesScaleRotationThenTranslation) {
-  const ShadowfieldPlacement p{{1.0f, 0.0f, 0.0f}, turn(0.5f * kPi, {0, 1, 0}), 2.0f};
+TEST(RigidPath, PlacementAppliesScaleRotationThenTranslation) {
+  const RigidPlacement p{{1.0f, 0.0f, 0.0f}, turn(0.5f * kPi, {0, 1, 0}), 2.0f};
   // A quarter turn about +Y takes +Z to +X.
   const glm::vec3 world = p.apply({0.0f, 0.0f, 1.0f});
   EXPECT_NEAR(world.x, 3.0f, 3e-7f);
@@ -154,34 +153,31 @@ TEST(Path, PlacementAppliesScaleRotationThenTranslation) {
   EXPECT_NEAR(world.z, 0.0f, 3e-7f);
 }
 
-TEST(Path, BadPathsAreRejected) {
+TEST(RigidPath, BadPathsAreRejected) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW(ShadowfieldPath{}.at(0.0f), io::Error);
+  EXPECT_THROW(RigidPath{}.at(0.0f), Error);
   auto broken = [](auto change) {
-    ShadowfieldPath path = three_keyframes();
+    RigidPath path = three_keyframes();
     change(path);
     return path;
   };
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.duration = 3.0f; }).check(), io::Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.duration = 0.0f; }).check(), io::Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[1].time = 0.0f; }).check(), io::Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[0].time = -1.0f; }).check(), io::Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) { p.keyframes[2].placement.scale = 0.0f; }).check(),
-               io::Error);
-  EXPECT_THROW(
-      broken([&](ShadowfieldPath& p) { p.keyframes[1].placement.translation.y = nan; }).check(),
-      io::Error);
-  EXPECT_THROW(
-      broken([&](ShadowfieldPath& p) { p.keyframes[1].placement.rotation.w = nan; }).check(),
-      io::Error);
-  EXPECT_THROW(broken([](ShadowfieldPath& p) {
+  EXPECT_THROW(broken([](RigidPath& p) { p.duration = 3.0f; }).check(), Error);
+  EXPECT_THROW(broken([](RigidPath& p) { p.duration = 0.0f; }).check(), Error);
+  EXPECT_THROW(broken([](RigidPath& p) { p.keyframes[1].time = 0.0f; }).check(), Error);
+  EXPECT_THROW(broken([](RigidPath& p) { p.keyframes[0].time = -1.0f; }).check(), Error);
+  EXPECT_THROW(broken([](RigidPath& p) { p.keyframes[2].placement.scale = 0.0f; }).check(), Error);
+  EXPECT_THROW(broken([&](RigidPath& p) { p.keyframes[1].placement.translation.y = nan; }).check(),
+               Error);
+  EXPECT_THROW(broken([&](RigidPath& p) { p.keyframes[1].placement.rotation.w = nan; }).check(),
+               Error);
+  EXPECT_THROW(broken([](RigidPath& p) {
                  p.keyframes[1].placement.rotation = {0, 0, 0, 0};
                }).check(),
-               io::Error);
+               Error);
   EXPECT_NO_THROW(three_keyframes().check());
-  EXPECT_THROW(three_keyframes().at(nan), io::Error);
-  EXPECT_THROW(three_keyframes().at(std::numeric_limits<float>::infinity()), io::Error);
+  EXPECT_THROW(three_keyframes().at(nan), Error);
+  EXPECT_THROW(three_keyframes().at(std::numeric_limits<float>::infinity()), Error);
 }
 
 }  // namespace
-}  // namespace prt::bake
+}  // namespace prt::io
