@@ -3,10 +3,11 @@
 // marks for ("teapot": a teapot on a floor; "room": the room with its moving objects), baked
 // in-process at the default settings (blobs cached in the build folder, keyed by the settings
 // and the mesh, so a re-run only loads them), loaded into a runtime scene and animated along
-// their paths while the eye orbits and the light turns, 3 bounces:
+// their paths while the eye orbits and the light turns, 3 bounces unless said:
 //   Frame/<scene>/<backend>/threads:<t>  one whole frame (prepare, passes, output), wall clock
 //                                        and process CPU time per frame;
 //   Frame/<scene>/simd-log/threads:<t>   the same on SIMD with the log-space product;
+//   Frame/<scene>/simd-<b>-bounce(s)/...  the same on SIMD with b < 3 bounces;
 //   Frame/<scene>/gl                     the same on GL (prt_gl_shadowfield_shade, then a read of
 //                                        one vertex to wait for it), where a headless GL exists;
 //   StreamTriad/<t>                      the memory-bandwidth roofline of the same run.
@@ -236,10 +237,6 @@ LoadedScene& scene_named(const std::string& name) {
   return *slot;
 }
 
-const char* backend_name(prt_backend b) {
-  return b == PRT_BACKEND_SIMD ? "simd" : "scalar";
-}
-
 void record(benchmark::State& state, const std::string& key, double wall, double cpu,
             uint32_t vertices) {
   if (state.iterations() == 0) return;
@@ -251,10 +248,22 @@ void record(benchmark::State& state, const std::string& key, double wall, double
   state.counters["vertices"] = vertices;
 }
 
-void BM_Frame(benchmark::State& state, const std::string& name, prt_backend backend,
-              prt_shadowfield_product product) {
+// What a frame is timed on: the backend, the product, the bounces, and its label in the keys.
+struct Variant {
+  prt_backend backend;
+  prt_shadowfield_product product;
+  uint32_t bounces;
+  const char* label;
+};
+
+// The default product and bounces: the variants whose memory and streamed bytes are recorded.
+bool is_default(const Variant& v) {
+  return v.product == PRT_SHADOWFIELD_PRODUCT_TRIPLE && v.bounces == 3;
+}
+
+void BM_Frame(benchmark::State& state, const std::string& name, const Variant& variant) {
   LoadedScene& s = scene_named(name);
-  if (prt_shadowfield_scene_set_product(s.scene, product) != PRT_OK) {
+  if (prt_shadowfield_scene_set_product(s.scene, variant.product) != PRT_OK) {
     state.SkipWithError(prt_context_last_message(s.context));
     return;
   }
@@ -268,8 +277,8 @@ void BM_Frame(benchmark::State& state, const std::string& name, prt_backend back
   }
   prt_shadowfield_settings settings{};
   settings.struct_size = sizeof settings;
-  settings.bounces = 3;
-  settings.backend = backend;
+  settings.bounces = variant.bounces;
+  settings.backend = variant.backend;
   float time = 0.0f;
   double cpu = 0.0, wall = 0.0;
   for (auto _ : state) {
@@ -294,10 +303,8 @@ void BM_Frame(benchmark::State& state, const std::string& name, prt_backend back
     }
   }
   prt_workers_destroy(workers);
-  const bool log_product = product == PRT_SHADOWFIELD_PRODUCT_LOG;
-  const std::string key =
-      name + "/" + backend_name(backend) + (log_product ? "-log/" : "/") + std::to_string(threads);
-  if (log_product) {  // the memory figures are the default product's
+  const std::string key = name + "/" + variant.label + "/" + std::to_string(threads);
+  if (!is_default(variant)) {
     prt_shadowfield_scene_set_product(s.scene, PRT_SHADOWFIELD_PRODUCT_TRIPLE);
     record(state, key, wall, cpu, s.vertices);
     return;
@@ -379,21 +386,20 @@ void register_frames() {
         ->UseRealTime()
         ->MinTime(2.0);
 #endif
-  struct Variant {
-    prt_backend backend;
-    prt_shadowfield_product product;
-    const char* label;
-  };
-  // The log-space product on SIMD too: a receiver here has a few blockers, not the many it is
-  // for.
-  const Variant variants[] = {{PRT_BACKEND_CPU, PRT_SHADOWFIELD_PRODUCT_TRIPLE, "scalar"},
-                              {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, "simd"},
-                              {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_LOG, "simd-log"}};
+  // The log-space product on SIMD too (a receiver here has a few blockers, not the many it is
+  // for), and fewer bounces: the frame's cost against the error per bounce count of
+  // docs/shadowfield/accuracy.md.
+  static const Variant variants[] = {
+      {PRT_BACKEND_CPU, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "scalar"},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "simd"},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_LOG, 3, "simd-log"},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 1, "simd-1-bounce"},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 0, "simd-0-bounces"}};
   for (const char* name : {"teapot", "room"})
     for (const Variant& v : variants)
       benchmark::RegisterBenchmark(
           (std::string("BM_Frame/") + name + "/" + v.label).c_str(),
-          [name, v](benchmark::State& state) { BM_Frame(state, name, v.backend, v.product); })
+          [name, &v](benchmark::State& state) { BM_Frame(state, name, v); })
           ->ArgName("threads")
           ->Arg(1)
           ->Arg(2)
