@@ -51,9 +51,11 @@ prt_result prt_sf_log_rule_build(const prt_allocator* allocator, uint32_t order,
                                  prt_sf_sphere_rule* out);
 
 /* exp(x) to about one float ulp for x in [-87, 88], by range reduction and a polynomial; the
- * SIMD kernels evaluate the same steps in lanes. */
+ * SIMD kernels evaluate the same steps in lanes. x is clamped to that range first, NaN to -87
+ * (as the SIMD max does), so the exponent's conversion to an integer is always defined. */
 static inline float prt_sf_exp(float x) {
-  x = x < -87.0f ? -87.0f : (x > 88.0f ? 88.0f : x);
+  x = x > -87.0f ? x : -87.0f;
+  x = x < 88.0f ? x : 88.0f;
   const float k = nearbyintf(x * 1.44269504088896341f);
   const float r = (x - k * 0.693145751953125f) - k * 1.428606765330187045e-06f;
   float p = 1.0f / 5040.0f;

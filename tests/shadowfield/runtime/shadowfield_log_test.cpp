@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,8 @@ TEST(ShadowfieldLog, TheExponentialAgreesWithTheLibrarys) {
   EXPECT_EQ(prt_sf_exp(-1000.0f), prt_sf_exp(-87.0f));
   EXPECT_GT(prt_sf_exp(-1000.0f), 0.0f);
   EXPECT_TRUE(std::isfinite(prt_sf_exp(1000.0f)));
+  EXPECT_EQ(prt_sf_exp(std::numeric_limits<float>::quiet_NaN()), prt_sf_exp(-87.0f));
+  EXPECT_EQ(prt_sf_exp(-std::numeric_limits<float>::infinity()), prt_sf_exp(-87.0f));
 }
 
 TEST(ShadowfieldLog, TheExponentialOfAConstantIsExact) {
