@@ -52,17 +52,22 @@ prt_result prt_gl_shadowfield_read(prt_gl_shadowfield* shader, uint32_t instance
 
 /* ---- create ------------------------------------------------------------------------------- */
 
+/* Words of the Gaunt buffer's tensor (k_start, then two words a coefficient): where the
+ * exponential's rule starts. */
+static uint32_t tensor_words(const prt_shadowfield_scene* scene) {
+  return scene->order * scene->order + 1u + 2u * scene->gaunt.count;
+}
+
 /* Words of the Gaunt buffer: the tensor, then with the log-space product the exponential's
  * rule (its eval, then its project table). */
 static uint64_t gaunt_words(const prt_shadowfield_scene* scene) {
   const uint64_t n2 = (uint64_t)scene->order * scene->order;
-  return n2 + 1u + 2u * (uint64_t)scene->gaunt.count +
-         2u * (uint64_t)scene->exp_rule.directions * n2;
+  return tensor_words(scene) + 2u * (uint64_t)scene->exp_rule.directions * n2;
 }
 
 static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
   const uint32_t n2 = s->scene->order * s->scene->order, directions = s->scene->exp_rule.directions;
-  const uint32_t exp_eval = n2 + 1u + 2u * s->scene->gaunt.count;
+  const uint32_t exp_eval = tensor_words(s->scene);
   char header[2048];
   snprintf(header, sizeof header,
            "#version 430 core\n#define LOCAL_SIZE %u\n"
@@ -218,7 +223,7 @@ static prt_result upload_gaunt(prt_context* context, prt_gl_shadowfield* s, uint
   }
   const size_t rule_floats = (size_t)rule->directions * n2;
   if (rule_floats) {
-    uint32_t* at = &words[n2 + 1u + 2u * gaunt->count];
+    uint32_t* at = &words[tensor_words(s->scene)];
     memcpy(at, rule->eval, rule_floats * sizeof(float));
     memcpy(at + rule_floats, rule->project, rule_floats * sizeof(float));
   }

@@ -28,6 +28,14 @@ static void store_part(float* p, uint32_t left, __m256 v) {
     _mm256_maskstore_ps(p, lane_mask(left), v);
 }
 
+/* All bits set in the lanes whose bit of `mask` is clear: the lanes a masked kernel keeps. */
+static __m256 kept_lanes(uint32_t mask) {
+  return _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
+                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+                         _mm256_setzero_si256()));
+}
+
 /* The eight accumulators' lane sums, in order. */
 static __m256 sum8(const __m256 a[8]) {
   const __m256 t0 = _mm256_hadd_ps(a[0], a[1]), t1 = _mm256_hadd_ps(a[2], a[3]);
@@ -129,10 +137,7 @@ static void rotate_back_avx2(const prt_sf_pair* pair, uint32_t order, const floa
  * rotate's; a blend keeps the lanes outside the mask. */
 static void rotate_lanes_avx2(const prt_sf_pair* pair, uint32_t order, const float* in, float* out,
                               uint32_t mask) {
-  const __m256 keep = _mm256_castsi256_ps(
-      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
-                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
-                         _mm256_setzero_si256()));
+  const __m256 keep = kept_lanes(mask);
   const float* block = pair->padded_columns;
   for (uint32_t l = 0; l < order; ++l) {
     const uint32_t width = 2u * l + 1u, base = l * l, pad = (width + 7u) / 8u * 8u;
@@ -187,10 +192,7 @@ static void multiply_lanes_avx2(const prt_sf_gaunt* gaunt, float* a, const float
     }
     product[k] = acc;
   }
-  const __m256 keep = _mm256_castsi256_ps(
-      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
-                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
-                         _mm256_setzero_si256()));
+  const __m256 keep = kept_lanes(mask);
   for (uint32_t k = 0; k < n2; ++k) {
     float* at = a + k * PRT_SF_LANES;
     _mm256_storeu_ps(at, _mm256_blendv_ps(product[k], _mm256_loadu_ps(at), keep));
@@ -279,10 +281,7 @@ static void exp_lanes_avx2(const prt_sf_sphere_rule* rule, float* lanes, uint32_
       out[i] =
           _mm256_fmadd_ps(_mm256_set1_ps(rule->project[(size_t)i * directions + d]), e, out[i]);
   }
-  const __m256 keep = _mm256_castsi256_ps(
-      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)mask),
-                                          _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
-                         _mm256_setzero_si256()));
+  const __m256 keep = kept_lanes(mask);
   for (uint32_t i = 0; i < n2; ++i)
     _mm256_storeu_ps(lanes + i * PRT_SF_LANES, _mm256_blendv_ps(out[i], in[i], keep));
 }

@@ -134,9 +134,7 @@ prt_result prt_internal_sf_scene_add_object(prt_shadowfield_scene* scene,
   }
   scene->objects[scene->object_count] = object;
   if (scene->product == PRT_SHADOWFIELD_PRODUCT_LOG) {
-    ++scene->object_count;
-    const prt_result built = prt_sf_scene_build_log_fields(scene);
-    --scene->object_count;
+    const prt_result built = prt_sf_scene_build_log_fields(scene, scene->object_count + 1u);
     if (built != PRT_OK && scene->object_count == 0u) {
       /* The scene takes its order from its first object: it has none yet. */
       prt_sf_sphere_rule_free(&scene->allocator, &scene->exp_rule);
@@ -224,7 +222,7 @@ prt_result prt_shadowfield_scene_add_instance(prt_shadowfield_scene* scene, uint
   instance->light_product = alloc_floats(&scene->allocator, instance->light_product_floats);
   instance->located_bytes = stamp_bytes(o->vertex_count);
   instance->located = (uint32_t*)prt_internal_alloc(&scene->allocator, instance->located_bytes, 16);
-  if (instance->located) memset(instance->located, 0, stamp_bytes(o->vertex_count));
+  if (instance->located) memset(instance->located, 0, instance->located_bytes);
   int failed =
       instance->incident == NULL || instance->light_product == NULL || instance->located == NULL;
   if (o->basis_size > 0u) {

@@ -156,10 +156,10 @@ struct prt_shadowfield_scene {
 prt_result prt_internal_sf_scene_add_object(prt_shadowfield_scene* scene,
                                             const prt_sf_object* object, uint32_t* out_object);
 
-/* The log-space product's state for objects added so far, when the scene's product is LOG
- * (shadowfield_scene_product.c): the exponential's rule and each object's log field, built where
- * missing. Records failures in the scene's context. */
-prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene);
+/* The log-space product's state for objects [0, objects) (shadowfield_scene_product.c): the
+ * exponential's rule and each object's log field, built where missing. Records failures in the
+ * scene's context. */
+prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene, uint32_t objects);
 /* Frees every log field and the exponential's rule. */
 void prt_sf_scene_free_log_fields(prt_shadowfield_scene* scene);
 

@@ -16,7 +16,7 @@ void prt_sf_scene_free_log_fields(prt_shadowfield_scene* scene) {
   prt_sf_sphere_rule_free(&scene->allocator, &scene->exp_rule);
 }
 
-prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene) {
+prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene, uint32_t objects) {
   prt_context* context = scene->context;
   if (scene->order == 0u) return PRT_OK; /* no object yet: built when the first is added */
   const prt_allocator* allocator = &scene->allocator;
@@ -29,7 +29,7 @@ prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene) {
   if (built != PRT_OK) return prt_internal_fail(context, built, "shadowfield log rule");
   const uint32_t n2 = scene->order * scene->order;
   prt_result result = PRT_OK;
-  for (uint32_t o = 0; o < scene->object_count && result == PRT_OK; ++o) {
+  for (uint32_t o = 0; o < objects && result == PRT_OK; ++o) {
     prt_sf_log_field* field = &scene->log_fields[o];
     if (field->values) continue;
     const prt_sf_object* object = scene->objects[o];
@@ -56,7 +56,7 @@ prt_result prt_shadowfield_scene_set_product(prt_shadowfield_scene* scene,
                              "prt_shadowfield_scene_set_product: product %d", (int)product);
   if (product == scene->product) return PRT_OK;
   if (product == PRT_SHADOWFIELD_PRODUCT_LOG) {
-    const prt_result built = prt_sf_scene_build_log_fields(scene);
+    const prt_result built = prt_sf_scene_build_log_fields(scene, scene->object_count);
     if (built != PRT_OK) {
       prt_sf_scene_free_log_fields(scene);
       return built;
