@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -78,6 +79,29 @@ double check_within(const std::vector<float>& a, const std::vector<float>& b,
   ::testing::Test::RecordProperty("check" + std::to_string(checks++) + "_difference_over_bound",
                                   std::to_string(worst));
   return worst;
+}
+
+// A masked lane kernel's outputs (n2 coefficients x PRT_SF_LANES lanes, lane-interleaved) on
+// both backends from the same input `a`: the lanes outside `mask` keep a's bits on both, the
+// others agree within check_within's bound of `terms` with magnitude(coefficient, lane).
+void check_masked_lanes(const std::vector<float>& a, const std::vector<float>& scalar,
+                        const std::vector<float>& simd, uint32_t n2, uint32_t mask, double terms,
+                        const std::function<double(uint32_t, uint32_t)>& magnitude) {
+  std::vector<float> masked_scalar, masked_simd;
+  std::vector<double> magnitudes;
+  for (uint32_t k = 0; k < n2; ++k)
+    for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
+      const size_t at = k * PRT_SF_LANES + lane;
+      if (!(mask >> lane & 1u)) {
+        EXPECT_EQ(scalar[at], a[at]);
+        EXPECT_EQ(simd[at], a[at]);
+        continue;
+      }
+      magnitudes.push_back(magnitude(k, lane));
+      masked_scalar.push_back(scalar[at]);
+      masked_simd.push_back(simd[at]);
+    }
+  check_within(masked_scalar, masked_simd, magnitudes, terms);
 }
 
 TEST(ShadowfieldSimdKernels, ReadRowsAgreeForEveryWidth) {
@@ -318,29 +342,17 @@ TEST(ShadowfieldSimdKernels, MultiplyLanesAgreesAndKeepsTheOtherLanes) {
     std::vector<float> scalar = a, simd = a;
     prt_sf_kernels_scalar.multiply_lanes(&gaunt, scalar.data(), b.data(), mask);
     prt_sf_kernels_avx2.multiply_lanes(&gaunt, simd.data(), b.data(), mask);
-    std::vector<float> masked_scalar, masked_simd;
-    std::vector<double> magnitude;
     uint32_t longest = 0;
-    for (uint32_t k = 0; k < n2; ++k) {
+    for (uint32_t k = 0; k < n2; ++k)
       longest = std::max(longest, gaunt.k_start[k + 1] - gaunt.k_start[k]);
-      for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
-        const size_t at = k * PRT_SF_LANES + lane;
-        if (!(mask >> lane & 1u)) {
-          EXPECT_EQ(scalar[at], a[at]);
-          EXPECT_EQ(simd[at], a[at]);
-          continue;
-        }
-        double sum = 0.0;
-        for (uint32_t e = gaunt.k_start[k]; e < gaunt.k_start[k + 1]; ++e)
-          sum += std::fabs(double(gaunt.value[e]) * a[gaunt.i[e] * PRT_SF_LANES + lane] *
-                           b[gaunt.j[e] * PRT_SF_LANES + lane]);
-        magnitude.push_back(sum);
-        masked_scalar.push_back(scalar[at]);
-        masked_simd.push_back(simd[at]);
-      }
-    }
     // Each product has two multiplications: a sum of m of them is within gamma_(m + 2).
-    check_within(masked_scalar, masked_simd, magnitude, longest + 2);
+    check_masked_lanes(a, scalar, simd, n2, mask, longest + 2, [&](uint32_t k, uint32_t lane) {
+      double sum = 0.0;
+      for (uint32_t e = gaunt.k_start[k]; e < gaunt.k_start[k + 1]; ++e)
+        sum += std::fabs(double(gaunt.value[e]) * a[gaunt.i[e] * PRT_SF_LANES + lane] *
+                         b[gaunt.j[e] * PRT_SF_LANES + lane]);
+      return sum;
+    });
     prt_sf_gaunt_free(&allocator, &gaunt);
   }
 }
@@ -361,31 +373,20 @@ TEST(ShadowfieldSimdKernels, ExpLanesAgreesAndKeepsTheOtherLanes) {
     std::vector<float> scalar = a, simd = a;
     prt_sf_kernels_scalar.exp_lanes(&rule, scalar.data(), mask);
     prt_sf_kernels_avx2.exp_lanes(&rule, simd.data(), mask);
-    std::vector<float> masked_scalar, masked_simd;
-    std::vector<double> magnitude;
-    for (uint32_t i = 0; i < n2; ++i)
-      for (uint32_t lane = 0; lane < PRT_SF_LANES; ++lane) {
-        const size_t at = i * PRT_SF_LANES + lane;
-        if (!(mask >> lane & 1u)) {
-          EXPECT_EQ(scalar[at], a[at]);
-          EXPECT_EQ(simd[at], a[at]);
-          continue;
-        }
-        double sum = 0.0;
-        for (uint32_t d = 0; d < rule.directions; ++d) {
-          double x = 0.0, size = 0.0;
-          for (uint32_t j = 0; j < n2; ++j) {
-            x += double(rule.eval[d * n2 + j]) * a[j * PRT_SF_LANES + lane];
-            size += std::fabs(double(rule.eval[d * n2 + j]) * a[j * PRT_SF_LANES + lane]);
+    check_masked_lanes(
+        a, scalar, simd, n2, mask, n2 + rule.directions + 4, [&](uint32_t i, uint32_t lane) {
+          double sum = 0.0;
+          for (uint32_t d = 0; d < rule.directions; ++d) {
+            double x = 0.0, size = 0.0;
+            for (uint32_t j = 0; j < n2; ++j) {
+              x += double(rule.eval[d * n2 + j]) * a[j * PRT_SF_LANES + lane];
+              size += std::fabs(double(rule.eval[d * n2 + j]) * a[j * PRT_SF_LANES + lane]);
+            }
+            sum += std::fabs(double(rule.project[i * rule.directions + d])) * std::exp(x) *
+                   (1.0 + size);
           }
-          sum +=
-              std::fabs(double(rule.project[i * rule.directions + d])) * std::exp(x) * (1.0 + size);
-        }
-        magnitude.push_back(sum);
-        masked_scalar.push_back(scalar[at]);
-        masked_simd.push_back(simd[at]);
-      }
-    check_within(masked_scalar, masked_simd, magnitude, n2 + rule.directions + 4);
+          return sum;
+        });
     prt_sf_sphere_rule_free(&allocator, &rule);
   }
 }
