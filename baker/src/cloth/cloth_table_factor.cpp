@@ -2,12 +2,13 @@
 // The truncated SVD of a cloth table (formats/SPEC.md §7.4: T ~ U V^T with the singular values
 // folded into U) and the size of its stored factorisation.
 #include <Eigen/Dense>
-#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
 
 #include "prt/baker/cloth/cloth_tables.hpp"
+
+#include "../common/thin_svd.hpp"
 
 namespace prt::bake {
 namespace {
@@ -16,19 +17,6 @@ constexpr std::uint32_t kMaxRank = 64;
 
 std::uint64_t align4(std::uint64_t bytes) {
   return (bytes + 3) & ~std::uint64_t(3);
-}
-
-// Flips column r of both factors so that V's entry of largest magnitude (the first of them) is
-// positive: the SVD's signs are arbitrary, the stored factors need not be.
-void fix_signs(Eigen::MatrixXd& u, Eigen::MatrixXd& v) {
-  for (Eigen::Index r = 0; r < v.cols(); ++r) {
-    Eigen::Index at = 0;
-    v.col(r).cwiseAbs().maxCoeff(&at);
-    if (v(at, r) < 0.0) {
-      u.col(r) = -u.col(r);
-      v.col(r) = -v.col(r);
-    }
-  }
 }
 
 }  // namespace
@@ -63,16 +51,15 @@ ClothFactor factor_cloth_table(const std::vector<float>& table, std::uint64_t ro
   for (std::uint64_t r = 0; r < rows; ++r)
     for (std::uint64_t c = 0; c < columns; ++c)
       a(Eigen::Index(r), Eigen::Index(c)) = table[r * columns + c];
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
+  const ThinSvd svd = thin_svd(a, true);
+  const Eigen::VectorXd& sigma = svd.singular_values;
   std::vector<double> values(sigma.data(), sigma.data() + sigma.size());
 
   std::uint32_t rank = cloth_rank_for_energy(values, options.energy, options.max_rank);
   if (options.fixed_rank > 0)
     rank = std::min<std::uint32_t>({options.fixed_rank, kMaxRank, std::uint32_t(values.size())});
-  Eigen::MatrixXd u = svd.matrixU().leftCols(rank) * sigma.head(rank).asDiagonal();
-  Eigen::MatrixXd v = svd.matrixV().leftCols(rank);
-  fix_signs(u, v);
+  const Eigen::MatrixXd u = svd.u.leftCols(rank) * sigma.head(rank).asDiagonal();
+  const Eigen::MatrixXd v = svd.v.leftCols(rank);
 
   ClothFactor factor;
   factor.rank = rank;

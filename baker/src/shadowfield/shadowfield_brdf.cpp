@@ -4,11 +4,12 @@
 #include "prt/baker/shadowfield/shadowfield_brdf.hpp"
 
 #include <Eigen/Dense>
-#include <Eigen/SVD>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+
+#include "../common/thin_svd.hpp"
 
 namespace prt::bake {
 namespace {
@@ -86,19 +87,6 @@ void check_options(const SeparableBrdfOptions& options) {
   if (options.terms == 0 || options.terms > count)
     throw Error("shadowfield brdf: terms " + std::to_string(options.terms) + " is outside 1.." +
                 std::to_string(count) + " (the grid's directions)");
-}
-
-// Flips term k of both factors so that h_k's entry of largest magnitude is positive: the SVD's
-// signs are arbitrary, the stored factors need not be.
-void fix_signs(Eigen::MatrixXd& u, Eigen::MatrixXd& v) {
-  for (Eigen::Index k = 0; k < v.cols(); ++k) {
-    Eigen::Index at = 0;
-    v.col(k).cwiseAbs().maxCoeff(&at);
-    if (v(at, k) < 0.0) {
-      u.col(k) = -u.col(k);
-      v.col(k) = -v.col(k);
-    }
-  }
 }
 
 // ---- Radiance errors ---------------------------------------------------------------------------
@@ -416,15 +404,15 @@ SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& o
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
           table.data(), count, count) *
       cell;
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(weighted, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
+  const ThinSvd svd = thin_svd(weighted, true);
+  const Eigen::VectorXd& sigma = svd.singular_values;
   result.singular_values.assign(sigma.data(), sigma.data() + sigma.size());
   result.terms = whole_pair_terms(result.singular_values, options.terms, options.max_terms);
 
   const Eigen::VectorXd root = sigma.head(result.terms).cwiseSqrt() / std::sqrt(cell);
-  Eigen::MatrixXd u = svd.matrixU().leftCols(result.terms) * root.asDiagonal();
-  Eigen::MatrixXd v = svd.matrixV().leftCols(result.terms) * root.asDiagonal();
-  fix_signs(u, v);
+  // Each term's pair keeps thin_svd's sign: h_k's entry of largest magnitude is positive.
+  const Eigen::MatrixXd u = svd.u.leftCols(result.terms) * root.asDiagonal();
+  const Eigen::MatrixXd v = svd.v.leftCols(result.terms) * root.asDiagonal();
   // Column-major u and v store each term's samples contiguously: term-major as is.
   result.outgoing.assign(u.data(), u.data() + u.size());
   result.incident.assign(v.data(), v.data() + v.size());

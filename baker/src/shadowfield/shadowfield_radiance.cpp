@@ -6,13 +6,13 @@
 #include <prt/prt_sh.h>
 
 #include <Eigen/Dense>
-#include <Eigen/SVD>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
 
+#include "../common/thin_svd.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
@@ -153,14 +153,14 @@ std::vector<float> principal_functions(const ShadowfieldRadianceSamples& samples
   const Eigen::MatrixXd scaled = Eigen::Map<const RowMajorMatrix>(
                                      samples.values.data(), Eigen::Index(samples.rows), vertices) *
                                  root.asDiagonal();
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
+  const ThinSvd svd = thin_svd(scaled, false);
+  const Eigen::VectorXd& sigma = svd.singular_values;
   singular_values->assign(sigma.data(), sigma.data() + sigma.size());
   std::vector<float> basis(std::size_t(size) * samples.vertices, 0.0f);
   for (std::uint32_t i = 0; i < size; ++i) {
     float* function = basis.data() + std::size_t(i) * samples.vertices;
     for (Eigen::Index v = 0; v < vertices; ++v)
-      if (root[v] > 0.0) function[v] = static_cast<float>(svd.matrixV()(v, i) / root[v]);
+      if (root[v] > 0.0) function[v] = static_cast<float>(svd.v(v, i) / root[v]);
     const float* largest = std::max_element(function, function + vertices, [](float a, float b) {
       return std::fabs(a) < std::fabs(b);
     });
