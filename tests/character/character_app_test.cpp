@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -35,21 +36,40 @@ std::string constant_sky() {
   return scratch().write("constant.hdr", bytes);
 }
 
+// Bakes CesiumMan and its ground truth to `prefix`.prtk and `prefix`'s files.
+bool bake_cesium(const std::string& scene, const std::string& prefix) {
+  const prt_test::CommandResult run = prt_test::run_command(
+      PRT_BAKE_EXE,
+      "bake pose " + prt_test::shell_quote(scene) + " --rays 64 --rate 10 --ground-truth " +
+          prt_test::shell_quote(prefix) + " -o " + prt_test::shell_quote(prefix + ".prtk"),
+      scratch().file("bake.log"));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return run.exit_code == 0;
+}
+
+// Where the tests' bake is made: under ctest, in the folder PRT_CHARACTER_BAKE names, by the
+// fixture test CharacterBake (tests/character/CMakeLists.txt); by hand, in the scratch folder.
+const char* const kBakeVariable = "PRT_CHARACTER_BAKE";
+
 // The CesiumMan bake and its ground truth, made once (empty without the shared assets).
 const std::string& bake() {
   static const std::string prefix = [] {
     const std::string scene = prt_test::shared_asset("characters/CesiumMan.glb");
     if (scene.empty()) return std::string();
+    if (const char* dir = std::getenv(kBakeVariable)) return std::string(dir) + "/cesium";
     const std::string out = scratch().file("cesium");
-    const prt_test::CommandResult run = prt_test::run_command(
-        PRT_BAKE_EXE,
-        "bake pose " + prt_test::shell_quote(scene) + " --rays 64 --rate 10 --ground-truth " +
-            prt_test::shell_quote(out) + " -o " + prt_test::shell_quote(out + ".prtk"),
-        scratch().file("bake.log"));
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    return run.exit_code == 0 ? out : std::string();
+    return bake_cesium(scene, out) ? out : std::string();
   }();
   return prefix;
+}
+
+TEST(CharacterBake, MakesTheBakeTheOtherTestsShare) {
+  const char* dir = std::getenv(kBakeVariable);
+  if (!dir) GTEST_SKIP() << kBakeVariable << " is not set: each test binary bakes its own";
+  const std::string scene = prt_test::shared_asset("characters/CesiumMan.glb");
+  if (scene.empty()) GTEST_SKIP() << "shared assets (CesiumMan.glb) not found";
+  std::filesystem::create_directories(dir);
+  EXPECT_TRUE(bake_cesium(scene, std::string(dir) + "/cesium"));
 }
 
 #define BAKE_OR_SKIP()                                                           \

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -47,22 +48,39 @@ const char* const kFabrics[6] = {"linen_plain",
                                  "silk_shot",
                                  "velvet"};
 
-// The six presets baked on small grids (quick, coarse), made once.
+// Bakes the six presets on small grids (quick, coarse) over a quad, into `dir`/presets.prtk.
+bool bake_presets(const std::string& dir) {
+  const std::string quad = dir + "/quad.obj";
+  std::ofstream(quad) << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 3 2\nf 1 4 3\n";
+  const prt_test::CommandResult run = prt_test::run_command(
+      PRT_BAKE_EXE,
+      "bake cloth " + prt_test::shell_quote(quad) +
+          " --fabric all --xi-size 8 --levels 4 --view-theta 6 --view-phi 6 -o " +
+          prt_test::shell_quote(dir + "/presets.prtk"),
+      scratch().file("bake.log"));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return run.exit_code == 0;
+}
+
+// Where the presets are baked: under ctest, in the folder PRT_CLOTH_APP_BAKE names, by the
+// fixture test ClothAppBake (tests/cloth/app/CMakeLists.txt); by hand, in the scratch folder.
+const char* const kBakeVariable = "PRT_CLOTH_APP_BAKE";
+
+// The six presets' blob, made once.
 const std::string& presets_blob() {
   static const std::string path = [] {
-    const std::string quad =
-        scratch().write("quad.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 3 2\nf 1 4 3\n");
-    const std::string out = scratch().file("presets.prtk");
-    const prt_test::CommandResult run = prt_test::run_command(
-        PRT_BAKE_EXE,
-        "bake cloth " + prt_test::shell_quote(quad) +
-            " --fabric all --xi-size 8 --levels 4 --view-theta 6 --view-phi 6 -o " +
-            prt_test::shell_quote(out),
-        scratch().file("bake.log"));
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    return out;
+    if (const char* dir = std::getenv(kBakeVariable)) return std::string(dir) + "/presets.prtk";
+    bake_presets(scratch().dir());
+    return scratch().file("presets.prtk");
   }();
   return path;
+}
+
+TEST(ClothAppBake, MakesTheBlobTheOtherTestsShare) {
+  const char* dir = std::getenv(kBakeVariable);
+  if (!dir) GTEST_SKIP() << kBakeVariable << " is not set: each test binary bakes its own";
+  std::filesystem::create_directories(dir);
+  EXPECT_TRUE(bake_presets(dir));
 }
 
 constexpr int kWidth = 128, kHeight = 96;
