@@ -18,7 +18,7 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-[[noreturn]] void fail(const std::string& what) {
+[[noreturn]] void fail_cloth_blob(const std::string& what) {
   throw std::invalid_argument("CLTH: " + what);
 }
 
@@ -55,41 +55,43 @@ prt_blob_clth_header header_of(const ClothSection& s, int bits) {
 
 void check_factor(const ClothFactor& f, const ClothGrid& g, const std::string& where) {
   if (f.rank < 1 || f.rank > PRT_BLOB_CLTH_MAX_RANK)
-    fail(where + ": rank " + std::to_string(f.rank) + " (must be 1..64)");
+    fail_cloth_blob(where + ": rank " + std::to_string(f.rank) + " (must be 1..64)");
   if (f.u.size() != g.rows() * f.rank || f.v.size() != g.columns() * f.rank)
-    fail(where + ": U holds " + std::to_string(f.u.size()) + " values and V " +
-         std::to_string(f.v.size()) + " for rank " + std::to_string(f.rank) + ", " +
-         std::to_string(g.rows()) + " rows and " + std::to_string(g.columns()) + " columns");
+    fail_cloth_blob(where + ": U holds " + std::to_string(f.u.size()) + " values and V " +
+                    std::to_string(f.v.size()) + " for rank " + std::to_string(f.rank) + ", " +
+                    std::to_string(g.rows()) + " rows and " + std::to_string(g.columns()) +
+                    " columns");
   const auto finite = [](float x) { return std::isfinite(x); };
   if (!std::all_of(f.u.begin(), f.u.end(), finite) || !std::all_of(f.v.begin(), f.v.end(), finite))
-    fail(where + ": a factor value is not finite");
+    fail_cloth_blob(where + ": a factor value is not finite");
 }
 
 // What the encoder needs before it can index anything: the counts, sizes and names; the
 // remaining rules of SPEC §7.4 are the formats checker's, run on the bytes afterwards.
 prt_blob_clth_layout check_shape(const ClothSection& s, int bits) {
-  if (bits != 8 && bits != 16) fail(std::to_string(bits) + " bits (must be 8 or 16)");
+  if (bits != 8 && bits != 16) fail_cloth_blob(std::to_string(bits) + " bits (must be 8 or 16)");
   if (s.fabrics.empty() || s.fabrics.size() > PRT_BLOB_CLTH_MAX_FABRICS)
-    fail(std::to_string(s.fabrics.size()) + " fabrics (must be 1..64)");
+    fail_cloth_blob(std::to_string(s.fabrics.size()) + " fabrics (must be 1..64)");
   if (s.tables.empty() || s.tables.size() > PRT_BLOB_CLTH_MAX_TABLES)
-    fail(std::to_string(s.tables.size()) + " tables (must be 1..1024)");
+    fail_cloth_blob(std::to_string(s.tables.size()) + " tables (must be 1..1024)");
   for (std::size_t i = 0; i < s.fabrics.size(); ++i) {
     const ClothFabric& f = s.fabrics[i];
     if (f.name.empty() || f.name.size() > PRT_BLOB_CLTH_NAME_SIZE ||
         f.name.find('\0') != std::string::npos)
-      fail("fabric " + std::to_string(i) + ": a name of " + std::to_string(f.name.size()) +
-           " bytes (must be 1..32 bytes without NUL)");
+      fail_cloth_blob("fabric " + std::to_string(i) + ": a name of " +
+                      std::to_string(f.name.size()) + " bytes (must be 1..32 bytes without NUL)");
     for (const auto& thread : f.threads)
       if (thread.empty() || thread.size() > PRT_BLOB_CLTH_MAX_THREAD_TANGENTS)
-        fail("fabric " + std::to_string(i) + " has a thread of " + std::to_string(thread.size()) +
-             " offsets (must be 1..16)");
+        fail_cloth_blob("fabric " + std::to_string(i) + " has a thread of " +
+                        std::to_string(thread.size()) + " offsets (must be 1..16)");
   }
   if (tangent_record_count(s) > PRT_BLOB_CLTH_MAX_TANGENTS)
-    fail(std::to_string(tangent_record_count(s)) + " tangent records (must be at most 1024)");
+    fail_cloth_blob(std::to_string(tangent_record_count(s)) +
+                    " tangent records (must be at most 1024)");
   const prt_blob_clth_header h = header_of(s, bits);
   prt_blob_clth_layout layout{};
   if (!prt_blob_clth_layout_of(&h, &layout))
-    fail("grid out of range (N_xi, N_theta, N_phi 2..256, levels 1..64)");
+    fail_cloth_blob("grid out of range (N_xi, N_theta, N_phi 2..256, levels 1..64)");
   for (std::size_t q = 0; q < s.tables.size(); ++q) {
     check_factor(s.tables[q].full, s.grid, "table " + std::to_string(q) + " T");
     check_factor(s.tables[q].cone, s.grid, "table " + std::to_string(q) + " T_c");

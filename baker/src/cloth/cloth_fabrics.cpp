@@ -7,12 +7,11 @@
 #include <cmath>
 #include <vector>
 
+#include "../common/numbers.hpp"
 #include "prt/baker/context.hpp"
 
 namespace prt::bake {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // One thread as the table gives it.
 struct ThreadRow {

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "../common/numbers.hpp"
 #include "cloth_light_detail.hpp"
 #include "prt/io/file.hpp"
 
@@ -19,7 +20,7 @@ namespace prt::bake {
 
 namespace {
 
-void check_options(const SgLightOptions& options) {
+void check_sg_light_options(const SgLightOptions& options) {
   if (options.lobe_count < 1 || options.lobe_count > PRT_CLOTH_MAX_LOBES)
     throw Error("SG light: lobe_count " + std::to_string(options.lobe_count) + " is outside 1.." +
                 std::to_string(PRT_CLOTH_MAX_LOBES));
@@ -70,15 +71,6 @@ SgLightError measure(const sg_light::MapGrid& grid,
   return error;
 }
 
-// The double nearest the shortest decimal that reads back as f: the file shows 0.5361001, not
-// 0.5361000895500183, and still reads back to the same float.
-double shortest(float f) {
-  char text[32];
-  const std::to_chars_result end = std::to_chars(text, text + sizeof text - 1, f);
-  *end.ptr = '\0';
-  return std::strtod(text, nullptr);
-}
-
 nlohmann::ordered_json error_json(const SgLightError& error) {
   return {{"relative", error.relative}, {"smoothed", error.smoothed}, {"power", error.power}};
 }
@@ -117,7 +109,7 @@ prt_cloth_lobe lobe_from_json(const nlohmann::json& j) {
 
 std::vector<prt_cloth_lobe> fast_sg_light(const io::EnvMap& map, const SgLightOptions& options,
                                           prt_cloth_fit_report* report) {
-  check_options(options);
+  check_sg_light_options(options);
   std::vector<float> cube;
   float rotation[9];
   const prt_env_image env = env_image_of(map, &cube, rotation);
@@ -136,7 +128,7 @@ std::vector<prt_cloth_lobe> fast_sg_light(const io::EnvMap& map, const SgLightOp
 }
 
 SgLightFit fit_sg_light(const io::EnvMap& map, const SgLightOptions& options, const Context& ctx) {
-  check_options(options);
+  check_sg_light_options(options);
   SgLightFit fit;
   fit.lobe_count = options.lobe_count;
   fit.resolution = options.resolution;
@@ -149,7 +141,7 @@ SgLightFit fit_sg_light(const io::EnvMap& map, const SgLightOptions& options, co
   // The finest kernel's sharpness: lobes at least this sharp are points to every kernel.
   double fixed_sharpness = 0.0;
   for (double deg : options.smoothing_degrees)
-    fixed_sharpness = std::max(fixed_sharpness, std::pow(180.0 / (deg * sg_light::kPi), 2.0));
+    fixed_sharpness = std::max(fixed_sharpness, std::pow(180.0 / (deg * kPi), 2.0));
   const sg_light::Refinement refined =
       sg_light::refine(targets, sg_light::to_lobes(fast), fixed_sharpness, options.max_steps, ctx);
   for (const prt_cloth_lobe& lobe : sg_light::to_cloth_lobes(refined.lobes))
@@ -172,7 +164,7 @@ SgLightFit fit_sg_light(const io::EnvMap& map, const SgLightOptions& options, co
 
 SgLightError measure_sg_light(const io::EnvMap& map, const std::vector<prt_cloth_lobe>& lobes,
                               const SgLightOptions& options, const Context& ctx) {
-  check_options(options);
+  check_sg_light_options(options);
   const sg_light::MapGrid fine = sg_light::grid_of(map, 2 * options.resolution);
   return measure(sg_light::coarser(fine),
                  sg_light::smoothed_targets(fine, options.smoothing_degrees, ctx),

@@ -11,12 +11,11 @@
 
 #include <glm/glm.hpp>
 
+#include "../common/numbers.hpp"
 #include "prt/baker/context.hpp"
 #include "prt/io/envmap.hpp"
 
 namespace prt::bake::sg_light {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A lobe in double while it is fitted.
 struct Lobe {

@@ -13,13 +13,13 @@
 #include <limits>
 #include <string>
 
+#include "../common/numbers.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "prt/baker/cloth/cloth_tables.hpp"
 
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kHalfPi = kPi / 2.0;
 // Views and light directions in the cloth's plane are evaluated this far above it: their limit
 // from above, which a direction in the plane (below the surface for W) would not give.

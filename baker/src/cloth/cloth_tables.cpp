@@ -7,6 +7,7 @@
 #include <chrono>
 #include <utility>
 
+#include "../common/numbers.hpp"
 #include "../render/parallel_tasks.hpp"
 
 namespace prt::bake {
@@ -62,10 +63,6 @@ std::uint32_t table_index(std::vector<ClothTableKey>& tables, const ClothTableKe
   if (it != tables.end()) return std::uint32_t(it - tables.begin());
   tables.push_back(key);
   return std::uint32_t(tables.size() - 1);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void check_fabrics(const std::vector<ClothFabricSource>& fabrics) {

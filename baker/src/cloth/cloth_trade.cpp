@@ -50,7 +50,7 @@ struct TableConfig {
   bool full_sphere = false;  // T over the lobe's integral over the sphere (paper 003)
 };
 
-struct Row {
+struct ClothTradeRow {
   std::string fabric, map, setting;
   std::string knob;  // what moved from the defaults (the CSV's sweep column)
   std::uint32_t lobes = 0, panels = 0, phi_nodes = 0;
@@ -264,7 +264,7 @@ class ClothTrade final : public TechniqueTrade {
                       const MapTurns& map, const TradeInput& input, const Context& ctx) {
     frames_ = input.frames;
     const std::vector<float> reference = turned_reference(fabric, map, 1, input, ctx);
-    Row base;
+    ClothTradeRow base;
     base.fabric = fabric.name;
     base.map = map.name;
     base.lobes = o_.lobes.front();
@@ -276,7 +276,7 @@ class ClothTrade final : public TechniqueTrade {
         return map.fitted[t][k];
       };
     };
-    auto run = [&](Row row, const BakedTables& baked, auto light_of, std::uint32_t flags,
+    auto run = [&](ClothTradeRow row, const BakedTables& baked, auto light_of, std::uint32_t flags,
                    bool timed) {
       const std::vector<std::uint8_t> blob =
           baked.blob(row.table.energy, row.table.bits, &row.max_rank, &row.table_bytes);
@@ -296,11 +296,11 @@ class ClothTrade final : public TechniqueTrade {
       return s.rgb;
     };
 
-    Row def = base;
+    ClothTradeRow def = base;
     def.setting = "defaults";
     def.knob = "defaults+lobes+energy+bits+grid+panels+phi_nodes";
     const std::vector<float> shaded = run(def, tables[0], static_light(0), 0u, true);
-    Row full = base;
+    ClothTradeRow full = base;
     full.setting = "every rank (up to 64)";
     full.knob = "energy";
     full.table.energy = 0.0;
@@ -308,21 +308,21 @@ class ClothTrade final : public TechniqueTrade {
     rows_[rows_.size() - 2].truncation_cost = nrmse(shaded, full_rank);
 
     for (std::size_t i = 1; i < o_.energies.size(); ++i) {
-      Row r = base;
+      ClothTradeRow r = base;
       r.table.energy = parse_energy(o_.energies[i]);
       r.setting = "energy " + o_.energies[i];
       r.knob = "energy";
       const std::vector<float> s = run(r, tables[0], static_light(0), 0u, false);
       rows_.back().truncation_cost = nrmse(s, full_rank);
     }
-    Row eight = base;
+    ClothTradeRow eight = base;
     eight.table.bits = 8;
     eight.setting = "8-bit tables";
     eight.knob = "bits";
     run(eight, tables[0], static_light(0), 0u, false);
     for (std::size_t g = 1; g < tables.size(); ++g) {
       if (tables[g].config.full_sphere) continue;  // the paper's rows
-      Row r = base;
+      ClothTradeRow r = base;
       r.table = tables[g].config;
       r.setting =
           format("grid xi %u, %u levels, %u views", r.table.xi, r.table.levels, r.table.views);
@@ -330,13 +330,13 @@ class ClothTrade final : public TechniqueTrade {
       run(r, tables[g], static_light(0), 0u, false);
     }
     for (std::size_t k = 1; k < o_.lobes.size(); ++k) {
-      Row r = base;
+      ClothTradeRow r = base;
       r.lobes = o_.lobes[k];
       r.setting = format("K %u", r.lobes);
       r.knob = "lobes";
       run(r, tables[0], static_light(k), 0u, false);
     }
-    Row fast = base;
+    ClothTradeRow fast = base;
     fast.setting = "runtime's per-frame light fit";
     fast.knob = "fast_light";
     run(
@@ -344,24 +344,24 @@ class ClothTrade final : public TechniqueTrade {
         [&map](std::size_t t) -> const std::vector<prt_cloth_lobe>& { return map.fast[t]; }, 0u,
         false);
     for (std::size_t i = 1; i < o_.panels.size(); ++i) {
-      Row r = base;
+      ClothTradeRow r = base;
       r.panels = o_.panels[i];
       r.setting = format("%u theta panels", r.panels);
       r.knob = "panels";
       run(r, tables[0], static_light(0), 0u, false);
     }
     for (std::size_t i = 1; i < o_.phi_nodes.size(); ++i) {
-      Row r = base;
+      ClothTradeRow r = base;
       r.phi_nodes = o_.phi_nodes[i];
       r.setting = format("%u phi nodes", r.phi_nodes);
       r.knob = "phi_nodes";
       run(r, tables[0], static_light(0), 0u, false);
     }
-    Row no_cone = base;
+    ClothTradeRow no_cone = base;
     no_cone.setting = "no cone table (T alone, as the paper)";
     no_cone.knob = "no_cone";
     run(no_cone, tables[0], static_light(0), PRT_CLOTH_NO_CONE_TABLE, false);
-    Row keep = base;
+    ClothTradeRow keep = base;
     keep.setting = "no lobe culling";
     keep.knob = "no_culling";
     run(keep, tables[0], static_light(0), PRT_CLOTH_KEEP_HIDDEN_LOBES | PRT_CLOTH_KEEP_WEAK_LOBES,
@@ -373,7 +373,7 @@ class ClothTrade final : public TechniqueTrade {
   // Paper 003's printed rules (docs/cloth/method.md, "What the paper gets wrong"), each alone at
   // the defaults, then all of them with its factorisation (T alone): the paper as printed.
   template <typename Run, typename LightOf>
-  void paper_rows(const Row& base, const std::vector<BakedTables>& tables, Run& run,
+  void paper_rows(const ClothTradeRow& base, const std::vector<BakedTables>& tables, Run& run,
                   LightOf light) {
     const BakedTables& sphere = *std::find_if(tables.begin(), tables.end(),
                                               [](const auto& t) { return t.config.full_sphere; });
@@ -395,7 +395,7 @@ class ClothTrade final : public TechniqueTrade {
         {"the paper as printed", true, PRT_CLOTH_PAPER_FLAGS | PRT_CLOTH_NO_CONE_TABLE},
     };
     for (const auto& c : cases) {
-      Row r = base;
+      ClothTradeRow r = base;
       r.setting = c.setting;
       r.knob = "paper";
       r.table.full_sphere = c.full_sphere;
@@ -407,7 +407,7 @@ class ClothTrade final : public TechniqueTrade {
   void reference_rows(const ClothPreset& fabric, const MapTurns& map,
                       const std::vector<float>& reference, const TradeInput& input,
                       const Context& ctx) {
-    Row merged;
+    ClothTradeRow merged;
     merged.fabric = fabric.name;
     merged.map = map.name;
     merged.setting = "reference over texels merged 2 x 2";
@@ -416,7 +416,7 @@ class ClothTrade final : public TechniqueTrade {
     merged.nrmse = nrmse(coarse, reference);
     merged.bias = bias(coarse, reference);
     rows_.push_back(merged);
-    Row light = merged;
+    ClothTradeRow light = merged;
     light.lobes = o_.lobes.front();
     light.setting = format("reference under the K %u light", light.lobes);
     light.knob = "reference_sg";
@@ -431,7 +431,7 @@ class ClothTrade final : public TechniqueTrade {
     rows_.push_back(light);
   }
 
-  std::vector<std::string> cells(const Row& r) const {
+  std::vector<std::string> cells(const ClothTradeRow& r) const {
     const bool method = r.max_rank > 0;
     return {r.fabric,
             r.map,
@@ -475,7 +475,7 @@ class ClothTrade final : public TechniqueTrade {
     trade::write_csv_row(csv, {"fabric", "map", "setting", "sweeps", "lobes", "energy", "grid",
                                "bits", "max_rank", "table_mb", "panels", "phi_nodes", "nrmse",
                                "bias", "truncation_cost", "cpu_us", "simd_us"});
-    for (const Row& r : rows_) trade::write_csv_row(csv, cells(r));
+    for (const ClothTradeRow& r : rows_) trade::write_csv_row(csv, cells(r));
     trade::check_written(csv, csv_path);
     const std::string md_path = input.out_dir + "/trade.md";
     std::ofstream md(md_path);
@@ -487,7 +487,7 @@ class ClothTrade final : public TechniqueTrade {
           "rank.\n"
        << trade::machine_description(1) << ".\n\n";
     trade::write_markdown_header(md, columns);
-    for (const Row& r : rows_) trade::write_markdown_row(md, cells(r));
+    for (const ClothTradeRow& r : rows_) trade::write_markdown_row(md, cells(r));
     md << "\nLight fits (turn 0, static fit): ";
     for (const MapTurns& m : maps_)
       for (const SgLightFit& f : m.reports)
@@ -501,7 +501,7 @@ class ClothTrade final : public TechniqueTrade {
   ClothTradeSettings o_;
   std::vector<MapTurns> maps_;
   Samples samples_;
-  std::vector<Row> rows_;
+  std::vector<ClothTradeRow> rows_;
   int frames_ = 1;
 };
 

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <memory>
 
+#include "../common/numbers.hpp"
 #include "../common/trade_common.hpp"
 #include "cloth_technique.hpp"
 #include "prt/baker/cloth/cloth_light.hpp"
@@ -21,8 +22,6 @@
 
 namespace prt::bake::cloth_trade {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct WorkersDeleter {
   void operator()(prt_workers* w) const { prt_workers_destroy(w); }
@@ -90,14 +89,14 @@ void write_floats(const std::string& path, const std::vector<float>& values) {
 
 }  // namespace
 
-std::vector<Frame> surface_frames(const Scene& scene, std::uint32_t limit) {
-  std::vector<Frame> frames;
+std::vector<SurfaceFrame> surface_frames(const Scene& scene, std::uint32_t limit) {
+  std::vector<SurfaceFrame> frames;
   for (const Mesh& mesh : scene.meshes) {
     for (std::size_t v = 0; v < mesh.vertex_count() && frames.size() < limit; ++v) {
       const glm::vec3 n = glm::normalize(mesh.normals[v]);
       if (!std::isfinite(n.x)) continue;
-      const Frame f{n, cloth_warp(n, mesh.tangents.empty() ? nullptr : &mesh.tangents[v])};
-      const bool known = std::any_of(frames.begin(), frames.end(), [&](const Frame& g) {
+      const SurfaceFrame f{n, cloth_warp(n, mesh.tangents.empty() ? nullptr : &mesh.tangents[v])};
+      const bool known = std::any_of(frames.begin(), frames.end(), [&](const SurfaceFrame& g) {
         return glm::all(glm::equal(g.normal, f.normal)) && glm::all(glm::equal(g.warp, f.warp));
       });
       if (!known) frames.push_back(f);
@@ -107,7 +106,7 @@ std::vector<Frame> surface_frames(const Scene& scene, std::uint32_t limit) {
   return frames;
 }
 
-std::vector<glm::vec3> frame_views(const Frame& frame) {
+std::vector<glm::vec3> frame_views(const SurfaceFrame& frame) {
   const glm::vec3 side = glm::cross(frame.normal, frame.warp);
   std::vector<glm::vec3> views;
   for (int e = 0; e < 4; ++e) {
@@ -131,9 +130,9 @@ prt_cloth_pixels Samples::pixels() const {
   return p;
 }
 
-Samples make_samples(const std::vector<Frame>& frames) {
+Samples make_samples(const std::vector<SurfaceFrame>& frames) {
   Samples s;
-  for (const Frame& f : frames)
+  for (const SurfaceFrame& f : frames)
     for (const glm::vec3& v : frame_views(f)) {
       s.normals.insert(s.normals.end(), {f.normal.x, f.normal.y, f.normal.z});
       s.warps.insert(s.warps.end(), {f.warp.x, f.warp.y, f.warp.z});

@@ -22,17 +22,17 @@
 namespace prt::bake::cloth_trade {
 
 // A surface frame: unit normal and unit warp orthogonal to it.
-struct Frame {
+struct SurfaceFrame {
   glm::vec3 normal, warp;
 };
 
 // The scene's distinct vertex frames (warps as the bake writes them), in vertex order, at most
 // `limit`. Throws Error for a scene without vertices.
-std::vector<Frame> surface_frames(const Scene& scene, std::uint32_t limit);
+std::vector<SurfaceFrame> surface_frames(const Scene& scene, std::uint32_t limit);
 
 // The views of each frame: elevations 15, 35, 55 and 75 degrees over the frame's plane, 8
 // azimuths each from the warp, every other elevation turned by half a step (32 views).
-std::vector<glm::vec3> frame_views(const Frame& frame);
+std::vector<glm::vec3> frame_views(const SurfaceFrame& frame);
 
 // Every frame seen from every one of its views, as prt_cloth_pixels takes them.
 struct Samples {
@@ -40,7 +40,7 @@ struct Samples {
   std::uint32_t count() const { return static_cast<std::uint32_t>(views.size() / 3); }
   prt_cloth_pixels pixels() const;
 };
-Samples make_samples(const std::vector<Frame>& frames);
+Samples make_samples(const std::vector<SurfaceFrame>& frames);
 
 // The map's texels as the reference integrates them (direction, radiance x solid angle), each
 // block x block square of texels merged into one (power summed, direction the power-weighted

@@ -8,7 +8,7 @@
 namespace prt::bake {
 namespace {
 
-constexpr float kPi = glm::pi<float>();
+constexpr float kPiFloat = glm::pi<float>();
 
 void append_triangle(Mesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   const auto& p = mesh.positions;
@@ -22,7 +22,7 @@ Mesh make_disc_mesh(int material, glm::vec3 centre, float radius, int rings, int
                     float up_sign) {
   const glm::vec3 normal(0.0f, up_sign, 0.0f);
   return make_grid_mesh("", material, rings, cols, [&](float u, float v) {
-    const float a = up_sign * u * 2 * kPi, r = radius * (1.0f - v);
+    const float a = up_sign * u * 2 * kPiFloat, r = radius * (1.0f - v);
     return SurfacePoint{centre + glm::vec3(r * std::cos(a), 0.0f, r * std::sin(a)), normal};
   });
 }
@@ -62,7 +62,7 @@ Mesh make_plane_mesh(std::string name, int material, float half_x, float half_z,
 
 Mesh make_sphere_mesh(int material, glm::vec3 centre, float radius, int rows, int cols) {
   return make_grid_mesh("sphere", material, rows, cols, [&](float u, float v) {
-    float theta = v * kPi, phi = -u * 2 * kPi;
+    float theta = v * kPiFloat, phi = -u * 2 * kPiFloat;
     glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
     return SurfacePoint{centre + radius * n, n};
   });
@@ -70,7 +70,7 @@ Mesh make_sphere_mesh(int material, glm::vec3 centre, float radius, int rows, in
 
 Mesh make_torus_mesh(int material, glm::vec3 centre, float major, float minor, int rows, int cols) {
   return make_grid_mesh("torus", material, rows, cols, [&](float u, float v) {
-    float a = u * 2 * kPi, b = v * 2 * kPi;
+    float a = u * 2 * kPiFloat, b = v * 2 * kPiFloat;
     glm::vec3 ring(std::cos(a), 0.0f, std::sin(a));
     glm::vec3 n = std::cos(b) * ring + std::sin(b) * glm::vec3(0, 1, 0);
     return SurfacePoint{centre + major * ring + minor * n, n};
@@ -104,7 +104,7 @@ Mesh make_box_mesh(int material, glm::vec3 centre, float half, float yaw, int ce
 Mesh make_cylinder_mesh(int material, glm::vec3 base_centre, float radius, float height, int rows,
                         int cols, int cap_rings) {
   Mesh cylinder = make_grid_mesh("cylinder", material, rows, cols, [&](float u, float v) {
-    const float a = u * 2 * kPi;
+    const float a = u * 2 * kPiFloat;
     const glm::vec3 n(std::cos(a), 0.0f, std::sin(a));
     return SurfacePoint{base_centre + radius * n + glm::vec3(0.0f, v * height, 0.0f), n};
   });

@@ -49,7 +49,7 @@ struct Light {
   std::vector<float> rgb;  // model frame, coefficient-major
 };
 
-struct Row {
+struct PoseTradeRow {
   std::string model;
   std::uint32_t p = 0, q = 0;
   double alpha = 0.0;
@@ -134,7 +134,7 @@ void add_frame(const float* truth, const float* model, std::size_t vertices, std
 
 void measure(const PoseTrainingSet& set, const std::vector<std::size_t>& test,
              const std::vector<Light>& lights,
-             const std::function<std::vector<float>(std::size_t)>& predict, Row& row) {
+             const std::function<std::vector<float>(std::size_t)>& predict, PoseTradeRow& row) {
   ErrorSums sums;
   for (std::size_t f : test) {
     const std::vector<float> model = predict(f);
@@ -148,8 +148,8 @@ void measure(const PoseTrainingSet& set, const std::vector<std::size_t>& test,
 }
 
 // The mean-pose baseline: the mean of the training frames' transfer, whatever the pose.
-Row baseline_row(const PoseTrainingSet& set, const std::vector<std::size_t>& train,
-                 const std::vector<std::size_t>& test, const std::vector<Light>& lights) {
+PoseTradeRow baseline_row(const PoseTrainingSet& set, const std::vector<std::size_t>& train,
+                          const std::vector<std::size_t>& test, const std::vector<Light>& lights) {
   std::vector<double> sum(set.vertex_count * set.coefficient_count(), 0.0);
   for (std::size_t f : train) {
     const float* t = set.frame_transfer(f);
@@ -157,7 +157,7 @@ Row baseline_row(const PoseTrainingSet& set, const std::vector<std::size_t>& tra
   }
   std::vector<float> mean(sum.size());
   for (std::size_t i = 0; i < sum.size(); ++i) mean[i] = float(sum[i] / double(train.size()));
-  Row row;
+  PoseTradeRow row;
   row.model = "mean pose";
   row.model_bytes = mean.size() * sizeof(float);
   measure(
@@ -174,9 +174,9 @@ std::vector<float> unshadowed_frame(const PoseTrainingSet& set, std::size_t f) {
   return out;
 }
 
-Row unshadowed_row(const PoseTrainingSet& set, const std::vector<std::size_t>& test,
-                   const std::vector<Light>& lights) {
-  Row row;
+PoseTradeRow unshadowed_row(const PoseTrainingSet& set, const std::vector<std::size_t>& test,
+                            const std::vector<Light>& lights) {
+  PoseTradeRow row;
   row.model = "unshadowed only";
   measure(
       set, test, lights, [&](std::size_t f) { return unshadowed_frame(set, f); }, row);
@@ -196,8 +196,10 @@ double visibility_scalar(const float* t, const float* u, std::size_t C) {
 // What bounds every model that predicts how much of the exact part a vertex sees: each test
 // frame's own visibility scalars (fitted to its bake: an oracle no model has), plus the training
 // frames' mean of what the scalars leave.
-Row visibility_oracle_row(const PoseTrainingSet& set, const std::vector<std::size_t>& train,
-                          const std::vector<std::size_t>& test, const std::vector<Light>& lights) {
+PoseTradeRow visibility_oracle_row(const PoseTrainingSet& set,
+                                   const std::vector<std::size_t>& train,
+                                   const std::vector<std::size_t>& test,
+                                   const std::vector<Light>& lights) {
   const std::size_t V = set.vertex_count, C = set.coefficient_count();
   std::vector<double> rest(V * C, 0.0);
   for (std::size_t f : train) {
@@ -209,7 +211,7 @@ Row visibility_oracle_row(const PoseTrainingSet& set, const std::vector<std::siz
     }
   }
   for (double& r : rest) r /= double(train.size());
-  Row row;
+  PoseTradeRow row;
   row.model = "visibility oracle";
   measure(
       set, test, lights,
@@ -228,7 +230,7 @@ Row visibility_oracle_row(const PoseTrainingSet& set, const std::vector<std::siz
 }
 
 void time_runtime(const Scene& scene, const PoseTrainingSet& set, const PoseModel& model,
-                  std::size_t frame, const Light& light, int frames, Row& row) {
+                  std::size_t frame, const Light& light, int frames, PoseTradeRow& row) {
   prt::format::BlobWriter writer = start_technique_blob(scene, "");
   const std::vector<std::uint8_t> pstr =
       encode_pstr_section(set.skeleton, model, set.kind, set.bounces);
@@ -335,7 +337,7 @@ class PoseTrade final : public TechniqueTrade {
     s.cv = kind == PoseModelKind::Direct ? PoseCrossValidation::Frame : PoseCrossValidation::Clip;
     s.clamp = kind == PoseModelKind::Residual;
     const PoseModel model = fit_pose_model(set, train, s, ctx);
-    Row row;
+    PoseTradeRow row;
     row.model = kind == PoseModelKind::Direct ? "paper (direct)" : "residual";
     row.p = model.pose_dims;
     row.q = model.basis_dims;
@@ -369,7 +371,7 @@ class PoseTrade final : public TechniqueTrade {
       for (std::size_t k = 0; k < q; ++k)
         u(Eigen::Index(v), Eigen::Index(k)) = model.basis[v * q + k];
     const Eigen::LDLT<Eigen::MatrixXd> gram(u.transpose() * u);
-    Row row;
+    PoseTradeRow row;
     row.model = "basis projection";
     row.q = std::uint32_t(q);
     measure(
@@ -388,7 +390,8 @@ class PoseTrade final : public TechniqueTrade {
     rows_.push_back(row);
   }
 
-  std::vector<std::string> cells(const Row& row, double frame_bytes, double training_bytes) const {
+  std::vector<std::string> cells(const PoseTradeRow& row, double frame_bytes,
+                                 double training_bytes) const {
     const bool fitted = row.model == "paper (direct)" || row.model == "residual";
     std::vector<std::string> c = {
         row.model,
@@ -428,7 +431,7 @@ class PoseTrade final : public TechniqueTrade {
     write_csv_row(csv,
                   {"model", "p", "q", "alpha", "model_bytes", "training_share", "frame_share",
                    "transfer_error", "map", "shaded_rel_rmse", "shade_cpu_ms", "shade_simd_ms"});
-    for (const Row& row : rows_) {
+    for (const PoseTradeRow& row : rows_) {
       const std::vector<std::string> c = cells(row, frame_bytes, training_bytes);
       for (std::size_t l = 0; l < lights_.size(); ++l) {
         write_csv_row(csv, {c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], lights_[l].name,
@@ -443,7 +446,8 @@ class PoseTrade final : public TechniqueTrade {
        << "), order " << o_.order << ", " << o_.rays << " rays per vertex.\n"
        << machine_description(1) << ".\n\n";
     write_markdown_header(md, columns);
-    for (const Row& row : rows_) write_markdown_row(md, cells(row, frame_bytes, training_bytes));
+    for (const PoseTradeRow& row : rows_)
+      write_markdown_row(md, cells(row, frame_bytes, training_bytes));
     check_written(md, md_path);
     const std::string alpha_path = input.out_dir + "/alpha.csv";
     std::ofstream alpha(alpha_path);
@@ -454,7 +458,7 @@ class PoseTrade final : public TechniqueTrade {
 
   PoseTradeSettings o_;
   std::vector<Light> lights_;
-  std::vector<Row> rows_;
+  std::vector<PoseTradeRow> rows_;
   std::vector<std::vector<std::string>> alpha_rows_;
 };
 

@@ -7,14 +7,11 @@
 #include <limits>
 #include <string>
 
+#include "../common/numbers.hpp"
 #include "embree_scene_impl.hpp"
 
 namespace prt::bake {
 namespace {
-
-bool finite(const glm::vec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 void on_embree_error(void* user, RTCError code, const char* message) {
   auto* errors = static_cast<DeviceErrors*>(user);

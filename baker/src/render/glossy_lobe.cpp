@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../common/numbers.hpp"
 #include "prt/baker/sampling.hpp"
 
 namespace prt::bake::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Cosine sampling keeps this share at least, so every direction of the hemisphere has density
 // whatever the lobe's shape.
 constexpr double kLargestLobeShare = 0.9;

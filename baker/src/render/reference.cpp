@@ -8,6 +8,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "../common/numbers.hpp"
 #include "parallel_tasks.hpp"
 #include "path_estimator.hpp"
 
@@ -17,11 +18,7 @@ namespace {
 // Stream keys: the two halves of a vertex's samples and an image pixel never share a stream.
 enum StreamTag : std::uint64_t { kVertexHalfA = 0, kVertexHalfB = 1, kPixel = 2 };
 
-constexpr std::size_t kVerticesPerTask = 64;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+constexpr std::size_t kReferenceVerticesPerTask = 64;
 
 void validate(const ReferenceSettings& settings) {
   if (settings.bounces < 0) throw Error("reference renderer: --bounces must be >= 0");
@@ -134,12 +131,12 @@ VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx,
   result.radiance.assign(vertices, glm::vec3(0.0f));
   std::vector<glm::vec3> difference(vertices, glm::vec3(0.0f));  // mean of A - mean of B
   std::vector<unsigned char> has_normal(vertices, 0);
-  const std::size_t tasks = (vertices + kVerticesPerTask - 1) / kVerticesPerTask;
+  const std::size_t tasks = (vertices + kReferenceVerticesPerTask - 1) / kReferenceVerticesPerTask;
   std::vector<std::uint64_t> task_rays(tasks, 0);
 
   render::parallel_tasks(tasks, ctx, "reference: vertices", [&](std::size_t task) {
-    const std::size_t end = std::min(vertices, (task + 1) * kVerticesPerTask);
-    for (std::size_t v = task * kVerticesPerTask; v < end; ++v) {
+    const std::size_t end = std::min(vertices, (task + 1) * kReferenceVerticesPerTask);
+    for (std::size_t v = task * kReferenceVerticesPerTask; v < end; ++v) {
       render::SurfacePoint point;
       if (!estimator.vertex_point(v, &point)) continue;
       point.outgoing = towards_eye(eye, point.position, point.normal);

@@ -5,11 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include "../common/numbers.hpp"
 
 namespace prt::bake {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::uint32_t reverse_bits(std::uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);

@@ -48,7 +48,7 @@ struct Setting {
   std::string sweeps;
 };
 
-struct Row {
+struct ShTradeRow {
   std::string map, projection, sweeps;
   std::uint32_t order = 0, rays = 0;
   int bounces = 0;
@@ -170,11 +170,11 @@ double negative_share(const std::vector<glm::vec3>& radiance) {
   return radiance.empty() ? 0.0 : static_cast<double>(negative) / radiance.size();
 }
 
-Row measure(const Baked& baked, const prt_asset* asset, const Setting& s, const ShLight& light,
-            float dering, const Reference& ref, int frames) {
+ShTradeRow measure(const Baked& baked, const prt_asset* asset, const Setting& s,
+                   const ShLight& light, float dering, const Reference& ref, int frames) {
   const std::uint32_t vertices = static_cast<std::uint32_t>(baked.transfer.vertex_count);
   const std::vector<float> l = dering_light(light, s.order, dering);
-  Row row;
+  ShTradeRow row;
   row.map = light.name;
   row.projection = light.projection;
   row.sweeps = s.sweeps;
@@ -230,8 +230,8 @@ const std::vector<std::string> kCsvColumns = {"scene",
                                               "quant_shading_rel_rmse",
                                               "negative_vertex_share"};
 
-std::vector<std::string> csv_cells(const Row& r, const ShTradeSettings& o, const TradeInput& input,
-                                   std::size_t vertices) {
+std::vector<std::string> csv_cells(const ShTradeRow& r, const ShTradeSettings& o,
+                                   const TradeInput& input, std::size_t vertices) {
   return {stem(input.scene),
           r.map,
           r.projection,
@@ -260,11 +260,11 @@ std::vector<std::string> csv_cells(const Row& r, const ShTradeSettings& o, const
           format("%.4g", r.negative_share)};
 }
 
-void write_csv(const std::string& path, const std::vector<Row>& rows, const ShTradeSettings& o,
-               const TradeInput& input, std::size_t vertices) {
+void write_csv(const std::string& path, const std::vector<ShTradeRow>& rows,
+               const ShTradeSettings& o, const TradeInput& input, std::size_t vertices) {
   std::ofstream csv(path);
   write_csv_row(csv, kCsvColumns);
-  for (const Row& r : rows) write_csv_row(csv, csv_cells(r, o, input, vertices));
+  for (const ShTradeRow& r : rows) write_csv_row(csv, csv_cells(r, o, input, vertices));
   check_written(csv, path);
 }
 
@@ -284,7 +284,7 @@ const std::vector<Column> kMarkdownColumns = {{"sweep", false},
                                               {"quant. %"},
                                               {"negative vertices %"}};
 
-std::vector<std::string> markdown_cells(const Row& r) {
+std::vector<std::string> markdown_cells(const ShTradeRow& r) {
   return {r.sweeps,
           std::to_string(r.order),
           std::to_string(r.rays),
@@ -302,7 +302,7 @@ std::vector<std::string> markdown_cells(const Row& r) {
           format("%.2f", 100 * r.negative_share)};
 }
 
-void write_markdown(const std::string& path, const std::vector<Row>& rows,
+void write_markdown(const std::string& path, const std::vector<ShTradeRow>& rows,
                     const std::vector<ShLight>& lights, const ShTradeSettings& o,
                     const TradeInput& input, const Scene& scene, unsigned threads) {
   std::ofstream md(path);
@@ -333,7 +333,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows,
        << light.map->width() << "x" << light.map->height() << ", light by " << light.projection
        << ")\n\n";
     write_markdown_header(md, kMarkdownColumns);
-    for (const Row& r : rows) {
+    for (const ShTradeRow& r : rows) {
       if (r.map == light.name) write_markdown_row(md, markdown_cells(r));
     }
   }
@@ -390,7 +390,7 @@ class ShTrade final : public TechniqueTrade {
 
   void sweep(const Scene& scene, const EmbreeScene& rays, const TradeInput& input,
              const Context& ctx) override {
-    std::vector<Row> rows;
+    std::vector<ShTradeRow> rows;
     for (std::size_t i = 0; i < settings_.size(); ++i) {
       const Setting& s = settings_[i];
       ctx.info("setting " + std::to_string(i + 1) + "/" + std::to_string(settings_.size()) +
@@ -402,7 +402,7 @@ class ShTrade final : public TechniqueTrade {
         for (float dering : dering_) {
           rows.push_back(measure(baked, runtime.asset.get(), s, light, dering,
                                  references_.at({light.name, s.bounces}), input.frames));
-          const Row& r = rows.back();
+          const ShTradeRow& r = rows.back();
           ctx.info("  " + light.name + (dering > 0 ? format(", dering %g", dering) : "") +
                    format(": error %.3f %%", 100 * r.error) + format(", CPU %.3f ms", r.cpu_ms) +
                    ", SIMD " + ms_text(r.simd_ms) + " ms");

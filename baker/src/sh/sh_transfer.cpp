@@ -20,7 +20,7 @@
 namespace prt::bake {
 namespace {
 
-constexpr std::size_t kVerticesPerTask = 64;
+constexpr std::size_t kShVerticesPerTask = 64;
 // Stream key of a vertex's directions (distinct from the reference renderer's tags, so a bake and
 // a reference with the same seed never share sample points).
 constexpr std::uint64_t kDirectionsTag = 0x5348;  // "SH"
@@ -39,12 +39,12 @@ void validate(const ShTransferSettings& s) {
 }
 
 // What every pass needs to know about a scene vertex (Scene order).
-struct VertexTable {
+struct ShVertexTable {
   std::vector<glm::vec3> position, normal, albedo;
   std::vector<unsigned char> usable;       // finite position and usable normal
   std::vector<std::size_t> first_of_mesh;  // per mesh: its first vertex
 
-  VertexTable(const Scene& scene, const ShTransferSettings& settings) {
+  ShVertexTable(const Scene& scene, const ShTransferSettings& settings) {
     for (const Mesh& mesh : scene.meshes) {
       first_of_mesh.push_back(position.size());
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -64,13 +64,13 @@ struct VertexTable {
 class TransferBaker {
  public:
   TransferBaker(const Scene& scene, const EmbreeScene* rays, const ShTransferSettings& settings,
-                const VertexTable& vertices)
+                const ShVertexTable& vertices)
       : scene_(scene),
         rays_(rays),
         settings_(settings),
         vertices_(vertices),
         coeffs_(static_cast<std::size_t>(settings.order) * settings.order),
-        tasks_((vertices.size() + kVerticesPerTask - 1) / kVerticesPerTask),
+        tasks_((vertices.size() + kShVerticesPerTask - 1) / kShVerticesPerTask),
         task_rays_(tasks_, 0) {}
 
   // Pass 0: rho * mean over directions of V(w) y(w), V = 1 when unshadowed.
@@ -85,7 +85,7 @@ class TransferBaker {
       std::unique_ptr<RayBatch> batch;
       if (shadowed) batch = std::make_unique<RayBatch>(*rays_);
       std::uint64_t traced = 0;
-      for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
+      for (std::size_t v = task * kShVerticesPerTask; v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
         const render::VertexDirections directions(settings_.seed, v, n, kDirectionsTag);
@@ -122,7 +122,7 @@ class TransferBaker {
       std::vector<unsigned char> found(settings_.rays);
       RayBatch batch(*rays_);
       std::uint64_t traced = 0;
-      for (std::size_t v = task * kVerticesPerTask; v < task_end(task); ++v) {
+      for (std::size_t v = task * kShVerticesPerTask; v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
         const render::VertexDirections directions(settings_.seed, v, n, kDirectionsTag);
@@ -148,7 +148,7 @@ class TransferBaker {
 
  private:
   std::size_t task_end(std::size_t task) const {
-    return std::min(vertices_.size(), (task + 1) * kVerticesPerTask);
+    return std::min(vertices_.size(), (task + 1) * kShVerticesPerTask);
   }
 
   // Writes rho_c * sum / rays for each channel c; sum holds channel_stride values per channel
@@ -186,7 +186,7 @@ class TransferBaker {
   const Scene& scene_;
   const EmbreeScene* rays_;
   const ShTransferSettings& settings_;
-  const VertexTable& vertices_;
+  const ShVertexTable& vertices_;
   std::size_t coeffs_, tasks_;
   std::vector<std::uint64_t> task_rays_;  // per task, summed at the end: deterministic
 };
@@ -224,7 +224,7 @@ ShTransfer compute_sh_transfer(const Scene& scene, const EmbreeScene* rays,
     arena.execute([&] { own_rays = std::make_unique<EmbreeScene>(scene, ctx); });
     rays = own_rays.get();
   }
-  const VertexTable vertices(scene, settings);
+  const ShVertexTable vertices(scene, settings);
   TransferBaker baker(scene, rays, settings, vertices);
 
   ShTransfer result;

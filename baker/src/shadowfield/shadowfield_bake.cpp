@@ -4,14 +4,11 @@
 #include <chrono>
 #include <utility>
 
+#include "../common/numbers.hpp"
 #include "prt/baker/embree_scene.hpp"
 
 namespace prt::bake {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The object alone as one mesh, so every stage sees the same triangles and the SRF's "mesh 0
 // glows" holds for an object made of several meshes.

@@ -14,6 +14,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../common/numbers.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "prt/baker/reference.hpp"
 #include "prt/baker/sampling.hpp"
@@ -22,7 +23,6 @@
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A candidate adds nothing when what is left of it outside the span taken is this small a part
 // of it: far above the rounding of its values (prt_sh_eval's are floats), far below any real new
 // direction.
@@ -294,12 +294,12 @@ std::vector<double> SourceIrradiance::apply(const std::vector<double>& radiance)
 
 namespace {
 
-using Row = std::vector<std::pair<std::uint32_t, double>>;
+using ReachedSources = std::vector<std::pair<std::uint32_t, double>>;
 
 // One receiver vertex's row: the source vertices its rays reach and their weights, merged.
 std::size_t trace_receiver(const ShadowfieldObject& source, const EmbreeScene& scene,
                            const glm::vec3& p, const glm::vec3& normal, std::uint32_t directions,
-                           std::uint32_t key, Row& row) {
+                           std::uint32_t key, ReachedSources& row) {
   row.clear();
   const float length2 = glm::dot(normal, normal);
   if (!(length2 > 1e-12f) || !std::isfinite(length2)) return 0;
@@ -346,7 +346,7 @@ SourceIrradiance source_irradiance(const ShadowfieldObject& source, const Embree
   if (source.normals.size() != source.positions.size())
     throw Error("shadowfield basis study: the source needs one normal per vertex");
   const std::size_t receivers = receiver_positions.size();
-  std::vector<Row> rows(receivers);
+  std::vector<ReachedSources> rows(receivers);
   std::vector<std::uint64_t> rays(receivers, 0);
   const std::size_t tasks = (receivers + kReceiversPerTask - 1) / kReceiversPerTask;
   render::parallel_tasks(tasks, ctx, "shadowfield basis study: receiver rays", [&](std::size_t t) {

@@ -11,6 +11,7 @@
 #include <prt/prt.h>
 #include <prt/format/blob_writer.hpp>
 
+#include "../common/numbers.hpp"
 #include "prt/baker/context.hpp"
 
 namespace prt::bake {
@@ -18,7 +19,7 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-void fail(const std::string& what) {
+void fail_shadowfield_blob(const std::string& what) {
   throw Error("shadowfield blob: " + what);
 }
 
@@ -50,7 +51,8 @@ void store_header(std::uint8_t* p, const ShadowfieldObject& o, std::uint32_t bit
 // The header's fields through the formats layer's own check; the layout on success.
 prt_blob_sfld_layout checked_layout(const ShadowfieldObject& o, std::uint32_t bits) {
   if (o.positions.empty() || o.positions.size() > 0xffffffffu)
-    fail("the vertex count " + std::to_string(o.positions.size()) + " is not in 1..2^32-1");
+    fail_shadowfield_blob("the vertex count " + std::to_string(o.positions.size()) +
+                          " is not in 1..2^32-1");
   std::uint8_t header[PRT_BLOB_SFLD_HEADER_SIZE] = {};
   store_header(header, o, bits);
   prt_blob_sfld_header h;
@@ -61,21 +63,21 @@ prt_blob_sfld_layout checked_layout(const ShadowfieldObject& o, std::uint32_t bi
   // Only the header's bytes are read; the size is the one the header implies.
   if (prt_blob_sfld_check_header(header, static_cast<std::size_t>(layout.raw_size), 1,
                                  o.positions.size(), &layout, msg, sizeof msg) != PRT_BLOB_OK)
-    fail(msg);
+    fail_shadowfield_blob(msg);
   return layout;
 }
 
 void check_size(const char* what, std::size_t size, std::uint64_t expected) {
   if (size != expected)
-    fail(std::string(what) + " has " + std::to_string(size) + " values, the object needs " +
-         std::to_string(expected));
+    fail_shadowfield_blob(std::string(what) + " has " + std::to_string(size) +
+                          " values, the object needs " + std::to_string(expected));
 }
 
 void check_sizes(const ShadowfieldObject& o, const prt_blob_sfld_layout& l) {
   const std::uint64_t v = l.vertices;
   check_size("normals", o.normals.size(), v);
   check_size("albedo", o.albedo.size(), v);
-  if (o.indices.size() % 3 != 0) fail("the index count is not a multiple of 3");
+  if (o.indices.size() % 3 != 0) fail_shadowfield_blob("the index count is not a multiple of 3");
   if (o.material.glossy) check_size("the g table", o.material.brdf.outgoing.size(), l.g_values);
   check_size("transfer", o.transfer.size(), l.transfer.count);
   check_size("oof", o.oof.size(), l.oof.count);
@@ -85,32 +87,32 @@ void check_sizes(const ShadowfieldObject& o, const prt_blob_sfld_layout& l) {
   check_size("srf", o.srf.size(), l.srf.count);
 }
 
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 void check_all_finite(const char* what, const std::vector<float>& values) {
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
-      fail(std::string(what) + " value " + std::to_string(i) + " is not finite");
+      fail_shadowfield_blob(std::string(what) + " value " + std::to_string(i) + " is not finite");
 }
 
 void check_values(const ShadowfieldObject& o) {
   const std::size_t v = o.positions.size();
   for (std::size_t i = 0; i < v; ++i) {
     if (!finite(o.positions[i]) || !finite(o.normals[i]))
-      fail("the position or normal of vertex " + std::to_string(i) + " is not finite");
+      fail_shadowfield_blob("the position or normal of vertex " + std::to_string(i) +
+                            " is not finite");
     const glm::vec3& a = o.albedo[i];
     if (!(std::min({a.x, a.y, a.z}) >= 0.0f && std::max({a.x, a.y, a.z}) <= 1.0f))
-      fail("the albedo of vertex " + std::to_string(i) + " is not in [0, 1]");
+      fail_shadowfield_blob("the albedo of vertex " + std::to_string(i) + " is not in [0, 1]");
     if (!(o.vertex_weights[i] >= 0.0f) || !std::isfinite(o.vertex_weights[i]))
-      fail("the weight of vertex " + std::to_string(i) + " is not finite and >= 0");
+      fail_shadowfield_blob("the weight of vertex " + std::to_string(i) +
+                            " is not finite and >= 0");
   }
   for (std::uint32_t index : o.indices)
-    if (index >= v) fail("index " + std::to_string(index) + " is not below the vertex count");
+    if (index >= v)
+      fail_shadowfield_blob("index " + std::to_string(index) + " is not below the vertex count");
   if (o.material.glossy)
     for (double g : o.material.brdf.outgoing)
-      if (!std::isfinite(static_cast<float>(g))) fail("a g table value is not a finite f32");
+      if (!std::isfinite(static_cast<float>(g)))
+        fail_shadowfield_blob("a g table value is not a finite f32");
   check_all_finite("transfer", o.transfer);
   check_all_finite("oof", o.oof);
   check_all_finite("basis", o.basis);
@@ -175,7 +177,7 @@ void store_f32s(std::uint8_t* p, const float* values, std::size_t count) {
 void store_block(std::uint8_t* p, const prt_blob_sfld_block& at, std::uint32_t bits,
                  const QuantizedShadowfieldBlock& b) {
   if (b.offsets.size() != at.rows || b.q.size() != at.count)
-    fail("the quantised object does not match the object's sizes");
+    fail_shadowfield_blob("the quantised object does not match the object's sizes");
   for (std::size_t r = 0; r < at.rows; ++r) {
     store_f32s(p + at.params + 8 * r, &b.offsets[r], 1);
     store_f32s(p + at.params + 8 * r + 4, &b.scales[r], 1);
@@ -202,7 +204,7 @@ void check_shadowfield_object(const ShadowfieldObject& object) {
 }
 
 QuantizedShadowfield quantize_shadowfield(const ShadowfieldObject& o, int bits) {
-  if (bits != 8 && bits != 16) fail("bits must be 8 or 16");
+  if (bits != 8 && bits != 16) fail_shadowfield_blob("bits must be 8 or 16");
   check_shadowfield_object(o);
   const prt_blob_sfld_layout l = checked_layout(o, static_cast<std::uint32_t>(bits));
   const double levels = std::ldexp(1.0, bits) - 1.0;

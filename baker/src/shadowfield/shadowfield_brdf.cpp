@@ -9,12 +9,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../common/numbers.hpp"
 #include "../common/thin_svd.hpp"
 
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::uint32_t kMinGridSize = 4;
 constexpr std::uint32_t kMaxGridSize = 64;
 
@@ -79,7 +79,7 @@ std::size_t term_offset(const SeparableBrdf& brdf, std::uint32_t term) {
 
 // ---- The factorisation -------------------------------------------------------------------------
 
-void check_options(const SeparableBrdfOptions& options) {
+void check_brdf_options(const SeparableBrdfOptions& options) {
   if (options.grid_size < kMinGridSize || options.grid_size > kMaxGridSize)
     throw Error("shadowfield brdf: grid_size " + std::to_string(options.grid_size) +
                 " is outside 4..64");
@@ -392,7 +392,7 @@ std::vector<double> tabulate_brdf(const BrdfFunction& f, const HemisphereGrid& g
 }
 
 SeparableBrdf separate_brdf(const BrdfFunction& f, const SeparableBrdfOptions& options) {
-  check_options(options);
+  check_brdf_options(options);
   SeparableBrdf result;
   result.grid.size = options.grid_size;
   result.requested_terms = options.terms;
@@ -440,7 +440,7 @@ SeparableBrdfErrors measure_separable_brdf(const BrdfFunction& f, const Separabl
 }
 
 std::vector<SeparableBrdfErrorRow> separable_brdf_error_table(const SeparableBrdfOptions& options) {
-  check_options({options.grid_size, 16});
+  check_brdf_options({options.grid_size, 16});
   std::vector<SeparableBrdfErrorRow> rows;
   for (const double n : {1.0, 4.0, 10.0, 16.0, 64.0, 256.0, 1000.0})
     append_rows("phong", n, brdf_function(PhongBrdf{n, 1.0, 0.0}), options.grid_size, &rows);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "../common/numbers.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "../render/vertex_directions.hpp"
 #include "prt/baker/ray_batch.hpp"
@@ -15,9 +16,8 @@
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kPointsPerTask = 64;
-constexpr std::size_t kVerticesPerTask = 64;
+constexpr std::size_t kFieldPointsPerTask = 64;
+constexpr std::size_t kFieldVerticesPerTask = 64;
 // Stream keys, distinct from the other bakes' and the reference renderer's.
 constexpr std::uint64_t kFieldDirectionsTag = 0x53464f46;  // "SFOF"
 constexpr std::uint64_t kTransferTag = 0x53465454;         // "SFTT"
@@ -268,13 +268,13 @@ void bake_occlusion_field(ShadowfieldObject& object, const EmbreeScene& rays,
   const auto points = static_cast<std::size_t>(prt_sf_point_count(&grid));
   const FieldDirections directions(settings.order, settings.field_directions, settings.seed);
   std::vector<float> field(points * coeffs);
-  const std::size_t tasks = (points + kPointsPerTask - 1) / kPointsPerTask;
+  const std::size_t tasks = (points + kFieldPointsPerTask - 1) / kFieldPointsPerTask;
   render::parallel_tasks(tasks, ctx, "shadowfield: occlusion field", [&](std::size_t task) {
     RayBatch batch(rays);
     std::vector<unsigned char> flags, escaped;
     std::vector<double> sum;
-    const std::size_t end = std::min(points, (task + 1) * kPointsPerTask);
-    for (std::size_t p = task * kPointsPerTask; p < end; ++p) {
+    const std::size_t end = std::min(points, (task + 1) * kFieldPointsPerTask);
+    for (std::size_t p = task * kFieldPointsPerTask; p < end; ++p) {
       glm::vec3 origin;
       prt_sf_point_position(&grid, p, &origin.x);
       directions.cast(rays, batch, origin, flags, escaped);
@@ -292,11 +292,11 @@ std::size_t bake_self_transfer(ShadowfieldObject& object, const EmbreeScene& ray
   const std::size_t stride = object.material.terms() * coefficient_count(object.order);
   std::vector<float> transfer(vertices * stride);
   std::vector<unsigned char> bad(vertices, 0);
-  const std::size_t tasks = (vertices + kVerticesPerTask - 1) / kVerticesPerTask;
+  const std::size_t tasks = (vertices + kFieldVerticesPerTask - 1) / kFieldVerticesPerTask;
   render::parallel_tasks(tasks, ctx, "shadowfield: transfer", [&](std::size_t task) {
     TransferSampler sampler(object, rays, settings);
-    const std::size_t end = std::min(vertices, (task + 1) * kVerticesPerTask);
-    for (std::size_t v = task * kVerticesPerTask; v < end; ++v)
+    const std::size_t end = std::min(vertices, (task + 1) * kFieldVerticesPerTask);
+    for (std::size_t v = task * kFieldVerticesPerTask; v < end; ++v)
       bad[v] = sampler.vertex(v, transfer.data() + v * stride) ? 0 : 1;
   });
   const auto without_normal = static_cast<std::size_t>(std::count(bad.begin(), bad.end(), 1));

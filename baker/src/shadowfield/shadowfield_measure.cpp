@@ -10,6 +10,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "../common/numbers.hpp"
 #include "../common/trade_common.hpp"
 #include "prt/baker/demo_scene.hpp"
 #include "prt/baker/sh/env_sh.hpp"
@@ -18,10 +19,6 @@
 
 namespace prt::bake {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 prt_shadowfield_transform runtime_transform(const ShadowfieldPlacement& placement) {
   prt_shadowfield_transform t{};

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <string>
 
+#include "../common/numbers.hpp"
 #include "../common/thin_svd.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "prt/baker/ray_batch.hpp"
@@ -20,9 +21,8 @@
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kVerticesPerTask = 64;
-constexpr std::size_t kPointsPerTask = 4;
+constexpr std::size_t kRadianceVerticesPerTask = 64;
+constexpr std::size_t kRadiancePointsPerTask = 4;
 // Stream key of the SRF's direction set (distinct from the other bakes' tags).
 constexpr std::uint64_t kSrfDirectionsTag = 0x535246;  // "SRF"
 // The largest field a bake may allocate, in floats: far above any useful grid, well below what
@@ -30,14 +30,6 @@ constexpr std::uint64_t kSrfDirectionsTag = 0x535246;  // "SRF"
 constexpr std::size_t kMaxSrfFloats = std::size_t(1) << 30;
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-bool finite(const glm::vec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 // The mesh and material the bakes read, checked once.
 void check_object(const ShadowfieldObject& object, const char* stage) {
@@ -330,14 +322,15 @@ ShadowfieldRadianceSamples shadowfield_radiance_samples(const ShadowfieldObject&
   samples.rows = lights.size() * object.material.terms();
   samples.values.assign(samples.rows * samples.vertices, 0.0);
   const std::vector<glm::vec3> normals = unit_normals(object);
-  const std::size_t tasks = (samples.vertices + kVerticesPerTask - 1) / kVerticesPerTask;
+  const std::size_t tasks =
+      (samples.vertices + kRadianceVerticesPerTask - 1) / kRadianceVerticesPerTask;
   std::vector<std::uint64_t> task_rays(tasks, 0);
   render::parallel_tasks(tasks, ctx, "shadowfield basis: samples", [&](std::size_t task) {
     RayBatch batch(scene);
     std::vector<glm::vec3> to_light(lights.size());
     std::vector<unsigned char> visible(lights.size());
-    const std::size_t end = std::min(samples.vertices, (task + 1) * kVerticesPerTask);
-    for (std::size_t v = task * kVerticesPerTask; v < end; ++v)
+    const std::size_t end = std::min(samples.vertices, (task + 1) * kRadianceVerticesPerTask);
+    for (std::size_t v = task * kRadianceVerticesPerTask; v < end; ++v)
       if (normals[v] != glm::vec3(0.0f))
         task_rays[task] += sample_vertex(object, scene, lights, intensity, normals[v], v, batch,
                                          to_light, visible, samples);
@@ -431,11 +424,12 @@ SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeSce
   const std::vector<glm::vec3> normals = unit_normals(object);
 
   std::vector<float> srf(fields * points * coefficients, 0.0f);
-  const std::size_t tasks = std::size_t((points + kPointsPerTask - 1) / kPointsPerTask);
+  const std::size_t tasks =
+      std::size_t((points + kRadiancePointsPerTask - 1) / kRadiancePointsPerTask);
   render::parallel_tasks(tasks, ctx, "shadowfield srf", [&](std::size_t task) {
     SrfPointSampler sampler(object, scene, directions, normals);
-    const std::uint64_t end = std::min<std::uint64_t>(points, (task + 1) * kPointsPerTask);
-    for (std::uint64_t point = task * kPointsPerTask; point < end; ++point) {
+    const std::uint64_t end = std::min<std::uint64_t>(points, (task + 1) * kRadiancePointsPerTask);
+    for (std::uint64_t point = task * kRadiancePointsPerTask; point < end; ++point) {
       float position[3];
       prt_sf_point_position(&shells, point, position);
       const Eigen::MatrixXd field =

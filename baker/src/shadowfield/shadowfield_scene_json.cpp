@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/numbers.hpp"
 #include "prt/baker/context.hpp"
 #include "prt/baker/shadowfield/shadowfield_scenes.hpp"
 #include "prt/io/error.hpp"
@@ -19,18 +20,6 @@ using json = nlohmann::ordered_json;
 
 constexpr const char* kFormat = "prtkit shadowfield scene";
 constexpr int kVersion = 1;
-
-// The shortest decimal that reads back to the same float, so that the file shows 0.001 rather
-// than the float's exact binary value 0.0010000000474974513.
-double shortest(float value) {
-  char text[32];
-  for (int digits = 6; digits < 9; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, double(value));
-    const double parsed = std::strtod(text, nullptr);
-    if (float(parsed) == value) return parsed;
-  }
-  return double(value);  // 9 significant digits always round-trip a float
-}
 
 json vec3_json(const glm::vec3& v) {
   return json::array({shortest(v.x), shortest(v.y), shortest(v.z)});

@@ -16,14 +16,11 @@
 
 #include "prt/baker/text.hpp"
 
+#include "../common/numbers.hpp"
 #include "../common/technique_blob.hpp"
 
 namespace prt::bake {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The scene with every mesh's material replaced by one of base colour `albedo` (--albedo).
 Scene with_albedo(const Scene& scene, const glm::vec3& albedo) {

@@ -50,7 +50,7 @@ struct Setting {
   std::string sweeps;
 };
 
-struct Row {
+struct ShadowfieldTradeRow {
   std::string map, sweeps;
   Setting setting;
   double degrees = 0.0;
@@ -170,8 +170,8 @@ const std::vector<std::string> kCsvColumns = {"scene",
                                               "blob_bytes",
                                               "bake_seconds"};
 
-std::vector<std::string> csv_cells(const Row& r, const SfTradeSettings& o, const TradeInput& input,
-                                   std::size_t vertices) {
+std::vector<std::string> csv_cells(const ShadowfieldTradeRow& r, const SfTradeSettings& o,
+                                   const TradeInput& input, std::size_t vertices) {
   const Setting& s = r.setting;
   std::string brdf = o.brdf;  // its commas would split the cell
   std::replace(brdf.begin(), brdf.end(), ',', ';');
@@ -200,7 +200,7 @@ const std::vector<Column> kMarkdownColumns = {
     {"sweep", false}, {"order"},  {"terms"},       {"rays"},   {"bits"},     {"turn deg"},
     {"error %"},      {"bias %"}, {"ref noise %"}, {"CPU ms"}, {"blob KiB"}, {"bake s"}};
 
-std::vector<std::string> markdown_cells(const Row& r) {
+std::vector<std::string> markdown_cells(const ShadowfieldTradeRow& r) {
   const Setting& s = r.setting;
   return {r.sweeps,
           std::to_string(s.order),
@@ -338,7 +338,7 @@ class ShadowfieldTrade final : public TechniqueTrade {
       scene_->sweep(input, ctx);
       return;
     }
-    std::vector<Row> rows;
+    std::vector<ShadowfieldTradeRow> rows;
     for (std::size_t i = 0; i < settings_.size(); ++i) {
       const Setting& s = settings_[i];
       ctx.info("setting " + std::to_string(i + 1) + "/" + std::to_string(settings_.size()) +
@@ -396,7 +396,7 @@ class ShadowfieldTrade final : public TechniqueTrade {
   }
 
   void measure_setting(const Scene& scene, const Setting& s, const TradeInput& input,
-                       const Context& ctx, std::vector<Row>& rows) const {
+                       const Context& ctx, std::vector<ShadowfieldTradeRow>& rows) const {
     ShadowfieldBakeSettings settings = o_.bake;
     settings.fields.order = s.order;
     settings.fields.transfer_rays = s.rays;
@@ -432,7 +432,7 @@ class ShadowfieldTrade final : public TechniqueTrade {
             shadowfield_transform(placed.rotation, placed.translation);
         LoneShadowfieldScene lone(runtime.asset.get(), transform);
         std::vector<float> shaded;
-        Row row;
+        ShadowfieldTradeRow row;
         row.cpu_ms = median_frame_ms(input.frames, "prt_shadowfield_shade", [&] {
           lone.shade(l, eye, &shaded);
           return PRT_OK;
@@ -457,12 +457,13 @@ class ShadowfieldTrade final : public TechniqueTrade {
     }
   }
 
-  void write_tables(const Scene& scene, const std::vector<Row>& rows, const TradeInput& input,
-                    unsigned threads) const {
+  void write_tables(const Scene& scene, const std::vector<ShadowfieldTradeRow>& rows,
+                    const TradeInput& input, unsigned threads) const {
     const std::string csv_path = input.out_dir + "/trade.csv";
     std::ofstream csv(csv_path);
     write_csv_row(csv, kCsvColumns);
-    for (const Row& r : rows) write_csv_row(csv, csv_cells(r, o_, input, scene.vertex_count()));
+    for (const ShadowfieldTradeRow& r : rows)
+      write_csv_row(csv, csv_cells(r, o_, input, scene.vertex_count()));
     check_written(csv, csv_path);
 
     const std::string md_path = input.out_dir + "/trade.md";
@@ -487,7 +488,7 @@ class ShadowfieldTrade final : public TechniqueTrade {
     for (const ShLight& light : lights_) {
       md << "\n## " << light.name << "\n\n";
       write_markdown_header(md, kMarkdownColumns);
-      for (const Row& r : rows) {
+      for (const ShadowfieldTradeRow& r : rows) {
         if (r.map == light.name) write_markdown_row(md, markdown_cells(r));
       }
     }

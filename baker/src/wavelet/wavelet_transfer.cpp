@@ -22,7 +22,7 @@ namespace prt::bake {
 namespace {
 
 constexpr double kInvPi = 0.31830988618379067154;
-constexpr std::size_t kVerticesPerTask = 8;
+constexpr std::size_t kWaveletVerticesPerTask = 8;
 constexpr std::uint64_t kJitterTag = 0x57564c54;  // "WVLT": distinct from sh and the reference
 
 void validate(const WaveletTransferSettings& s) {
@@ -235,12 +235,12 @@ struct TaskRows {
 };
 
 // What every pass knows about the scene's vertices (Scene order).
-struct VertexTable {
+struct WaveletVertexTable {
   std::vector<glm::vec3> position, normal, albedo;  // normal: unit, or 0 when not usable
   std::vector<unsigned char> usable;
   std::vector<std::size_t> first_of_mesh;
 
-  VertexTable(const Scene& scene, const WaveletTransferSettings& s) {
+  WaveletVertexTable(const Scene& scene, const WaveletTransferSettings& s) {
     for (const Mesh& mesh : scene.meshes) {
       first_of_mesh.push_back(position.size());
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -313,15 +313,15 @@ WaveletTransfer gather_rows(const std::vector<TaskRows>& task_rows, std::size_t 
 // One pass over the usable vertices of `todo`: row_of(v, row) fills vertex v's dense row in the
 // wavelet domain and returns the rays it traced; rows are truncated by the settings.
 template <typename RowOf>
-WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const VertexTable& vertices,
+WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const WaveletVertexTable& vertices,
                          std::uint32_t count, const WaveletTransferSettings& s, const Context& ctx,
                          const std::string& stage, RowOf row_of) {
-  const std::size_t tasks = (todo.size() + kVerticesPerTask - 1) / kVerticesPerTask;
+  const std::size_t tasks = (todo.size() + kWaveletVerticesPerTask - 1) / kWaveletVerticesPerTask;
   std::vector<TaskRows> task_rows(tasks);
   render::parallel_tasks(tasks, ctx, stage, [&](std::size_t task) {
     std::vector<float> row(count);
-    const std::size_t end = std::min(todo.size(), (task + 1) * kVerticesPerTask);
-    for (std::size_t i = task * kVerticesPerTask; i < end; ++i) {
+    const std::size_t end = std::min(todo.size(), (task + 1) * kWaveletVerticesPerTask);
+    for (std::size_t i = task * kWaveletVerticesPerTask; i < end; ++i) {
       if (!vertices.usable[todo[i]]) continue;
       task_rows[task].traced += row_of(todo[i], row);
       keep_row(todo[i], row, s, task_rows[task]);
@@ -334,7 +334,7 @@ WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const VertexTab
 // front of a surface, the previous pass's rows of the hit triangle's vertices, weighted by the
 // sample's weight, the barycentrics and the vertex's grey albedo (mean of its RGB).
 std::uint64_t gather_bounce(std::uint32_t v, const WaveletTransfer& previous,
-                            const VertexTable& vertices, const Scene& scene,
+                            const WaveletVertexTable& vertices, const Scene& scene,
                             const EmbreeScene& rays, const wavelet::TexelGrid& grid,
                             const WaveletTransferSettings& s, std::vector<float>& row) {
   const glm::vec3 n = vertices.normal[v];
@@ -523,7 +523,7 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
     rays = own_rays.get();
   }
   const wavelet::TexelGrid grid(settings.param, settings.size);
-  const VertexTable vertices(scene, settings);
+  const WaveletVertexTable vertices(scene, settings);
   const std::vector<std::uint32_t> todo = subset(settings, vertices.size());
   // A ray batch and texel buffers per thread, not per vertex: the bake then does not allocate.
   struct DirectScratch {
