@@ -13,13 +13,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
 
 #include "support/command.hpp"
+#include "support/shared_bake.hpp"
 #include "support/test_files.hpp"
 
 namespace {
@@ -51,25 +51,26 @@ bool bake_cesium(const std::string& scene, const std::string& prefix) {
 // fixture test CharacterBake (tests/character/CMakeLists.txt); by hand, in the scratch folder.
 const char* const kBakeVariable = "PRT_CHARACTER_BAKE";
 
-// The CesiumMan bake and its ground truth, made once (empty without the shared assets).
+// The CesiumMan bake and its ground truth into `folder`/cesium.
+bool bake_cesium_into(const std::string& folder) {
+  return bake_cesium(prt_test::shared_asset("characters/CesiumMan.glb"), folder + "/cesium");
+}
+
+// The bake's prefix, made once ("" without the shared assets or when the bake failed).
 const std::string& bake() {
   static const std::string prefix = [] {
-    const std::string scene = prt_test::shared_asset("characters/CesiumMan.glb");
-    if (scene.empty()) return std::string();
-    if (const char* dir = std::getenv(kBakeVariable)) return std::string(dir) + "/cesium";
-    const std::string out = scratch().file("cesium");
-    return bake_cesium(scene, out) ? out : std::string();
+    if (prt_test::shared_asset("characters/CesiumMan.glb").empty()) return std::string();
+    const std::string folder =
+        prt_test::shared_bake_folder(kBakeVariable, scratch().dir(), bake_cesium_into);
+    return folder.empty() ? folder : folder + "/cesium";
   }();
   return prefix;
 }
 
 TEST(CharacterBake, MakesTheBakeTheOtherTestsShare) {
-  const char* dir = std::getenv(kBakeVariable);
-  if (!dir) GTEST_SKIP() << kBakeVariable << " is not set: each test binary bakes its own";
-  const std::string scene = prt_test::shared_asset("characters/CesiumMan.glb");
-  if (scene.empty()) GTEST_SKIP() << "shared assets (CesiumMan.glb) not found";
-  std::filesystem::create_directories(dir);
-  EXPECT_TRUE(bake_cesium(scene, std::string(dir) + "/cesium"));
+  if (prt_test::shared_asset("characters/CesiumMan.glb").empty())
+    GTEST_SKIP() << "shared assets (CesiumMan.glb) not found";
+  prt_test::make_shared_bake(kBakeVariable, bake_cesium_into);
 }
 
 #define BAKE_OR_SKIP()                                                           \

@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "compare.hpp"
 #include "support/command.hpp"
 #include "support/picture.hpp"
+#include "support/shared_bake.hpp"
 #include "support/test_files.hpp"
 
 namespace {
@@ -68,19 +68,13 @@ const char* const kBakeVariable = "PRT_CLOTH_APP_BAKE";
 
 // The six presets' blob, made once.
 const std::string& presets_blob() {
-  static const std::string path = [] {
-    if (const char* dir = std::getenv(kBakeVariable)) return std::string(dir) + "/presets.prtk";
-    bake_presets(scratch().dir());
-    return scratch().file("presets.prtk");
-  }();
+  static const std::string path =
+      prt_test::shared_bake_folder(kBakeVariable, scratch().dir(), bake_presets) + "/presets.prtk";
   return path;
 }
 
 TEST(ClothAppBake, MakesTheBlobTheOtherTestsShare) {
-  const char* dir = std::getenv(kBakeVariable);
-  if (!dir) GTEST_SKIP() << kBakeVariable << " is not set: each test binary bakes its own";
-  std::filesystem::create_directories(dir);
-  EXPECT_TRUE(bake_presets(dir));
+  prt_test::make_shared_bake(kBakeVariable, bake_presets);
 }
 
 constexpr int kWidth = 128, kHeight = 96;
