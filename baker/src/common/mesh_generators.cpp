@@ -3,12 +3,13 @@
 
 #include <cmath>
 
-#include <glm/gtc/constants.hpp>
+#include "numbers.hpp"
 
 namespace prt::bake {
 namespace {
 
-constexpr float kPiFloat = glm::pi<float>();
+// The shared kPi, rounded once to the float the generators work in.
+constexpr float kPiFloat = static_cast<float>(kPi);
 
 void append_triangle(Mesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   const auto& p = mesh.positions;
