@@ -19,7 +19,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -494,8 +496,9 @@ class ShadowfieldSceneSweep final : public SceneSweep {
     const std::vector<std::uint8_t> blob = shadowfield_blob_of(
         baked.object, b.bits, "prtkit shadowfield trade: " + preset_ + ", " + o.name);
     write_file_bytes(path, blob);
+    // Every digit, so that a run reading the cache reports the time this one does.
     std::ofstream out(seconds_file);
-    out << *seconds << "\n";
+    out << std::setprecision(std::numeric_limits<double>::max_digits10) << *seconds << "\n";
     check_written(out, seconds_file);
     return blob;
   }
