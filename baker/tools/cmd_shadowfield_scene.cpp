@@ -268,6 +268,11 @@ void add_measure_subcommand(CLI::App& app, CommandEnv& env) {
   cmd->add_flag("--log-product", s.log_product,
                 "The runtime combines blockers by the log-space product (default: triple "
                 "products)");
+  cmd->add_option("--probe-spacings", s.probe_spacings,
+                  "Bounce probe spacings in object units, comma-separated, each against the same "
+                  "references (0: every vertex gathers its bounce light)")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->callback([options, &env] { run_shadowfield_measure(*options, env); });
 }
 

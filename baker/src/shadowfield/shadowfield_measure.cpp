@@ -135,6 +135,11 @@ void check_measure_settings(const ShadowfieldMeasureSettings& settings) {
   for (const float t : settings.times)
     if (!std::isfinite(t)) throw Error("shadowfield measure: a time is not finite");
   if (settings.spp < 2) throw Error("shadowfield measure: spp must be >= 2");
+  if (settings.probe_spacings.empty())
+    throw Error("shadowfield measure: at least one probe spacing (0: per vertex)");
+  for (const float s : settings.probe_spacings)
+    if (!(s >= 0.0f) || !std::isfinite(s))
+      throw Error("shadowfield measure: a probe spacing that is not finite and >= 0");
 }
 
 }  // namespace
@@ -204,7 +209,7 @@ std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
     const ShadowfieldSceneDescription& description,
     const std::vector<std::vector<std::uint8_t>>& blobs, const std::vector<float>& light_sh,
     std::uint32_t light_order, float time, const std::vector<std::uint32_t>& bounces,
-    const glm::vec3& eye, double* seconds, bool log_product) {
+    const glm::vec3& eye, double* seconds, bool log_product, float probe_spacing) {
   if (bounces.empty()) throw Error("shadowfield shade: no bounce count");
   const RuntimeScene runtime(description, blobs, time);
   prt_shadowfield_scene* scene = runtime.scene.get();
@@ -221,6 +226,7 @@ std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
   settings.struct_size = sizeof settings;
   settings.bounces = *std::max_element(bounces.begin(), bounces.end());
   settings.backend = PRT_BACKEND_CPU;
+  settings.bounce_probe_spacing = probe_spacing;
   const float eye_xyz[3] = {eye.x, eye.y, eye.z};
   const std::vector<float*> no_output(description.instances.size(), nullptr);
   const auto start = std::chrono::steady_clock::now();
@@ -233,6 +239,28 @@ std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
   return out;
 }
 
+namespace {
+
+// The row's figures of the runtime's radiance against the reference's.
+void compare_with_reference(const ShadowfieldSceneDescription& description,
+                            const PlacedScene& placed, const std::vector<glm::vec3>& runtime,
+                            const VertexRadiance& reference, ShadowfieldMeasureRow& row) {
+  row.reference_noise = reference.relative_rmse;
+  row.nrmse = io::relative_rmse(runtime, reference.radiance);
+  row.bias = relative_bias(runtime, reference.radiance);
+  row.runtime_mean = mean_radiance(runtime);
+  row.reference_mean = mean_radiance(reference.radiance);
+  for (std::size_t o = 0; o < description.objects.size(); ++o) {
+    const std::vector<glm::vec3> ours = object_values(description, placed.first_vertex, runtime, o);
+    const std::vector<glm::vec3> theirs =
+        object_values(description, placed.first_vertex, reference.radiance, o);
+    row.object_nrmse.push_back(ours.empty() ? 0.0 : io::relative_rmse(ours, theirs));
+    row.object_bias.push_back(relative_bias(ours, theirs));
+  }
+}
+
+}  // namespace
+
 std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
     const ShadowfieldSceneDescription& description,
     const std::vector<std::vector<std::uint8_t>>& blobs, const io::EnvMap& env,
@@ -244,10 +272,13 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
   const std::vector<float> light = env_sh.to_float();
   std::vector<ShadowfieldMeasureRow> rows;
   for (const float time : settings.times) {
-    double seconds_runtime = 0.0;
-    const std::vector<std::vector<glm::vec3>> runtime =
-        shade_shadowfield_scene(description, blobs, light, env_sh.order, time, settings.bounces,
-                                eye, &seconds_runtime, settings.log_product);
+    // Per probe spacing, the runtime's radiance per bounce count and its frame's time.
+    std::vector<std::vector<std::vector<glm::vec3>>> runtime;
+    std::vector<double> seconds_runtime(settings.probe_spacings.size());
+    for (std::size_t s = 0; s < settings.probe_spacings.size(); ++s)
+      runtime.push_back(shade_shadowfield_scene(description, blobs, light, env_sh.order, time,
+                                                settings.bounces, eye, &seconds_runtime[s],
+                                                settings.log_product, settings.probe_spacings[s]));
     const PlacedScene placed = place_shadowfield_scene(description, time);
     for (std::size_t b = 0; b < settings.bounces.size(); ++b) {
       const auto start = std::chrono::steady_clock::now();
@@ -255,29 +286,22 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
           description, placed, int(settings.bounces[b]), settings.spp, settings.seed);
       const ReferenceRenderer renderer(placed.scene, env, reference_settings, ctx);
       const VertexRadiance reference = renderer.render_vertices(ctx, eye);
-      ShadowfieldMeasureRow row;
-      row.time = time;
-      row.bounces = settings.bounces[b];
-      row.seconds_reference = seconds_since(start);
-      row.seconds_runtime = seconds_runtime;
-      row.reference_noise = reference.relative_rmse;
-      row.nrmse = io::relative_rmse(runtime[b], reference.radiance);
-      row.bias = relative_bias(runtime[b], reference.radiance);
-      row.runtime_mean = mean_radiance(runtime[b]);
-      row.reference_mean = mean_radiance(reference.radiance);
-      for (std::size_t o = 0; o < description.objects.size(); ++o) {
-        const std::vector<glm::vec3> ours =
-            object_values(description, placed.first_vertex, runtime[b], o);
-        const std::vector<glm::vec3> theirs =
-            object_values(description, placed.first_vertex, reference.radiance, o);
-        row.object_nrmse.push_back(ours.empty() ? 0.0 : io::relative_rmse(ours, theirs));
-        row.object_bias.push_back(relative_bias(ours, theirs));
+      const double seconds_reference = seconds_since(start);
+      for (std::size_t s = 0; s < settings.probe_spacings.size(); ++s) {
+        ShadowfieldMeasureRow row;
+        row.time = time;
+        row.bounces = settings.bounces[b];
+        row.probe_spacing = settings.probe_spacings[s];
+        row.seconds_reference = seconds_reference;
+        row.seconds_runtime = seconds_runtime[s];
+        compare_with_reference(description, placed, runtime[s][b], reference, row);
+        ctx.info(
+            format("t = %g s, %u bounces, probes %g: NRMSE %.2f %%, bias %+.2f %% "
+                   "(reference noise %.2f %%)",
+                   double(time), row.bounces, double(row.probe_spacing), 100.0 * row.nrmse,
+                   100.0 * row.bias, 100.0 * row.reference_noise));
+        rows.push_back(std::move(row));
       }
-      ctx.info(
-          format("t = %g s, %u bounces: NRMSE %.2f %%, bias %+.2f %% (reference noise %.2f %%)",
-                 double(time), row.bounces, 100.0 * row.nrmse, 100.0 * row.bias,
-                 100.0 * row.reference_noise));
-      rows.push_back(std::move(row));
     }
   }
   return rows;
@@ -286,15 +310,18 @@ std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
 std::string shadowfield_measure_markdown(const ShadowfieldSceneDescription& description,
                                          const std::vector<ShadowfieldMeasureRow>& rows) {
   std::ostringstream md;
-  md << "| time (s) | bounces | NRMSE % | bias % | ref. noise % | mean runtime | mean ref.";
+  md << "| time (s) | bounces | probe spacing | NRMSE % | bias % | ref. noise % | mean runtime | "
+        "mean ref.";
   for (const ShadowfieldSceneObject& object : description.objects)
     md << " | " << object.name << " NRMSE (bias) %";
-  md << " | runtime (ms) | reference (s) |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---:";
+  md << " | runtime (ms) | reference (s) |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+        "---:";
   for (std::size_t o = 0; o < description.objects.size(); ++o) md << " | ---:";
   md << " | ---: | ---: |\n";
   for (const ShadowfieldMeasureRow& row : rows) {
-    md << format("| %g | %u | %.2f | %+.2f | %.2f", double(row.time), row.bounces, 100 * row.nrmse,
-                 100 * row.bias, 100 * row.reference_noise);
+    md << format("| %g | %u | %g | %.2f | %+.2f | %.2f", double(row.time), row.bounces,
+                 double(row.probe_spacing), 100 * row.nrmse, 100 * row.bias,
+                 100 * row.reference_noise);
     md << format(" | %.4g | %.4g", row.runtime_mean, row.reference_mean);
     for (std::size_t o = 0; o < row.object_nrmse.size(); ++o)
       md << format(" | %.2f (%+.1f)", 100 * row.object_nrmse[o], 100 * row.object_bias[o]);

@@ -21,7 +21,7 @@ static void read_cell(const prt_sf_kernels* kernels, const prt_sf_shells* grid, 
   kernels->read_rows(field, prt_sf_point_count(grid) * width, planes, width, &lookup, out);
 }
 
-static void point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]) {
+void prt_sf_point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]) {
   for (int r = 0; r < 3; ++r)
     p[r] = pair->to_other[3 * r] * x[0] + pair->to_other[3 * r + 1] * x[1] +
            pair->to_other[3 * r + 2] * x[2] + pair->offset[r];
@@ -84,7 +84,7 @@ static void shadowed_light(const prt_shadowfield_scene* scene, const prt_sf_inst
     for (uint32_t lane = 0; lane < count; ++lane) {
       const uint32_t v = first + lane;
       float p[3];
-      point_in_other(pair, object->positions + 3u * v, p);
+      prt_sf_point_in_other(pair, object->positions + 3u * v, p);
       prt_sf_cell cell;
       prt_sf_cell* source_cell = locate_sources ? &cell_row(scene, receiver, v)[q] : NULL;
       if (source_cell && pair->fields_share_sphere) {
@@ -162,7 +162,7 @@ static void bounced_light(const prt_shadowfield_scene* scene, const prt_sf_insta
       cell = row[q];
     } else {
       float p[3];
-      point_in_other(pair, x, p);
+      prt_sf_point_in_other(pair, x, p);
       prt_sf_cell_locate(&object->srf_shells, pair->srf_log_span, p, &cell);
     }
     if (cell.count == 0u) continue;
@@ -200,6 +200,12 @@ void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint
   const uint32_t n2 = scene->order * scene->order, terms = object->terms;
   float* incident = receiver->incident + (size_t)pass * object->vertex_count * terms * 3u;
   const uint32_t end = first_vertex + vertex_count;
+  if (pass > 0u && receiver->probe_count > 0u) {
+    for (uint32_t v = first_vertex; v < end; ++v)
+      prt_sf_probed_light(scene, receiver, v, object->transfer + (size_t)v * terms * n2, terms,
+                          incident + (size_t)v * terms * 3u);
+    return;
+  }
   if (pass > 0u) {
     for (uint32_t v = first_vertex; v < end; ++v)
       bounced_light(scene, receiver, v, object->positions + 3u * v,
@@ -207,7 +213,8 @@ void prt_sf_gather_range(const prt_shadowfield_scene* scene, uint32_t pass, uint
                     incident + (size_t)v * terms * 3u);
     return;
   }
-  const int locate_sources = scene->bounces > 0u;
+  /* A receiver with probes reads the sources at its probes, not at its vertices. */
+  const int locate_sources = scene->bounces > 0u && receiver->probe_count == 0u;
   float light[PRT_SF_LANES][PRT_SF_MAX_COEFFS * 3u];
   for (uint32_t first = first_vertex; first < end; first += PRT_SF_LANES) {
     const uint32_t count = end - first < PRT_SF_LANES ? end - first : PRT_SF_LANES;
@@ -253,8 +260,26 @@ static void basis_weights(const prt_sf_object* object, const float* incident, fl
     }
 }
 
-/* Marks the source's SRF points some receiver's cell reads this frame, or every point when a
- * receiver vertex that it reaches has no cells this frame (its bounces locate afresh). */
+/* Marks the points of `grid` that rows [0, rows) of cells (row r's cell of the pair at
+ * rows_at[r pair_count + q]) read; 0, marking nothing more, when a row has no cells this frame
+ * (its stamp is not `frame`). */
+static int mark_rows(const prt_sf_shells* grid, const prt_sf_cell* rows_at, uint32_t rows,
+                     uint32_t pair_count, uint32_t q, const uint32_t* stamps, uint32_t frame,
+                     uint8_t* needed) {
+  for (uint32_t r = 0; r < rows; ++r) {
+    if (stamps[r] != frame) return 0;
+    const prt_sf_cell* cell = &rows_at[(size_t)r * pair_count + q];
+    if (cell->count == 0u) continue;
+    prt_sf_lookup lookup;
+    prt_sf_cell_lookup(grid, cell, &lookup);
+    for (uint32_t e = 0; e < lookup.count; ++e) needed[lookup.index[e]] = 1u;
+  }
+  return 1;
+}
+
+/* Marks the source's SRF points some receiver's cell reads this frame (a vertex's, or a probe's
+ * for a receiver with probes), or every point when a row that it reaches has no cells this
+ * frame (the bounces locate afresh). */
 static void mark_needed(const prt_shadowfield_scene* scene, uint32_t instance) {
   prt_sf_instance* source = &scene->instances[instance];
   const prt_sf_shells* grid = &scene->objects[source->object]->srf_shells;
@@ -262,20 +287,19 @@ static void mark_needed(const prt_shadowfield_scene* scene, uint32_t instance) {
   memset(source->needed, 0, points);
   for (uint32_t i = 0; i < scene->instance_count; ++i) {
     const prt_sf_instance* receiver = &scene->instances[i];
-    const uint32_t vertices = scene->objects[receiver->object]->vertex_count;
+    const int probed = receiver->probe_count > 0u;
+    const prt_sf_cell* rows_at = probed ? scene->probe_cells + receiver->probe_cell_first
+                                        : scene->cells + receiver->cell_first;
+    const uint32_t rows =
+        probed ? receiver->probe_count : scene->objects[receiver->object]->vertex_count;
+    const uint32_t* stamps = probed ? receiver->probe_located : receiver->located;
     for (uint32_t q = 0; q < receiver->pair_count; ++q) {
       const prt_sf_pair* pair = &scene->pairs[receiver->pair_first + q];
       if (pair->other != instance || !pair->lights) continue;
-      for (uint32_t v = 0; v < vertices; ++v) {
-        if (receiver->located[v] != scene->frame) {
-          memset(source->needed, 1, points);
-          return;
-        }
-        const prt_sf_cell* cell = &cell_row(scene, receiver, v)[q];
-        if (cell->count == 0u) continue;
-        prt_sf_lookup lookup;
-        prt_sf_cell_lookup(grid, cell, &lookup);
-        for (uint32_t e = 0; e < lookup.count; ++e) source->needed[lookup.index[e]] = 1u;
+      if (!mark_rows(grid, rows_at, rows, receiver->pair_count, q, stamps, scene->frame,
+                     source->needed)) {
+        memset(source->needed, 1, points);
+        return;
       }
     }
   }

@@ -212,6 +212,8 @@ static void next_frame(prt_shadowfield_scene* scene) {
   for (uint32_t i = 0; i < scene->instance_count; ++i) {
     const prt_sf_instance* instance = &scene->instances[i];
     memset(instance->located, 0, scene->objects[instance->object]->vertex_count * sizeof(uint32_t));
+    if (instance->probe_located)
+      memset(instance->probe_located, 0, instance->probe_located_capacity * sizeof(uint32_t));
   }
   scene->frame = 1u;
 }
@@ -233,16 +235,26 @@ static const prt_sf_kernels* simd_kernels(const prt_context* context) {
   return NULL;
 }
 
-/* The settings' bounce count and backend's kernels (AUTO: SIMD when usable), or a failure. */
+/* The settings' bounce count, probe spacing and backend's kernels (AUTO: SIMD when usable), or
+ * a failure. */
 static prt_result read_settings(prt_context* context, const prt_shadowfield_settings* settings,
-                                uint32_t* bounces, const prt_sf_kernels** kernels) {
+                                uint32_t* bounces, float* probe_spacing,
+                                const prt_sf_kernels** kernels) {
   const prt_sf_kernels* simd = simd_kernels(context);
   *bounces = PRT_SHADOWFIELD_DEFAULT_BOUNCES;
+  *probe_spacing = 0.0f;
   *kernels = simd ? simd : &prt_sf_kernels_scalar;
   if (!settings) return PRT_OK;
-  if (!prt_internal_struct_size_ok(settings, sizeof(prt_shadowfield_settings)))
+  if (!prt_internal_struct_size_ok(settings, PRT_SF_SETTINGS_1_0_SIZE))
     return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
                              "shadowfield settings: struct_size below 1.0's");
+  if (prt_internal_struct_size_ok(settings, PRT_SF_SETTINGS_PROBES_SIZE)) {
+    *probe_spacing = settings->bounce_probe_spacing;
+    if (!(*probe_spacing >= 0.0f) || !isfinite(*probe_spacing))
+      return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
+                               "shadowfield settings: bounce_probe_spacing %g (0, or finite > 0)",
+                               (double)*probe_spacing);
+  }
   if (settings->bounces > PRT_SHADOWFIELD_MAX_BOUNCES)
     return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT,
                              "shadowfield settings: %u bounces (at most %u)", settings->bounces,
@@ -277,8 +289,9 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
   if (!light_sh_rgb || !eye)
     return prt_internal_fail(context, PRT_ERROR_INVALID_ARGUMENT, "shadowfield: NULL light or eye");
   uint32_t bounces;
+  float probe_spacing;
   const prt_sf_kernels* kernels;
-  const prt_result read = read_settings(context, settings, &bounces, &kernels);
+  const prt_result read = read_settings(context, settings, &bounces, &probe_spacing, &kernels);
   if (read != PRT_OK) return read;
   const uint32_t n2 = scene->order * scene->order;
   if (!all_finite(light_sh_rgb, (size_t)n2 * 3u) || !all_finite(eye, 3u))
@@ -298,6 +311,8 @@ prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* li
   scene->pair_count = find_pairs(scene, scene->pairs);
   if (reserve_cells(scene) != PRT_OK)
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield cells");
+  const prt_result probes = prt_sf_prepare_probes(scene, probe_spacing, bounces);
+  if (probes != PRT_OK) return probes;
   next_frame(scene);
   memcpy(scene->eye, eye, sizeof scene->eye);
   scene->bounces = bounces;
@@ -316,6 +331,8 @@ prt_result prt_shadowfield_shade(prt_shadowfield_scene* scene, const float* ligh
   const prt_result prepared = prt_shadowfield_prepare(scene, light_sh_rgb, eye, settings);
   if (prepared != PRT_OK) return prepared;
   for (uint32_t pass = 0; pass <= scene->bounces; ++pass) {
+    for (uint32_t i = 0; i < scene->instance_count; ++i)
+      prt_sf_gather_probes_range(scene, pass, i, 0u, scene->instances[i].probe_count);
     for (uint32_t i = 0; i < scene->instance_count; ++i)
       prt_sf_gather_range(scene, pass, i, 0u, prt_shadowfield_instance_vertex_count(scene, i));
     if (pass < scene->bounces)

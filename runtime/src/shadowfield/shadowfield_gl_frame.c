@@ -173,19 +173,27 @@ static void bind_buffers(const prt_gl_shadowfield* s, int bind) {
 }
 
 /* The settings for prt_shadowfield_prepare: a GL backend asked for becomes AUTO there (the
- * preparation is the CPU's); a CPU or SIMD one is refused. Others go to prepare as they are, so
- * that it refuses them as it does for prt_shadowfield_shade. */
+ * preparation is the CPU's); a CPU or SIMD one, or bounce probes, are refused. Others go to
+ * prepare as they are, so that it refuses them as it does for prt_shadowfield_shade. */
 static prt_result prepare_settings(prt_context* context, const prt_shadowfield_settings* settings,
                                    prt_shadowfield_settings* copy,
                                    const prt_shadowfield_settings** out) {
   *out = settings;
-  if (!settings || !prt_internal_struct_size_ok(settings, sizeof *settings)) return PRT_OK;
+  if (!settings || !prt_internal_struct_size_ok(settings, PRT_SF_SETTINGS_1_0_SIZE)) return PRT_OK;
   if (settings->backend == PRT_BACKEND_CPU || settings->backend == PRT_BACKEND_SIMD)
     return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
                              "%s: settings ask for a CPU backend (use prt_shadowfield_shade)",
                              FUNCTION_SHADE);
+  if (prt_internal_struct_size_ok(settings, PRT_SF_SETTINGS_PROBES_SIZE) &&
+      settings->bounce_probe_spacing != 0.0f)
+    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
+                             "%s: bounce probes are CPU only (bounce_probe_spacing must be 0)",
+                             FUNCTION_SHADE);
   if (settings->backend == PRT_BACKEND_GL) {
-    *copy = *settings;
+    /* As far as the caller's struct reaches; the rest as a zeroed struct has it. */
+    memset(copy, 0, sizeof *copy);
+    memcpy(copy, settings,
+           settings->struct_size < sizeof *copy ? settings->struct_size : sizeof *copy);
     copy->backend = PRT_BACKEND_AUTO;
     *out = copy;
   }

@@ -33,7 +33,10 @@ prt_result prt_shadowfield_scene_create(prt_context* context, uint32_t max_insta
       allocator, (size_t)max_instances * sizeof(prt_sf_log_field), 16);
   if (scene->log_fields)
     memset(scene->log_fields, 0, (size_t)max_instances * sizeof(prt_sf_log_field));
-  if (!scene->objects || !scene->instances || !scene->log_fields) {
+  scene->probes = (prt_sf_probes*)prt_internal_alloc(
+      allocator, (size_t)max_instances * sizeof(prt_sf_probes), 16);
+  if (scene->probes) memset(scene->probes, 0, (size_t)max_instances * sizeof(prt_sf_probes));
+  if (!scene->objects || !scene->instances || !scene->log_fields || !scene->probes) {
     prt_shadowfield_scene_destroy(scene);
     return prt_internal_fail(context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield scene");
   }
@@ -66,6 +69,10 @@ void prt_shadowfield_scene_destroy(prt_shadowfield_scene* scene) {
     free_floats(allocator, instance->light_product, instance->light_product_floats);
     if (instance->located) prt_internal_free(allocator, instance->located, instance->located_bytes);
   }
+  prt_sf_free_probes(scene);
+  if (scene->probes)
+    prt_internal_free(allocator, scene->probes,
+                      (size_t)scene->max_instances * sizeof(prt_sf_probes));
   if (scene->pairs)
     prt_internal_free(allocator, scene->pairs, scene->pair_capacity * sizeof(prt_sf_pair));
   if (scene->cells)

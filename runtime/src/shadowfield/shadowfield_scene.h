@@ -4,6 +4,8 @@
 #ifndef PRT_RUNTIME_SHADOWFIELD_SCENE_H
 #define PRT_RUNTIME_SHADOWFIELD_SCENE_H
 
+#include <stddef.h>
+
 #include <prt/prt.h>
 
 #include "shadowfield_gaunt.h"
@@ -18,6 +20,10 @@
  * l < 6 of (2l + 1) x 8 ceil((2l + 1) / 8). */
 #define PRT_SF_PADDED_ROTATION_FLOATS 448u
 #define PRT_SF_PASSES (PRT_SHADOWFIELD_MAX_BOUNCES + 1u)
+/* prt_shadowfield_settings as 1.0 had it, and as far as bounce_probe_spacing reaches. */
+#define PRT_SF_SETTINGS_1_0_SIZE offsetof(prt_shadowfield_settings, bounce_probe_spacing)
+#define PRT_SF_SETTINGS_PROBES_SIZE \
+  (offsetof(prt_shadowfield_settings, bounce_probe_spacing) + sizeof(float))
 /* The most BRDF terms an object may have (the baker's default is 4). */
 #define PRT_SF_MAX_TERMS 64u
 
@@ -68,6 +74,16 @@ typedef struct prt_sf_pair {
   float padded_columns_back[PRT_SF_PADDED_ROTATION_FLOATS];
 } prt_sf_pair;
 
+/* An object's bounce probes at one spacing (shadowfield_probes.c): the corners of the grid cells
+ * its vertices fall in (those some vertex weighs above 0), and each vertex's trilinear lookup of
+ * them. */
+typedef struct prt_sf_probes {
+  float spacing;          /* what the layout was made for; 0: none */
+  uint32_t count;         /* probes; 0 when the object gathers per vertex at this spacing */
+  float* positions;       /* count x 3, in the object's frame */
+  prt_sf_lookup* lookups; /* one per vertex (count 1..8, the probes' indices and weights) */
+} prt_sf_probes;
+
 typedef struct prt_sf_instance {
   uint32_t object;
   float rotation[9]; /* row-major, orthonormalised */
@@ -109,6 +125,17 @@ typedef struct prt_sf_instance {
   /* A receiver of fewer terms than colours: where its transfer turned into each source's frame
    * starts in scene->turned (vertex v, pair q: turned_first + (v pair_count + q) terms n^2). */
   size_t turned_first;
+
+  /* Bounce probes this frame (prt_sf_prepare_probes): their count (0: none), where their row
+   * of cells starts in scene->probe_cells (probe p, pair q: probe_cell_first + p pair_count +
+   * q), the frame stamp of each probe's row, and the light of the pass being gathered, one plane
+   * per colour: [(c probe_count + p) n^2 + k]. */
+  uint32_t probe_count;
+  size_t probe_cell_first;
+  uint32_t* probe_located;
+  size_t probe_located_capacity; /* stamps */
+  float* probe_light;
+  size_t probe_light_capacity; /* floats */
 } prt_sf_instance;
 
 /* An object's log occlusion field (shadowfield_log.h), its size kept so that freeing it reads no
@@ -138,6 +165,11 @@ struct prt_shadowfield_scene {
   float* turned;
   size_t turned_capacity;
   uint32_t frame; /* the prepared frame's stamp, never 0 */
+  /* Each object's bounce probes (one per object slot), and the probes' rows of cells as
+   * receivers (prt_sf_instance::probe_cell_first). */
+  prt_sf_probes* probes;
+  prt_sf_cell* probe_cells;
+  size_t probe_cell_capacity;
   /* How blockers combine; with PRT_SHADOWFIELD_PRODUCT_LOG every object's log field (one per
    * object slot) and the exponential's rule (once the scene has an order). */
   prt_shadowfield_product product;
@@ -162,6 +194,24 @@ prt_result prt_internal_sf_scene_add_object(prt_shadowfield_scene* scene,
 prt_result prt_sf_scene_build_log_fields(prt_shadowfield_scene* scene, uint32_t objects);
 /* Frees every log field and the exponential's rule. */
 void prt_sf_scene_free_log_fields(prt_shadowfield_scene* scene);
+
+/* The frame's bounce probes (shadowfield_probes.c), after the pairs: each object's layout at
+ * `spacing` (laid out again when it changed; freed at 0), and for every instance that has
+ * probes this frame (bounces > 0 and some pair lights it) their count, buffers and cells.
+ * Records failures in the scene's context. */
+prt_result prt_sf_prepare_probes(prt_shadowfield_scene* scene, float spacing, uint32_t bounces);
+/* Frees every layout and the probes' buffers and cells. */
+void prt_sf_free_probes(prt_shadowfield_scene* scene);
+/* Pass 0: locates probes [first, first + count) of `instance` in its sources' SRF grids;
+ * a bounce: gathers their light from the sources' fields. */
+void prt_sf_gather_probes_range(const prt_shadowfield_scene* scene, uint32_t pass,
+                                uint32_t instance, uint32_t first, uint32_t count);
+/* Vertex v's bounce light L_k (out[3 k + c]) interpolated from its instance's probes. */
+void prt_sf_probed_light(const prt_shadowfield_scene* scene, const prt_sf_instance* receiver,
+                         uint32_t v, const float* transfer, uint32_t terms, float* out);
+
+/* Receiver point x in the other instance's frame of the pair. */
+void prt_sf_point_in_other(const prt_sf_pair* pair, const float x[3], float p[3]);
 
 /* Rotates `in` (order^2 coefficients x channels, coefficient-major) by band blocks. */
 void prt_sf_rotate_apply(uint32_t order, const float* blocks, const float* in, float* out,

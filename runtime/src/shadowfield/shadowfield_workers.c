@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* Technique `shadowfield`'s frame split over a prt_workers pool: each stage's items (every
- * instance's vertices, then every source's field points) numbered one after another across the
- * instances and cut into contiguous chunks, with the pool's barrier between stages. Each item is
- * computed as in the one-thread frame, so the result is bitwise prt_shadowfield_shade's. */
+ * instance's probes, its vertices, then every source's field points) numbered one after another
+ * across the instances and cut into contiguous chunks, with the pool's barrier between stages. Each
+ * item is computed as in the one-thread frame, so the result is bitwise prt_shadowfield_shade's. */
 #include "../workers_internal.h"
 #include "shadowfield_scene.h"
 
@@ -18,6 +18,10 @@ typedef void (*sf_span_fn)(const sf_workers_job* job, uint32_t instance, uint64_
 
 static uint64_t vertex_items(const prt_shadowfield_scene* scene, uint32_t instance) {
   return prt_shadowfield_instance_vertex_count(scene, instance);
+}
+
+static uint64_t probe_items(const prt_shadowfield_scene* scene, uint32_t instance) {
+  return scene->instances[instance].probe_count;
 }
 
 static uint64_t total_items(const prt_shadowfield_scene* scene, sf_items_fn items) {
@@ -45,6 +49,11 @@ static void gather_span(const sf_workers_job* job, uint32_t instance, uint64_t f
   prt_sf_gather_range(job->scene, job->pass, instance, (uint32_t)first, (uint32_t)count);
 }
 
+static void probe_span(const sf_workers_job* job, uint32_t instance, uint64_t first,
+                       uint64_t count) {
+  prt_sf_gather_probes_range(job->scene, job->pass, instance, (uint32_t)first, (uint32_t)count);
+}
+
 static void field_span(const sf_workers_job* job, uint32_t instance, uint64_t first,
                        uint64_t count) {
   prt_sf_cast_field(job->scene, instance, first, count);
@@ -60,6 +69,11 @@ static void output_span(const sf_workers_job* job, uint32_t instance, uint64_t f
 
 static prt_result gather_chunk(void* user, uint32_t first, uint32_t count) {
   for_spans((const sf_workers_job*)user, vertex_items, gather_span, first, count);
+  return PRT_OK;
+}
+
+static prt_result probe_chunk(void* user, uint32_t first, uint32_t count) {
+  for_spans((const sf_workers_job*)user, probe_items, probe_span, first, count);
   return PRT_OK;
 }
 
@@ -80,12 +94,13 @@ static prt_result output_chunk(void* user, uint32_t first, uint32_t count) {
 }
 
 static prt_result run_passes(prt_workers* workers, sf_workers_job* job, uint32_t vertices,
-                             uint32_t points) {
+                             uint32_t probes, uint32_t points) {
   const prt_shadowfield_scene* scene = job->scene;
   prt_result result = PRT_OK;
   for (uint32_t pass = 0; pass <= scene->bounces && result == PRT_OK; ++pass) {
     job->pass = pass;
-    result = prt_workers_run(workers, vertices, gather_chunk, job);
+    if (probes > 0u) result = prt_workers_run(workers, probes, probe_chunk, job);
+    if (result == PRT_OK) result = prt_workers_run(workers, vertices, gather_chunk, job);
     if (pass == scene->bounces || result != PRT_OK) continue;
     result = prt_workers_run(workers, scene->instance_count, weights_chunk, job);
     if (result == PRT_OK) result = prt_workers_run(workers, points, field_chunk, job);
@@ -105,13 +120,14 @@ prt_result prt_shadowfield_shade_workers(prt_workers* workers, prt_shadowfield_s
   const prt_result prepared = prt_shadowfield_prepare(scene, light_sh_rgb, eye, settings);
   if (prepared != PRT_OK) return prepared;
   const uint64_t vertices = total_items(scene, vertex_items);
+  const uint64_t probes = total_items(scene, probe_items);
   const uint64_t points = total_items(scene, prt_sf_field_points);
-  if (vertices > UINT32_MAX || points > UINT32_MAX)
+  if (vertices > UINT32_MAX || probes > UINT32_MAX || points > UINT32_MAX)
     return prt_internal_fail(scene->context, PRT_ERROR_INVALID_ARGUMENT,
                              "prt_shadowfield_shade_workers: more than 2^32 vertices or points");
   sf_workers_job job;
   job.scene = scene;
   job.pass = 0u;
   job.out_rgb = out_rgb;
-  return run_passes(workers, &job, (uint32_t)vertices, (uint32_t)points);
+  return run_passes(workers, &job, (uint32_t)vertices, (uint32_t)probes, (uint32_t)points);
 }

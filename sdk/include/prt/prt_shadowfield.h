@@ -8,8 +8,10 @@
  * translation t and a uniform scale s: world = s R local + t). Every object of a scene has one SH
  * order (the first object's; prt_shadowfield_scene_order). A frame is
  *     prepare (light, eye, settings; pairs of instances that interact)
- *     pass 0 (direct light) ... pass B (bounce B): gather each instance's vertices, then, between
- *                                                   two passes, project each instance
+ *     pass 0 (direct light) ... pass B (bounce B): gather each instance's probes (when the
+ *                                                   settings ask for bounce probes), then its
+ *                                                   vertices, then, between two passes, project
+ *                                                   each instance
  *     output (outgoing radiance per vertex towards the eye, summed over passes 0..p).
  * prt_shadowfield_shade runs all of it on the calling thread, prt_shadowfield_shade_workers on a
  * runtime-owned pool. A game's job system can instead call the range functions below in that
@@ -58,6 +60,17 @@ typedef struct prt_shadowfield_settings {
    * through prt_gl_shadowfield_shade; the CPU entry points refuse it
    * (PRT_ERROR_UNSUPPORTED_BACKEND). */
   prt_backend backend;
+  /* Added after 1.0: read only when struct_size reaches it, else 0. 0: every vertex gathers each
+   * bounce's light from the sources' fields itself (the default, and what GL does). > 0: the light
+   * a bounce brings is gathered at bounce probes, the corners of a grid of this spacing (in each
+   * object's own units) over the cells its vertices fall in, and each vertex interpolates it
+   * trilinearly before its own transfer turns it into reflected light. The light arriving at a
+   * point does not depend on the surface there, so far fewer points read the fields; near a
+   * contact, where it changes within a cell, it is smoothed. An object whose grid has as many
+   * corners as vertices keeps gathering per vertex. The direct light is never interpolated. Laying
+   * out an object's probes allocates and sorts, at the first prepare with a new spacing. CPU only:
+   * GL refuses a spacing above 0 (PRT_ERROR_UNSUPPORTED_BACKEND). */
+  float bounce_probe_spacing;
 } prt_shadowfield_settings;
 
 /* A scene on `context` (its allocator, its record of failures; it must outlive the scene) for
@@ -143,6 +156,18 @@ PRT_API prt_result prt_shadowfield_shade_workers(prt_workers* workers, prt_shado
 PRT_API prt_result prt_shadowfield_prepare(prt_shadowfield_scene* scene, const float* light_sh_rgb,
                                            const float eye[3],
                                            const prt_shadowfield_settings* settings);
+/* Bounce probes that instance has this frame: 0 without prepare, when the settings' spacing is
+ * 0, without bounces, when no other instance lights it, or when its object gathers per vertex. */
+PRT_API uint32_t prt_shadowfield_instance_probe_count(const prt_shadowfield_scene* scene,
+                                                      uint32_t instance);
+/* Before each pass's gather, pass 0 included: the probes [first_probe, first_probe +
+ * probe_count) of `instance` (prt_shadowfield_instance_probe_count). Pass 0 finds where each
+ * probe reads the sources' fields this frame, which the projections need; a bounce gathers
+ * their light, which the same pass's gather of the vertices reads. Nothing to do for an
+ * instance without probes. */
+PRT_API prt_result prt_shadowfield_gather_probes(prt_shadowfield_scene* scene, uint32_t pass,
+                                                 uint32_t instance, uint32_t first_probe,
+                                                 uint32_t probe_count);
 /* Pass `pass` (0: direct, b: bounce b, up to the prepared bounces) of the vertices
  * [first_vertex, first_vertex + vertex_count) of `instance`. */
 PRT_API prt_result prt_shadowfield_gather(prt_shadowfield_scene* scene, uint32_t pass,

@@ -254,11 +254,12 @@ struct Variant {
   prt_shadowfield_product product;
   uint32_t bounces;
   const char* label;
+  float probe_spacing = 0.0f;  // bounce probes' spacing in object units; 0: per vertex
 };
 
 // The default product and bounces: the variants whose memory and streamed bytes are recorded.
 bool is_default(const Variant& v) {
-  return v.product == PRT_SHADOWFIELD_PRODUCT_TRIPLE && v.bounces == 3;
+  return v.product == PRT_SHADOWFIELD_PRODUCT_TRIPLE && v.bounces == 3 && v.probe_spacing == 0.0f;
 }
 
 void BM_Frame(benchmark::State& state, const std::string& name, const Variant& variant) {
@@ -279,6 +280,7 @@ void BM_Frame(benchmark::State& state, const std::string& name, const Variant& v
   settings.struct_size = sizeof settings;
   settings.bounces = variant.bounces;
   settings.backend = variant.backend;
+  settings.bounce_probe_spacing = variant.probe_spacing;
   float time = 0.0f;
   double cpu = 0.0, wall = 0.0;
   for (auto _ : state) {
@@ -387,14 +389,17 @@ void register_frames() {
         ->MinTime(2.0);
 #endif
   // The log-space product on SIMD too (a receiver here has a few blockers, not the many it is
-  // for), and fewer bounces: the frame's cost against the error per bounce count of
-  // docs/shadowfield/accuracy.md.
+  // for), fewer bounces, and bounce probes at three spacings: the frame's cost against the
+  // error per bounce count and per spacing of docs/shadowfield/accuracy.md.
   static const Variant variants[] = {
       {PRT_BACKEND_CPU, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "scalar"},
       {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "simd"},
       {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_LOG, 3, "simd-log"},
       {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 1, "simd-1-bounce"},
-      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 0, "simd-0-bounces"}};
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 0, "simd-0-bounces"},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "simd-probes-0.2", 0.2f},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "simd-probes-0.3", 0.3f},
+      {PRT_BACKEND_SIMD, PRT_SHADOWFIELD_PRODUCT_TRIPLE, 3, "simd-probes-0.4", 0.4f}};
   for (const char* name : {"teapot", "room"})
     for (const Variant& v : variants)
       benchmark::RegisterBenchmark(
@@ -408,9 +413,9 @@ void register_frames() {
           ->MinTime(2.0);
 }
 
-// One frame's outputs (every instance's vertices, one after another) on `backend`; empty when
-// the backend is not usable here.
-std::vector<float> shade_once(LoadedScene& s, prt_backend backend) {
+// One frame's outputs (every instance's vertices, one after another) on `backend` with bounce
+// probes at `probe_spacing` (0: per vertex); empty when the backend is not usable here.
+std::vector<float> shade_once(LoadedScene& s, prt_backend backend, float probe_spacing = 0.0f) {
   float eye[3];
   s.frame_at(1.0f, eye);
   const std::vector<float> light = light_at(0.5f);
@@ -418,6 +423,7 @@ std::vector<float> shade_once(LoadedScene& s, prt_backend backend) {
   settings.struct_size = sizeof settings;
   settings.bounces = 3;
   settings.backend = backend;
+  settings.bounce_probe_spacing = probe_spacing;
   std::vector<float> all;
   if (backend == PRT_BACKEND_GL) {
 #if PRT_BENCH_GL
@@ -441,7 +447,17 @@ std::vector<float> shade_once(LoadedScene& s, prt_backend backend) {
   return all;
 }
 
-// How far SIMD's and GL's outputs of one frame are from scalar's, over the largest output.
+// How far a frame's outputs are from another's, over the other's largest output.
+double apart(const std::vector<float>& other, const std::vector<float>& scalar) {
+  double largest = 0.0, worst = 0.0;
+  for (const float v : scalar) largest = std::max(largest, double(std::fabs(v)));
+  for (size_t e = 0; e < other.size(); ++e)
+    worst = std::max(worst, double(std::fabs(other[e] - scalar[e])));
+  return largest > 0.0 ? worst / largest : 0.0;
+}
+
+// How far SIMD's and GL's outputs of one frame are from scalar's, over the largest output; and
+// with bounce probes, SIMD's from scalar's and both from the per-vertex frame.
 void print_agreement(LoadedScene& s) {
   const std::vector<float> scalar = shade_once(s, PRT_BACKEND_CPU);
   double largest = 0.0;
@@ -459,6 +475,14 @@ void print_agreement(LoadedScene& s) {
     std::printf(" %s %.2g of it;", backend == PRT_BACKEND_GL ? "gl" : "simd", worst / largest);
   }
   std::printf("\n");
+  const float spacing = 0.3f;
+  const std::vector<float> probed = shade_once(s, PRT_BACKEND_CPU, spacing);
+  const std::vector<float> probed_simd = shade_once(s, PRT_BACKEND_SIMD, spacing);
+  std::printf("    with bounce probes %g apart: scalar from per vertex %.2g, simd from scalar %s\n",
+              double(spacing), apart(probed, scalar),
+              probed_simd.size() == probed.size()
+                  ? std::to_string(apart(probed_simd, probed)).c_str()
+                  : "not run");
 }
 
 void print_summary() {

@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "shadowfield/runtime/shadowfield_test_scene.hpp"
@@ -407,6 +409,21 @@ TEST(ShadowfieldGl, BadSettingsAreRefusedAsByScalar) {
     EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &settings),
               PRT_ERROR_UNSUPPORTED_BACKEND);
   }
+  // Bounce probes are the CPU's: refused by name, on AUTO and GL alike.
+  for (const prt_backend backend : {PRT_BACKEND_AUTO, PRT_BACKEND_GL}) {
+    prt_shadowfield_settings probes = settings_for(1, backend);
+    probes.bounce_probe_spacing = 0.25f;
+    EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &probes),
+              PRT_ERROR_UNSUPPORTED_BACKEND);
+    EXPECT_NE(std::string(prt_context_last_message(busy.scene.context)).find("probe"),
+              std::string::npos);
+  }
+  // A caller built against 1.0's struct (ending before the spacing) asking for GL gets GL.
+  prt_shadowfield_settings first = settings_for(1, PRT_BACKEND_GL);
+  first.struct_size = offsetof(prt_shadowfield_settings, bounce_probe_spacing);
+  first.bounce_probe_spacing = 0.25f;  // beyond its struct_size: never read
+  EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &first), PRT_OK)
+      << prt_context_last_message(busy.scene.context);
   // AUTO is GL here.
   const prt_shadowfield_settings automatic = settings_for(1, PRT_BACKEND_AUTO);
   EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &automatic), PRT_OK);

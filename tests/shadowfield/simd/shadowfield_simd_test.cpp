@@ -467,6 +467,7 @@ struct FrameScene {
   prt::ContextPtr context;
   prt_shadowfield_scene* scene = nullptr;
   prt_workers* workers = nullptr;
+  float probe_spacing = 0.0f;  // prt_shadowfield_settings::bounce_probe_spacing
 
   FrameScene(uint32_t order, prt_simd_isa isa)
       : floor(make_patch(order, 13)),
@@ -499,6 +500,7 @@ struct FrameScene {
     settings.struct_size = sizeof settings;
     settings.bounces = 3;
     settings.backend = backend;
+    settings.bounce_probe_spacing = probe_spacing;
     std::vector<float> out(size_t(floor.vertex_count + 2 * source.vertex_count) * 3);
     float* pointers[3] = {out.data(), out.data() + floor.vertex_count * 3,
                           out.data() + (floor.vertex_count + source.vertex_count) * 3};
@@ -564,13 +566,39 @@ TEST(ShadowfieldSimdFrame, AgreesWithScalarWithTheLogProduct) {
   }
 }
 
-// The pool splits vertices and field points across threads; each is computed as on one thread.
+// With bounce probes (a 5 x 5 grid on both objects, far fewer than their vertices), each bounce
+// adds a probe's reads and its rotation (8 + n^2 terms), then a vertex's read of its probes (8).
+TEST(ShadowfieldSimdFrame, AgreesWithScalarWithBounceProbes) {
+  SKIP_WITHOUT_AVX2();
+  for (const uint32_t order : {2u, 4u, 6u}) {
+    FrameScene s(order, PRT_SIMD_ISA_AUTO);
+    s.probe_spacing = 0.25f;
+    const std::vector<float> scalar = s.shade(PRT_BACKEND_CPU);
+    ASSERT_EQ(prt_shadowfield_instance_probe_count(s.scene, 0), 25u);
+    ASSERT_EQ(prt_shadowfield_instance_probe_count(s.scene, 1), 25u);
+    const std::vector<float> simd = s.shade(PRT_BACKEND_SIMD);
+    const double n2 = order * order;
+    const double terms = 4.0 * (8.0 + 2.0 * n2 + s.source.vertex_count) + 3.0 * (16.0 + n2);
+    const double bound = 2.0 * std::sqrt(terms) * kUnit * max_abs(scalar);
+    const double difference = max_difference(scalar, simd);
+    EXPECT_LE(difference, bound) << "order " << order;
+    EXPECT_GT(max_abs(scalar), 0.1);
+    RecordProperty("probes_order" + std::to_string(order) + "_difference_over_bound",
+                   std::to_string(difference / bound));
+  }
+}
+
+// The pool splits vertices, probes and field points across threads; each is computed as on one
+// thread.
 TEST(ShadowfieldSimdFrame, ThreadsGiveTheSameBits) {
   SKIP_WITHOUT_AVX2();
-  FrameScene s(4, PRT_SIMD_ISA_AUTO);
-  const std::vector<float> one = s.shade(PRT_BACKEND_SIMD);
-  const std::vector<float> two = s.shade(PRT_BACKEND_SIMD, 2);
-  EXPECT_TRUE(prt_test::same_bits(one, two));
+  for (const float spacing : {0.0f, 0.25f}) {
+    FrameScene s(4, PRT_SIMD_ISA_AUTO);
+    s.probe_spacing = spacing;
+    const std::vector<float> one = s.shade(PRT_BACKEND_SIMD);
+    const std::vector<float> two = s.shade(PRT_BACKEND_SIMD, 2);
+    EXPECT_TRUE(prt_test::same_bits(one, two)) << "probe spacing " << spacing;
+  }
 }
 
 TEST(ShadowfieldSimdFrame, AutoPicksSimdWhereUsable) {

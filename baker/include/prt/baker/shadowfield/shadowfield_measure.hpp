@@ -52,11 +52,15 @@ struct ShadowfieldMeasureSettings {
   std::uint32_t seed = 0;
   std::optional<glm::vec3> eye;  // default: the description's camera eye
   bool log_product = false;      // the runtime combines blockers by the log-space product
+  // The runtime's bounce probe spacings (prt_shadowfield_settings::bounce_probe_spacing), each
+  // measured against the same references; 0: per vertex.
+  std::vector<float> probe_spacings{0.0f};
 };
 
 struct ShadowfieldMeasureRow {
   float time = 0.0f;
   std::uint32_t bounces = 0;
+  float probe_spacing = 0.0f;
   // relative RMSE over every instance's vertices and the three channels (io::relative_rmse),
   // and the relative bias sum(runtime - reference) / sum(reference).
   double nrmse = 0.0, bias = 0.0;
@@ -74,15 +78,16 @@ struct ShadowfieldMeasureRow {
 // the scene at `time` through pass b for each b of `bounces` (one vector per b). blobs: one
 // baked blob per object of the description, in order; `light_sh` the environment's SH in the
 // runtime's layout (project_env_sh) at least at the blobs' order; log_product: blockers combined
-// by the log-space product. Throws Error when a blob does not load or its vertex count is not
-// its object's.
+// by the log-space product; probe_spacing: the bounce probes' (0: per vertex). Throws Error when
+// a blob does not load or its vertex count is not its object's.
 std::vector<std::vector<glm::vec3>> shade_shadowfield_scene(
     const ShadowfieldSceneDescription& description,
     const std::vector<std::vector<std::uint8_t>>& blobs, const std::vector<float>& light_sh,
     std::uint32_t light_order, float time, const std::vector<std::uint32_t>& bounces,
-    const glm::vec3& eye, double* seconds = nullptr, bool log_product = false);
+    const glm::vec3& eye, double* seconds = nullptr, bool log_product = false,
+    float probe_spacing = 0.0f);
 
-// One row per time and bounce count, times in order then bounces in order. Throws Error for
+// One row per time, bounce count and probe spacing, in that order. Throws Error for
 // bad settings or blobs that do not match the description.
 std::vector<ShadowfieldMeasureRow> measure_shadowfield_scene(
     const ShadowfieldSceneDescription& description,
