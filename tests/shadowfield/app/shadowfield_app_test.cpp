@@ -237,6 +237,32 @@ TEST(ShadowfieldApp, BouncesAddLight) {
   EXPECT_LE(darker, kWidth * kHeight / 1000);
 }
 
+// Bounce probes change only how the bounce light is gathered: the picture moves by a small
+// fraction of what the bounces add, and the console says which way it was gathered.
+TEST(ShadowfieldApp, BounceProbesKeepTheBounceLight) {
+  const prt_test::CommandResult direct = app("probes_direct", "--bounces 0");
+  ASSERT_EQ(direct.exit_code, 0) << direct.output;
+  const prt_test::CommandResult exact = app("probes_exact", "--bounces 2");
+  ASSERT_EQ(exact.exit_code, 0) << exact.output;
+  EXPECT_NE(exact.output.find("bounce light per vertex"), std::string::npos) << exact.output;
+  const prt_test::CommandResult probed = app("probes", "--bounces 2 --probe-spacing 0.25");
+  ASSERT_EQ(probed.exit_code, 0) << probed.output;
+  EXPECT_NE(probed.output.find("bounce light at probes 0.25 apart"), std::string::npos)
+      << probed.output;
+  const prt_test::Picture a = picture("probes_direct"), b = picture("probes_exact"),
+                          c = picture("probes");
+  double added = 0.0, moved = 0.0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      added += std::fabs(b.luminance(x, y) - a.luminance(x, y));
+      moved += std::fabs(c.luminance(x, y) - b.luminance(x, y));
+    }
+  std::printf("mean |bounces - direct| %.2f levels, |probes - per vertex| %.3f levels\n",
+              added / (a.width * a.height), moved / (a.width * a.height));
+  EXPECT_GT(moved, 0.0);  // the option reached the runtime
+  EXPECT_LT(moved, 0.025 * added);  // measured 0.011
+}
+
 // With the log-space product the sphere still shadows the floor beside it (more deeply than
 // with triple products here); the objects, whose blocker is the floor (half the sky: the
 // product's worst case), come out brighter; the picture as a whole moves by a few 8-bit levels.
