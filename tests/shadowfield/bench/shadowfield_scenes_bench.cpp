@@ -456,6 +456,25 @@ double apart(const std::vector<float>& other, const std::vector<float>& scalar) 
   return largest > 0.0 ? worst / largest : 0.0;
 }
 
+// The object of the instance whose vertex is furthest apart in two frames' outputs, and the
+// vertex.
+std::string worst_instance(const LoadedScene& s, const std::vector<float>& a,
+                           const std::vector<float>& b) {
+  size_t worst = 0;
+  for (size_t e = 0; e < a.size(); ++e)
+    if (std::fabs(a[e] - b[e]) > std::fabs(a[worst] - b[worst])) worst = e;
+  size_t vertex = worst / 3;
+  for (size_t i = 0; i < s.out.size(); ++i) {
+    if (vertex < s.out[i].size() / 3) {
+      const auto& object = s.description.objects[s.description.instances[i].object];
+      return object.name + " (instance " + std::to_string(i) + ", vertex " +
+             std::to_string(vertex) + ")";
+    }
+    vertex -= s.out[i].size() / 3;
+  }
+  return "none";
+}
+
 // How far SIMD's and GL's outputs of one frame are from scalar's, over the largest output; and
 // with bounce probes, SIMD's from scalar's and both from the per-vertex frame.
 void print_agreement(LoadedScene& s) {
@@ -469,20 +488,28 @@ void print_agreement(LoadedScene& s) {
       std::printf(" %s: not run;", backend == PRT_BACKEND_GL ? "gl" : "simd");
       continue;
     }
-    double worst = 0.0;
-    for (size_t e = 0; e < other.size(); ++e)
-      worst = std::max(worst, double(std::fabs(other[e] - scalar[e])));
-    std::printf(" %s %.2g of it;", backend == PRT_BACKEND_GL ? "gl" : "simd", worst / largest);
+    std::printf(" %s %.2g of it;", backend == PRT_BACKEND_GL ? "gl" : "simd", apart(other, scalar));
   }
   std::printf("\n");
   const float spacing = 0.3f;
   const std::vector<float> probed = shade_once(s, PRT_BACKEND_CPU, spacing);
   const std::vector<float> probed_simd = shade_once(s, PRT_BACKEND_SIMD, spacing);
-  std::printf("    with bounce probes %g apart: scalar from per vertex %.2g, simd from scalar %s\n",
-              double(spacing), apart(probed, scalar),
-              probed_simd.size() == probed.size()
-                  ? std::to_string(apart(probed_simd, probed)).c_str()
-                  : "not run");
+  size_t over = 0;  // vertices with a channel more than 1 % of the largest output apart
+  for (size_t v = 0; v < scalar.size() / 3; ++v) {
+    double d = 0.0;
+    for (size_t c = 0; c < 3; ++c)
+      d = std::max(d, double(std::fabs(probed[3 * v + c] - scalar[3 * v + c])));
+    over += d > 0.01 * largest;
+  }
+  std::printf(
+      "    with bounce probes %g apart: scalar from per vertex %.2g (most on %s; %zu of %zu "
+      "vertices over 0.01), ",
+      double(spacing), apart(probed, scalar), worst_instance(s, probed, scalar).c_str(), over,
+      scalar.size() / 3);
+  if (probed_simd.size() == probed.size())
+    std::printf("simd from scalar %.2g\n", apart(probed_simd, probed));
+  else
+    std::printf("simd not run\n");
 }
 
 void print_summary() {

@@ -3,8 +3,9 @@
 // docs/shadowfield/design.md, "Bounce probes") on synthetic objects: a vertex on the probes' grid
 // gets the light the per-vertex gather gives it, one between corners their trilinear mean (every
 // vertex of a patch has the same transfer, so the mean of the lights is the mean of the
-// incident values); the staged calls, a pool and a frame without the probes' first stage give
-// the one call's bits; the settings' checks and the grids at extreme spacings.
+// incident values), above a source and interpenetrating it; the staged calls, a pool and a frame
+// without the probes' first stage give the one call's bits; 50 instances stay finite and near the
+// per-vertex frame; the settings' checks and the grids at extreme spacings.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -46,7 +47,10 @@ struct ProbeScene {
   SyntheticObject floor = make_patch(4, 9), source = make_patch(4, 9);
   TestScene scene{2};
 
-  ProbeScene() {
+  // interpenetrating: the source at the floor's centre, unturned and unscaled, so both share
+  // every position and each one's probes and vertices lie inside the other's inner shell, one at
+  // its very centre.
+  explicit ProbeScene(bool interpenetrating = false) {
     make_glossy(source, 3);
     auto field = [](uint32_t i, uint32_t k, uint64_t p, uint32_t c) {
       return c == 0 ? 0.3f + 0.05f * float(i + k) : 0.04f * std::sin(float(p + 3 * c + i));
@@ -58,7 +62,10 @@ struct ProbeScene {
     const float axis[3] = {0.36f, 0.8f, 0.48f};
     float tilt[9];
     axis_rotation(axis, 2.6f, tilt);
-    scene.add_instance(source_id, make_transform(tilt, 0.3f, 0.7f, 0.2f, 0.8f));
+    if (interpenetrating)
+      scene.add_instance(source_id, make_transform(identity_rotation(), 0.0f, 0.0f, 0.0f, 3.0f));
+    else
+      scene.add_instance(source_id, make_transform(tilt, 0.3f, 0.7f, 0.2f, 0.8f));
   }
 
   prt_shadowfield_settings settings(float spacing, uint32_t bounces) const {
@@ -112,8 +119,10 @@ std::vector<float> corner_means(const std::vector<float>& per_vertex, size_t wid
   return out;
 }
 
-TEST(ShadowfieldProbes, VerticesOnTheGridKeepTheirLightAndOthersTakeTheirCornersMean) {
-  ProbeScene s;
+class ShadowfieldProbesPlaced : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ShadowfieldProbesPlaced, VerticesOnTheGridKeepTheirLightAndOthersTakeTheirCornersMean) {
+  ProbeScene s(GetParam());
   s.shade(0.0f, 1);
   const std::vector<float> floor_exact = s.incident(0, 1), source_exact = s.incident(1, 1);
   const std::vector<float> floor_direct = s.incident(0, 0);
@@ -135,6 +144,52 @@ TEST(ShadowfieldProbes, VerticesOnTheGridKeepTheirLightAndOthersTakeTheirCorners
   }
   // And the corners' lights differ: the means are not of one value.
   EXPECT_GT(max_difference(floor_exact, corner_means(floor_exact, 3)), 1e-3 * max_abs(floor_exact));
+}
+
+// Above the floor, and interpenetrating it (receivers inside the source's inner shell).
+INSTANTIATE_TEST_SUITE_P(Placements, ShadowfieldProbesPlaced, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return info.param ? "Interpenetrating" : "Above";
+                         });
+
+TEST(ShadowfieldProbes, FiftyInstancesStayFiniteAndNearThePerVertexFrame) {
+  SyntheticObject patch = make_patch(4, 9);
+  patch.set_basis(2, [](uint32_t i, uint32_t, uint64_t p, uint32_t c) {
+    return c == 0 ? 0.05f + 0.01f * float(i) : 0.005f * std::sin(float(p + c));
+  });
+  TestScene s(50);
+  const uint32_t object = s.add_object(patch);
+  for (uint32_t i = 0; i < 50; ++i) {
+    float rotation[9];
+    const float axis[3] = {0.6f, 0.0f, 0.8f};
+    axis_rotation(axis, 0.3f * float(i), rotation);
+    s.add_instance(object, make_transform(rotation, float(i % 7) * 0.9f, float(i / 7) * 0.3f,
+                                          float(i % 3) * 0.5f));
+  }
+  const std::vector<float> light = test_light(4);
+  std::vector<std::vector<float>> frames[2];
+  for (const float spacing : {0.0f, 0.25f}) {
+    std::vector<std::vector<float>>& out = frames[spacing > 0.0f];
+    out.assign(50, std::vector<float>(size_t(patch.vertex_count) * 3));
+    std::vector<float*> pointers;
+    for (auto& o : out) pointers.push_back(o.data());
+    prt_shadowfield_settings settings{};
+    settings.struct_size = sizeof settings;
+    settings.bounces = 3;
+    settings.bounce_probe_spacing = spacing;
+    ASSERT_EQ(prt_shadowfield_shade(s.scene, light.data(), kEye, &settings, pointers.data()),
+              PRT_OK);
+  }
+  double largest = 0.0, apart = 0.0;
+  for (uint32_t i = 0; i < 50; ++i) {
+    for (const float v : frames[1][i]) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+    largest = std::max(largest, max_abs(frames[0][i]));
+    apart = std::max(apart, max_difference(frames[1][i], frames[0][i]));
+  }
+  std::printf("50 instances, 3 bounces: probes apart from per vertex by %.3g of %.3g\n", apart,
+              largest);
+  EXPECT_GT(apart, 0.0);
+  EXPECT_LT(apart, 0.025 * largest);  // measured 0.013
 }
 
 TEST(ShadowfieldProbes, TheStagesGiveTheOneCallsResult) {
