@@ -11,7 +11,9 @@
  * unit-power delta, prt_sh_eval) over a constant sky. A game would project its environment map
  * with prt_sh_project (see shade_sh.c). A scene may hold several objects (one per blob), all of
  * one SH order; a game's job system can run the frame in stages (prt_shadowfield_prepare,
- * _gather, _project, _output) or hand it to a runtime pool (prt_shadowfield_shade_workers). */
+ * _gather_probes, _gather, _project, _output) or hand it to a runtime pool
+ * (prt_shadowfield_shade_workers). On large scenes, settings.bounce_probe_spacing gathers the
+ * bounce light on a coarse grid (docs/shadowfield/design.md, "Bounce probes"). */
 #include <prt/prt.h>
 
 #include <math.h>
