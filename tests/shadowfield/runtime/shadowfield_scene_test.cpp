@@ -533,16 +533,7 @@ TEST(ShadowfieldScene, EveryFieldPointACellReadsIsCast) {
         for (uint32_t v = 0; v < vertices; ++v) {
           ASSERT_EQ(receiver.located[v], scene->frame);
           const prt_sf_cell& cell = scene->cells[receiver.cell_first + v * receiver.pair_count + q];
-          prt_sf_lookup lookup{};
-          prt_sf_cell_lookup(&object->srf_shells, &cell, &lookup);
-          for (uint32_t e = 0; e < lookup.count; ++e)
-            for (uint32_t c = 0; c < 3; ++c)
-              for (uint32_t k = 0; k < n2; ++k) {
-                const size_t at = (c * points + lookup.index[e]) * n2 + k;
-                ASSERT_EQ(source.field[at], whole[at])
-                    << "source " << s << " point " << lookup.index[e];
-                ++checked;
-              }
+          checked += expect_cell_points_cast(source, object, whole, cell, n2);
         }
       }
     }

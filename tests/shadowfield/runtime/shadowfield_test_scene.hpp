@@ -95,4 +95,23 @@ inline double max_difference(const std::vector<float>& a, const std::vector<floa
   return worst;
 }
 
+// Checks that every field point a cell of `source`'s SRF grid reads holds what casting the whole
+// field (`whole`, all three planes) gives; the values compared.
+inline uint64_t expect_cell_points_cast(const prt_sf_instance& source, const prt_sf_object* object,
+                                        const std::vector<float>& whole, const prt_sf_cell& cell,
+                                        uint32_t n2) {
+  const uint64_t points = prt_sf_point_count(&object->srf_shells);
+  prt_sf_lookup lookup{};
+  prt_sf_cell_lookup(&object->srf_shells, &cell, &lookup);
+  uint64_t checked = 0;
+  for (uint32_t e = 0; e < lookup.count; ++e)
+    for (uint32_t c = 0; c < 3; ++c)
+      for (uint32_t k = 0; k < n2; ++k) {
+        const size_t at = (c * points + lookup.index[e]) * n2 + k;
+        EXPECT_EQ(source.field[at], whole[at]) << "point " << lookup.index[e];
+        ++checked;
+      }
+  return checked;
+}
+
 }  // namespace prt::test
