@@ -83,7 +83,8 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            "#define FIELD_POINTS %uu\n#define BASIS_VALUES %uu\n"
            "#define VERTEX_WEIGHTS %uu\n#define BASIS_INVERSE %uu\n"
            "#define LOG_PRODUCT %u\n#define EXP_DIRECTIONS %uu\n#define EXP_EVAL %uu\n"
-           "#define EXP_PROJECT %uu\n",
+           "#define EXP_PROJECT %uu\n#define PROBE_COUNT %uu\n#define PROBE_POSITIONS %uu\n"
+           "#define PROBE_LOOKUPS %uu\n#define PROBE_LIGHT %uu\n",
            PRT_SF_GL_LOCAL_SIZE, PRT_SF_GL_VERTICES, PRT_SF_GL_TERMS, PRT_SF_GL_GLOSSY,
            PRT_SF_GL_BRDF_GRID, PRT_SF_GL_POSITIONS, PRT_SF_GL_NORMALS, PRT_SF_GL_ALBEDO,
            PRT_SF_GL_TRANSFER, PRT_SF_GL_G_TABLE, PRT_SF_GL_INCIDENT, PRT_SF_GL_OUTPUT,
@@ -95,7 +96,8 @@ static prt_result compile_program(prt_context* context, prt_gl_shadowfield* s) {
            PRT_SF_GL_OWN_FIELD, PRT_SF_GL_FIELD_POINTS, PRT_SF_GL_BASIS_VALUES,
            PRT_SF_GL_VERTEX_WEIGHTS, PRT_SF_GL_BASIS_INVERSE,
            s->product == PRT_SHADOWFIELD_PRODUCT_LOG ? 1u : 0u, directions, exp_eval,
-           exp_eval + directions * n2);
+           exp_eval + directions * n2, PRT_SF_GL_PROBE_COUNT, PRT_SF_GL_PROBE_POSITIONS,
+           PRT_SF_GL_PROBE_LOOKUPS, PRT_SF_GL_PROBE_LIGHT);
   const prt_GLchar* sources[2] = {header, prt_sf_gl_shader_source};
   const prt_result r =
       prt_gl_compile_compute(context, &s->gl, FUNCTION_CREATE, sources, 2, &s->program);
@@ -166,6 +168,8 @@ static void lay_out(prt_gl_shadowfield* s, uint64_t bytes[PRT_SF_GL_BUFFER_COUNT
   bytes[PRT_SF_GL_BUFFER_INCIDENT] = 4u * incident;
   bytes[PRT_SF_GL_BUFFER_RADIANCE] = 12u * radiance;
   bytes[PRT_SF_GL_BUFFER_FRAME] = 4u * (uint64_t)s->instance_count * PRT_SF_GL_HEADER;
+  /* Sized when a frame asks for probes (shadowfield_gl_frame.c); a float until then. */
+  bytes[PRT_SF_GL_BUFFER_PROBES] = 4u;
   bytes[PRT_SF_GL_BUFFER_SCRATCH] = 4u * invocations * PRT_SF_GL_SCRATCH_FLOATS(scene->order);
   if (bytes[PRT_SF_GL_BUFFER_SCRATCH] < 4u * most_weights)
     bytes[PRT_SF_GL_BUFFER_SCRATCH] = 4u * most_weights;
@@ -297,6 +301,7 @@ prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader
   s->object_count = scene->object_count;
   s->instance_count = scene->instance_count;
   s->product = scene->product;
+  s->probe_spacing = -1.0f;
   s->objects =
       (prt_sf_gl_object*)allocate_zeroed(&s->allocator, s->object_count * sizeof(prt_sf_gl_object));
   s->instances = (prt_sf_gl_instance*)allocate_zeroed(
@@ -307,7 +312,7 @@ prt_result prt_gl_shadowfield_create(prt_shadowfield_scene* scene, prt_gl_loader
   } else {
     lay_out(s, bytes);
     static const char* const kNames[PRT_SF_GL_BUFFER_COUNT] = {
-        "objects", "gaunt", "fields", "incident", "radiance", "frame", "scratch"};
+        "objects", "gaunt", "fields", "incident", "radiance", "frame", "scratch", "probes"};
     r = prt_gl_check_block_sizes(context, &s->gl, FUNCTION_CREATE, bytes, kNames,
                                  PRT_SF_GL_BUFFER_COUNT);
   }

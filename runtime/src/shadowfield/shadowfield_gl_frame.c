@@ -80,6 +80,10 @@ static void write_header(const prt_gl_shadowfield* s, uint32_t i, float* words) 
   memcpy(words + PRT_SF_GL_TRANSLATION, instance->translation, sizeof instance->translation);
   words[PRT_SF_GL_SCALE] = instance->scale;
   memcpy(words + PRT_SF_GL_EYE, scene->eye, sizeof scene->eye);
+  put_uint(words, PRT_SF_GL_PROBE_COUNT, instance->probe_count);
+  put_uint(words, PRT_SF_GL_PROBE_POSITIONS, at->probe_positions);
+  put_uint(words, PRT_SF_GL_PROBE_LOOKUPS, at->probe_lookups);
+  put_uint(words, PRT_SF_GL_PROBE_LIGHT, s->instances[i].probe_light);
   memcpy(words + PRT_SF_GL_LIGHT, instance->light, (size_t)3u * n2 * sizeof(float));
   memcpy(words + PRT_SF_GL_PRODUCT, instance->light_product, (size_t)3u * n2 * n2 * sizeof(float));
 }
@@ -120,6 +124,68 @@ static prt_result upload_frame(prt_gl_shadowfield* s) {
   }
   prt_sf_gl_upload(gl, 0u, s->frame, floats);
   gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+  return PRT_OK;
+}
+
+/* ---- bounce probes: the layouts at the prepared spacing, laid out again when it changes ---- */
+
+/* Where each object's layout and each instance's probe light go in the probe buffer; its
+ * floats. */
+static uint64_t place_probes(prt_gl_shadowfield* s) {
+  const prt_shadowfield_scene* scene = s->scene;
+  const uint64_t n2 = (uint64_t)scene->order * scene->order;
+  uint64_t floats = 1u; /* never empty */
+  for (uint32_t o = 0; o < s->object_count; ++o) {
+    const uint64_t count = scene->probes[o].count;
+    s->objects[o].probe_positions = (uint32_t)floats;
+    floats += 3u * count;
+    s->objects[o].probe_lookups = (uint32_t)floats;
+    floats += count > 0u ? 16u * (uint64_t)scene->objects[o]->vertex_count : 0u;
+  }
+  for (uint32_t i = 0; i < s->instance_count; ++i) {
+    s->instances[i].probe_light = (uint32_t)floats;
+    floats += scene->probes[scene->instances[i].object].count * 3u * n2;
+  }
+  return floats;
+}
+
+/* The objects' probe positions and vertex lookups into `words` (probe light left as it is). */
+static void write_probes(const prt_gl_shadowfield* s, float* words) {
+  const prt_shadowfield_scene* scene = s->scene;
+  for (uint32_t o = 0; o < s->object_count; ++o) {
+    const prt_sf_probes* probes = &scene->probes[o];
+    if (probes->count == 0u) continue;
+    memcpy(words + s->objects[o].probe_positions, probes->positions,
+           (size_t)probes->count * 3u * sizeof(float));
+    for (uint32_t v = 0; v < scene->objects[o]->vertex_count; ++v) {
+      const prt_sf_lookup* lookup = &probes->lookups[v];
+      float* at = words + s->objects[o].probe_lookups + 16u * (size_t)v;
+      for (uint32_t e = 0; e < 8u; ++e) {
+        put_uint(at, e, e < lookup->count ? (uint32_t)lookup->index[e] : 0u);
+        at[8u + e] = e < lookup->count ? lookup->weight[e] : 0.0f;
+      }
+    }
+  }
+}
+
+/* The probe buffer for the prepared spacing's layouts, when they changed since the last frame. */
+static prt_result upload_probes(prt_gl_shadowfield* s) {
+  const prt_shadowfield_scene* scene = s->scene;
+  const float spacing = s->object_count > 0u ? scene->probes[0].spacing : 0.0f;
+  if (spacing == s->probe_spacing) return PRT_OK;
+  const uint64_t floats = place_probes(s);
+  if (floats > UINT32_MAX) return PRT_ERROR_OUT_OF_MEMORY;
+  float* words = (float*)prt_internal_alloc(&s->allocator, (size_t)floats * sizeof(float), 16);
+  if (!words) return PRT_ERROR_OUT_OF_MEMORY;
+  memset(words, 0, (size_t)floats * sizeof(float));
+  write_probes(s, words);
+  const prt_gl_functions* gl = &s->gl;
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, s->buffers[PRT_SF_GL_BUFFER_PROBES]);
+  gl->BufferData(PRT_GL_SHADER_STORAGE_BUFFER, (prt_GLsizeiptr)(floats * sizeof(float)), words,
+                 PRT_GL_DYNAMIC_COPY);
+  gl->BindBuffer(PRT_GL_SHADER_STORAGE_BUFFER, 0);
+  prt_internal_free(&s->allocator, words, (size_t)floats * sizeof(float));
+  s->probe_spacing = spacing;
   return PRT_OK;
 }
 
@@ -167,13 +233,21 @@ static void project_sources(const prt_gl_shadowfield* s, uint32_t pass) {
   }
 }
 
+/* Each instance's bounce probes gather their light of `pass`. */
+static void gather_probes(const prt_gl_shadowfield* s, uint32_t pass) {
+  s->gl.ProgramUniform1ui(s->program, PRT_SF_GL_UNIFORM_STAGE, PRT_SF_GL_STAGE_PROBES);
+  s->gl.ProgramUniform1ui(s->program, PRT_SF_GL_UNIFORM_PASS, pass);
+  for (uint32_t i = 0; i < s->instance_count; ++i)
+    if (s->scene->instances[i].probe_count > 0u) dispatch(s, i, s->scene->instances[i].probe_count);
+}
+
 static void bind_buffers(const prt_gl_shadowfield* s, int bind) {
   for (uint32_t b = 0; b < PRT_SF_GL_BUFFER_COUNT; ++b)
     s->gl.BindBufferBase(PRT_GL_SHADER_STORAGE_BUFFER, b, bind ? s->buffers[b] : 0u);
 }
 
 /* The settings for prt_shadowfield_prepare: a GL backend asked for becomes AUTO there (the
- * preparation is the CPU's); a CPU or SIMD one, or bounce probes, are refused. Others go to
+ * preparation is the CPU's); a CPU or SIMD one is refused. Others go to
  * prepare as they are, so that it refuses them as it does for prt_shadowfield_shade. */
 static prt_result prepare_settings(prt_context* context, const prt_shadowfield_settings* settings,
                                    prt_shadowfield_settings* copy,
@@ -183,11 +257,6 @@ static prt_result prepare_settings(prt_context* context, const prt_shadowfield_s
   if (settings->backend == PRT_BACKEND_CPU || settings->backend == PRT_BACKEND_SIMD)
     return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
                              "%s: settings ask for a CPU backend (use prt_shadowfield_shade)",
-                             FUNCTION_SHADE);
-  if (prt_internal_struct_size_ok(settings, PRT_SF_SETTINGS_PROBES_SIZE) &&
-      settings->bounce_probe_spacing != 0.0f)
-    return prt_internal_fail(context, PRT_ERROR_UNSUPPORTED_BACKEND,
-                             "%s: bounce probes are CPU only (bounce_probe_spacing must be 0)",
                              FUNCTION_SHADE);
   if (settings->backend == PRT_BACKEND_GL) {
     /* As far as the caller's struct reaches; the rest as a zeroed struct has it. */
@@ -219,7 +288,7 @@ prt_result prt_gl_shadowfield_shade(prt_gl_shadowfield* shader, const float* lig
   prt_result r = prepare_settings(scene->context, settings, &copy, &cpu_settings);
   if (r == PRT_OK) r = prt_shadowfield_prepare(scene, light_sh_rgb, eye, cpu_settings);
   if (r != PRT_OK) return r;
-  if (upload_frame(shader) != PRT_OK) {
+  if (upload_probes(shader) != PRT_OK || upload_frame(shader) != PRT_OK) {
     scene->prepared = 0u;
     return prt_internal_fail(scene->context, PRT_ERROR_OUT_OF_MEMORY, "%s: out of memory",
                              FUNCTION_SHADE);
@@ -230,6 +299,7 @@ prt_result prt_gl_shadowfield_shade(prt_gl_shadowfield* shader, const float* lig
   run_stage(shader, PRT_SF_GL_STAGE_DIRECT, 0u);
   for (uint32_t pass = 1; pass <= scene->bounces; ++pass) {
     project_sources(shader, pass);
+    gather_probes(shader, pass);
     run_stage(shader, PRT_SF_GL_STAGE_BOUNCE, pass);
   }
   run_stage(shader, PRT_SF_GL_STAGE_OUTPUT, scene->bounces);

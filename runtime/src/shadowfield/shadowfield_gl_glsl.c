@@ -6,7 +6,9 @@
  * reads of the sources' fields, rotated, then the transfer dot) and the outgoing radiance (g table,
  * passes summed, albedo); and a source's projection on its basis (one invocation per basis
  * function, term and colour: B W r, then A^-1 of that), kept at the start of the scratch buffer,
- * and the field it casts from those weights (one invocation per SRF point and coefficient). The
+ * and the field it casts from those weights (one invocation per SRF point and coefficient); with
+ * bounce probes, each probe's bounce light (one invocation per probe), which a bounce's vertices
+ * then read from their probes instead of the sources' fields. The
  * instance's record (its header and pairs, shadowfield_gl_internal.h) is read from the frame buffer
  * at `record`.
  *
@@ -24,6 +26,7 @@ const char prt_sf_gl_shader_source[] =
     "layout(std430, binding = 4) writeonly restrict buffer Radiance { float radiance[]; };\n"
     "layout(std430, binding = 5) readonly restrict buffer Frame { float frame[]; };\n"
     "layout(std430, binding = 6) restrict buffer Scratch { float scratch[]; };\n"
+    "layout(std430, binding = 7) restrict buffer Probes { float probes[]; };\n"
     "layout(location = 0) uniform uint record;\n"
     "layout(location = 1) uniform uint stage;\n"
     "layout(location = 2) uniform uint pass_index;\n"
@@ -259,6 +262,25 @@ const char prt_sf_gl_shader_source[] =
     "  return lit;\n"
     "}\n"
     "\n"
+    "/* Bounce probes: probe p's light from every source (the light rows, into its slot), and a\n"
+    " * vertex's light from its probes, weighted. */\n"
+    "void gather_probe(uint p) {\n"
+    "  uint at = uword(PROBE_POSITIONS) + 3u * p;\n"
+    "  bounced_light(vec3(probes[at], probes[at + 1u], probes[at + 2u]));\n"
+    "  uint slot = uword(PROBE_LIGHT) + p * 3u * n2, light = row + LIGHT_ROWS * n2;\n"
+    "  for (uint e = 0u; e < 3u * n2; ++e) probes[slot + e] = scratch[light + e];\n"
+    "}\n"
+    "void probed_light(uint v) {\n"
+    "  uint lookup = uword(PROBE_LOOKUPS) + 16u * v, light = row + LIGHT_ROWS * n2;\n"
+    "  for (uint e = 0u; e < 3u * n2; ++e) scratch[light + e] = 0.0;\n"
+    "  for (uint j = 0u; j < 8u; ++j) {\n"
+    "    float w = probes[lookup + 8u + j];\n"
+    "    if (w == 0.0) continue;\n"
+    "    uint slot = uword(PROBE_LIGHT) + floatBitsToUint(probes[lookup + j]) * 3u * n2;\n"
+    "    for (uint e = 0u; e < 3u * n2; ++e) scratch[light + e] += w * probes[slot + e];\n"
+    "  }\n"
+    "}\n"
+    "\n"
     "void gather(uint v) {\n"
     "  uint terms = uword(TERMS), vertices = uword(VERTICES);\n"
     "  uint out_at = uword(INCIDENT) + ((pass_index * vertices + v) * terms) * 3u;\n"
@@ -266,6 +288,8 @@ const char prt_sf_gl_shader_source[] =
     "  vec3 x = vec3(data[p], data[p + 1u], data[p + 2u]);\n"
     "  if (stage == 0u) {\n"
     "    shadowed_light(x);\n"
+    "  } else if (uword(PROBE_COUNT) > 0u) {\n"
+    "    probed_light(v);\n"
     "  } else if (!bounced_light(x)) {\n"
     "    for (uint e = 0u; e < 3u * terms; ++e) incident[out_at + e] = 0.0;\n"
     "    return;\n"
@@ -406,6 +430,12 @@ const char prt_sf_gl_shader_source[] =
     "  uint v = first_vertex + gl_GlobalInvocationID.x;\n"
     "  if (stage == 3u) {\n"
     "    if (v < uword(FIELD_POINTS) * n2) cast_field(v);\n"
+    "    return;\n"
+    "  }\n"
+    "  if (stage == 6u) {\n"
+    "    if (v >= uword(PROBE_COUNT)) return;\n"
+    "    row = gl_GlobalInvocationID.x * (7u * n2 + 16u);\n"
+    "    gather_probe(v);\n"
     "    return;\n"
     "  }\n"
     "  if (stage >= 4u) {\n"

@@ -34,9 +34,16 @@
 #define PRT_SF_GL_BASIS_VALUES 32u   /* (u) B (N x V) in the object buffer */
 #define PRT_SF_GL_VERTEX_WEIGHTS 33u /* (u) W (V) */
 #define PRT_SF_GL_BASIS_INVERSE 34u  /* (u) A^-1 (N x N) */
+#define PRT_SF_GL_PROBE_COUNT 35u    /* (u) bounce probes this frame (0: bounces per vertex) */
 #define PRT_SF_GL_LIGHT 36u          /* the light in the instance's frame, [3 i + c] */
 #define PRT_SF_GL_PRODUCT (PRT_SF_GL_LIGHT + 3u * PRT_SF_MAX_COEFFS) /* light_product, 3 n^4 */
-#define PRT_SF_GL_HEADER (PRT_SF_GL_PRODUCT + 3u * PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS)
+/* Bounce probes, in the probe buffer: the object's probe positions (3 a probe) and vertex
+ * lookups (16 words a vertex: 8 probe indices (u), 8 weights, unused ones weight 0), and the
+ * instance's probe light ([p 3 n^2 + 3 i + c]). */
+#define PRT_SF_GL_PROBE_POSITIONS (PRT_SF_GL_PRODUCT + 3u * PRT_SF_MAX_COEFFS * PRT_SF_MAX_COEFFS)
+#define PRT_SF_GL_PROBE_LOOKUPS (PRT_SF_GL_PROBE_POSITIONS + 1u)
+#define PRT_SF_GL_PROBE_LIGHT (PRT_SF_GL_PROBE_POSITIONS + 2u)
+#define PRT_SF_GL_HEADER (PRT_SF_GL_PROBE_POSITIONS + 3u)
 
 /* A pair block, from its first word. A grid is centre (3), radius, inner, outer, shells (u),
  * face size (u). */
@@ -60,6 +67,7 @@
 #define PRT_SF_GL_STAGE_CAST 3u    /* one invocation per SRF point and coefficient */
 #define PRT_SF_GL_STAGE_PROJECT 4u /* one invocation per basis function, term and colour */
 #define PRT_SF_GL_STAGE_WEIGHTS 5u /* the same */
+#define PRT_SF_GL_STAGE_PROBES 6u  /* one invocation per bounce probe: its light */
 
 /* Vertices per work group. */
 #define PRT_SF_GL_LOCAL_SIZE 64u
@@ -85,7 +93,8 @@ enum {
   PRT_SF_GL_BUFFER_RADIANCE = 4, /* every instance's outgoing radiance */
   PRT_SF_GL_BUFFER_FRAME = 5,    /* every instance's record of the frame */
   PRT_SF_GL_BUFFER_SCRATCH = 6,  /* each invocation's SH vectors (shadowfield_gl_glsl.c) */
-  PRT_SF_GL_BUFFER_COUNT = 7
+  PRT_SF_GL_BUFFER_PROBES = 7,   /* bounce probes: layouts and light (laid out per spacing) */
+  PRT_SF_GL_BUFFER_COUNT = 8
 };
 enum {
   PRT_SF_GL_UNIFORM_RECORD = 0,
@@ -102,12 +111,14 @@ enum {
 typedef struct prt_sf_gl_object {
   uint32_t positions, normals, albedo, transfer, g_table, oof, srf;
   uint32_t basis, vertex_weights, basis_inverse;
+  uint32_t probe_positions, probe_lookups; /* in the probe buffer */
 } prt_sf_gl_object;
 
 /* Where an instance's arrays start: incident and field (floats), radiance (vertices), and its
  * record in the frame buffer (floats, set per frame). */
 typedef struct prt_sf_gl_instance {
   uint32_t incident, field, radiance_vertex, record;
+  uint32_t probe_light; /* in the probe buffer */
 } prt_sf_gl_instance;
 
 struct prt_gl_shadowfield {
@@ -124,6 +135,8 @@ struct prt_gl_shadowfield {
   float* frame;               /* the records, uploaded to PRT_SF_GL_BUFFER_FRAME */
   size_t frame_capacity;      /* floats in `frame` */
   size_t frame_buffer_floats; /* floats in PRT_SF_GL_BUFFER_FRAME */
+  /* The probe spacing whose layouts the probe buffer holds (-1 before the first). */
+  float probe_spacing;
 };
 
 /* glBufferSubData of `count` floats at float `at` of the buffer bound to the SSBO target. */

@@ -60,16 +60,16 @@ typedef struct prt_shadowfield_settings {
    * through prt_gl_shadowfield_shade; the CPU entry points refuse it
    * (PRT_ERROR_UNSUPPORTED_BACKEND). */
   prt_backend backend;
-  /* Added after 1.0: read only when struct_size reaches it, else 0. 0: every vertex gathers each
-   * bounce's light from the sources' fields itself (the default, and what GL does). > 0: the light
-   * a bounce brings is gathered at bounce probes, the corners of a grid of this spacing (in each
-   * object's own units) over the cells its vertices fall in, and each vertex interpolates it
-   * trilinearly before its own transfer turns it into reflected light. The light arriving at a
-   * point does not depend on the surface there, so far fewer points read the fields; near a
-   * contact, where it changes within a cell, it is smoothed. An object whose grid has as many
-   * corners as vertices keeps gathering per vertex. The direct light is never interpolated. Laying
-   * out an object's probes allocates and sorts, at the first prepare with a new spacing. CPU only:
-   * GL refuses a spacing above 0 (PRT_ERROR_UNSUPPORTED_BACKEND). */
+  /* Added after 1.0: read only when struct_size reaches it, else 0. 0 (the default): every
+   * vertex gathers each bounce's light from the sources' fields itself. > 0: the light a bounce
+   * brings is gathered at bounce probes, the corners of a grid of this spacing (in each object's
+   * own units) over the cells its vertices fall in, and each vertex interpolates it trilinearly
+   * before its own transfer turns it into reflected light. The light arriving at a point does
+   * not depend on the surface there, so far fewer points read the fields; near a contact, where
+   * it changes within a cell, it is smoothed. An object whose grid has as many corners as
+   * vertices keeps gathering per vertex. The direct light is never interpolated. Laying out an
+   * object's probes allocates and sorts, at the first prepare with a new spacing (GL then
+   * uploads them). */
   float bounce_probe_spacing;
 } prt_shadowfield_settings;
 
@@ -197,7 +197,7 @@ PRT_API prt_result prt_shadowfield_output(const prt_shadowfield_scene* scene, ui
  * failures in the scene's context (shade, like prt_shadowfield_shade, changes the scene and
  * needs exclusive use of it), read and the output queries write no context. After a GL shade the
  * scene's CPU stages (gather, project, output) need prepare again. GL state: shade uses the
- * current program and the SSBO bindings 0 to 6, read the generic SSBO binding; both leave them
+ * current program and the SSBO bindings 0 to 7, read the generic SSBO binding; both leave them
  * 0. */
 typedef struct prt_gl_shadowfield prt_gl_shadowfield;
 

@@ -476,7 +476,7 @@ std::string worst_instance(const LoadedScene& s, const std::vector<float>& a,
 }
 
 // How far SIMD's and GL's outputs of one frame are from scalar's, over the largest output; and
-// with bounce probes, SIMD's from scalar's and both from the per-vertex frame.
+// with bounce probes, SIMD's and GL's from scalar's, and scalar's from the per-vertex frame.
 void print_agreement(LoadedScene& s) {
   const std::vector<float> scalar = shade_once(s, PRT_BACKEND_CPU);
   double largest = 0.0;
@@ -493,7 +493,6 @@ void print_agreement(LoadedScene& s) {
   std::printf("\n");
   const float spacing = 0.3f;
   const std::vector<float> probed = shade_once(s, PRT_BACKEND_CPU, spacing);
-  const std::vector<float> probed_simd = shade_once(s, PRT_BACKEND_SIMD, spacing);
   size_t over = 0;  // vertices with a channel more than 1 % of the largest output apart
   for (size_t v = 0; v < scalar.size() / 3; ++v) {
     double d = 0.0;
@@ -503,13 +502,18 @@ void print_agreement(LoadedScene& s) {
   }
   std::printf(
       "    with bounce probes %g apart: scalar from per vertex %.2g (most on %s; %zu of %zu "
-      "vertices over 0.01), ",
+      "vertices over 0.01);",
       double(spacing), apart(probed, scalar), worst_instance(s, probed, scalar).c_str(), over,
       scalar.size() / 3);
-  if (probed_simd.size() == probed.size())
-    std::printf("simd from scalar %.2g\n", apart(probed_simd, probed));
-  else
-    std::printf("simd not run\n");
+  for (const prt_backend backend : {PRT_BACKEND_SIMD, PRT_BACKEND_GL}) {
+    const std::vector<float> other = shade_once(s, backend, spacing);
+    const char* name = backend == PRT_BACKEND_GL ? "gl" : "simd";
+    if (other.size() == probed.size())
+      std::printf(" %s from scalar %.2g;", name, apart(other, probed));
+    else
+      std::printf(" %s: not run;", name);
+  }
+  std::printf("\n");
 }
 
 void print_summary() {

@@ -102,8 +102,9 @@ prt_shadowfield_settings settings_for(uint32_t bounces, prt_backend backend = PR
 
 std::vector<std::vector<float>> shade_gl(prt_gl_shadowfield* shader, prt_shadowfield_scene* scene,
                                          const std::vector<float>& light, const float eye[3],
-                                         uint32_t bounces) {
-  const prt_shadowfield_settings settings = settings_for(bounces);
+                                         uint32_t bounces, float probe_spacing = 0.0f) {
+  prt_shadowfield_settings settings = settings_for(bounces);
+  settings.bounce_probe_spacing = probe_spacing;
   EXPECT_EQ(prt_gl_shadowfield_shade(shader, light.data(), eye, &settings), PRT_OK);
   const uint32_t count = prt_shadowfield_scene_instance_count(scene);
   std::vector<std::vector<float>> out(count);
@@ -141,16 +142,16 @@ const double kTolerance = 32.0 * std::ldexp(1.0, -24);
 
 // The GL shade of the scene against the scalar one, every bounce count 0..3 (each a frame of its
 // own); returns the worst relative difference. `lit_by_bounces`: the bounces must change the
-// result (else they were not tested).
+// result (else they were not tested). probe_spacing: both gather bounce light at probes.
 double agreement(TestScene& scene, headless_gl* gl, const std::vector<float>& light,
-                 const float eye[3], bool lit_by_bounces = true) {
+                 const float eye[3], bool lit_by_bounces = true, float probe_spacing = 0.0f) {
   GlShadowfieldPtr shader = create(scene.scene, gl);
   if (!shader) return 1.0;
   double worst = 0.0;
   std::vector<std::vector<float>> direct;
   for (uint32_t bounces = 0; bounces <= 3; ++bounces) {
-    const auto cpu = scene.shade(light, eye, bounces);
-    const auto on_gl = shade_gl(shader.get(), scene.scene, light, eye, bounces);
+    const auto cpu = scene.shade(light, eye, bounces, probe_spacing);
+    const auto on_gl = shade_gl(shader.get(), scene.scene, light, eye, bounces, probe_spacing);
     const double difference = relative_difference(on_gl, cpu);
     std::printf("%u bounces: GL - scalar %.2e of the largest radiance\n", bounces, difference);
     worst = std::max(worst, difference);
@@ -175,6 +176,21 @@ TEST(ShadowfieldGl, DiffuseBlockersAndBouncesAgreeWithScalar) {
   PRT_REQUIRE_GL(context);
   GlScene busy(4, false);
   EXPECT_LT(agreement(busy.scene, context.gl, test_light(4), kNearEye), kTolerance);
+}
+
+// Bounce probes (a 3 x 3 grid on the floor and on each box, fewer than their 81 and 25
+// vertices), diffuse and glossy boxes; then the per-vertex frame again after them.
+TEST(ShadowfieldGl, BounceProbesAgreeWithScalar) {
+  PRT_REQUIRE_GL(context);
+  for (const bool glossy : {false, true}) {
+    GlScene busy(4, glossy);
+    EXPECT_LT(agreement(busy.scene, context.gl, test_light(4), kNearEye, true, 0.5f), kTolerance)
+        << "glossy " << glossy;
+    busy.scene.shade(test_light(4), kNearEye, 3, 0.5f);  // a GL frame leaves none prepared
+    EXPECT_EQ(prt_shadowfield_instance_probe_count(busy.scene.scene, 0), 9u);
+    EXPECT_EQ(prt_shadowfield_instance_probe_count(busy.scene.scene, 1), 9u);
+    EXPECT_LT(agreement(busy.scene, context.gl, test_light(4), kNearEye), kTolerance);
+  }
 }
 
 TEST(ShadowfieldGl, GlossyBlockersAndBouncesAgreeWithScalar) {
@@ -321,9 +337,10 @@ TEST(ShadowfieldGl, TheOutputBufferHoldsEveryInstanceInOrder) {
   const auto light = test_light(4);
   prt_test::leave_gl_error_pending();  // an application's earlier mistake changes nothing
   (void)prt_test::take_gl_error();
-  const auto on_gl = shade_gl(shader.get(), busy.scene.scene, light, kNearEye, 1);
+  // With probes, so that every binding (the probes' too) is used.
+  const auto on_gl = shade_gl(shader.get(), busy.scene.scene, light, kNearEye, 1, 0.5f);
   prt_test::expect_gl_state_restored("prt_gl_shadowfield_shade and read");
-  for (unsigned binding = 4; binding < 7; ++binding) {
+  for (unsigned binding = 4; binding < 8; ++binding) {
     int value = -1;
     prt_test::gl_function<prt_test::gl_names::GetIntegeriVFn>("glGetIntegeri_v")(
         prt_test::gl_names::kGlShaderStorageBufferBinding, binding, &value);
@@ -385,7 +402,10 @@ TEST(ShadowfieldGl, BadSettingsAreRefusedAsByScalar) {
   prt_shadowfield_settings unknown = settings_for(1);
   const int bogus_backend = 77;
   std::memcpy(&unknown.backend, &bogus_backend, sizeof bogus_backend);
+  prt_shadowfield_settings negative_spacing = settings_for(1);
+  negative_spacing.bounce_probe_spacing = -0.5f;
   const Case cases[] = {{"too many bounces", too_many, light.data(), kNearEye},
+                        {"a negative probe spacing", negative_spacing, light.data(), kNearEye},
                         {"struct_size too small", old, light.data(), kNearEye},
                         {"unknown backend", unknown, light.data(), kNearEye},
                         {"NULL light", settings_for(1), nullptr, kNearEye},
@@ -408,15 +428,6 @@ TEST(ShadowfieldGl, BadSettingsAreRefusedAsByScalar) {
     const prt_shadowfield_settings settings = settings_for(1, cpu);
     EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &settings),
               PRT_ERROR_UNSUPPORTED_BACKEND);
-  }
-  // Bounce probes are the CPU's: refused by name, on AUTO and GL alike.
-  for (const prt_backend backend : {PRT_BACKEND_AUTO, PRT_BACKEND_GL}) {
-    prt_shadowfield_settings probes = settings_for(1, backend);
-    probes.bounce_probe_spacing = 0.25f;
-    EXPECT_EQ(prt_gl_shadowfield_shade(shader.get(), light.data(), kNearEye, &probes),
-              PRT_ERROR_UNSUPPORTED_BACKEND);
-    EXPECT_NE(std::string(prt_context_last_message(busy.scene.context)).find("probe"),
-              std::string::npos);
   }
   // A caller built against 1.0's struct (ending before the spacing) asking for GL gets GL.
   prt_shadowfield_settings first = settings_for(1, PRT_BACKEND_GL);

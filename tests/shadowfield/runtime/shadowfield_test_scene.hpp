@@ -45,9 +45,10 @@ struct TestScene {
     return id;
   }
 
-  // Every instance's outgoing radiance (V x 3 each).
+  // Every instance's outgoing radiance (V x 3 each), bounce light at probes `probe_spacing`
+  // apart (0: per vertex).
   std::vector<std::vector<float>> shade(const std::vector<float>& light, const float eye[3],
-                                        uint32_t bounces) {
+                                        uint32_t bounces, float probe_spacing = 0.0f) {
     const uint32_t count = prt_shadowfield_scene_instance_count(scene);
     std::vector<std::vector<float>> out(count);
     std::vector<float*> pointers(count);
@@ -58,6 +59,7 @@ struct TestScene {
     prt_shadowfield_settings settings{};
     settings.struct_size = sizeof settings;
     settings.bounces = bounces;
+    settings.bounce_probe_spacing = probe_spacing;
     EXPECT_EQ(prt_shadowfield_shade(scene, light.data(), eye, &settings, pointers.data()), PRT_OK)
         << prt_context_last_message(context);
     return out;
