@@ -27,12 +27,13 @@ static int compare_refs(const void* a, const void* b) {
   return (x->slot > y->slot) - (x->slot < y->slot);
 }
 
-static void free_layout(const prt_allocator* allocator, prt_sf_probes* probes,
-                        uint32_t vertex_count) {
+/* Reads no object: a scene may be destroyed after its assets. */
+static void free_layout(const prt_allocator* allocator, prt_sf_probes* probes) {
   if (probes->positions)
     prt_internal_free(allocator, probes->positions, (size_t)probes->count * 3u * sizeof(float));
   if (probes->lookups)
-    prt_internal_free(allocator, probes->lookups, (size_t)vertex_count * sizeof(prt_sf_lookup));
+    prt_internal_free(allocator, probes->lookups,
+                      (size_t)probes->lookup_count * sizeof(prt_sf_lookup));
   memset(probes, 0, sizeof *probes);
 }
 
@@ -159,6 +160,7 @@ static prt_result lay_out(const prt_allocator* allocator, const prt_sf_object* o
     probes->count = count;
     probes->positions = positions;
     probes->lookups = lookups;
+    probes->lookup_count = vertices;
   }
   prt_internal_free(allocator, refs, ref_count * sizeof(sf_corner_ref));
   if (!positions) prt_internal_free(allocator, lookups, (size_t)vertices * sizeof(prt_sf_lookup));
@@ -189,7 +191,7 @@ static prt_result lay_out_objects(prt_shadowfield_scene* scene, float spacing) {
   for (uint32_t o = 0; o < scene->object_count; ++o) {
     prt_sf_probes* probes = &scene->probes[o];
     if (probes->spacing == spacing) continue;
-    free_layout(&scene->allocator, probes, scene->objects[o]->vertex_count);
+    free_layout(&scene->allocator, probes);
     if (spacing > 0.0f && lay_out(&scene->allocator, scene->objects[o], spacing, probes) != PRT_OK)
       return prt_internal_fail(scene->context, PRT_ERROR_OUT_OF_MEMORY, "shadowfield probes");
   }
@@ -231,8 +233,7 @@ void prt_sf_free_probes(prt_shadowfield_scene* scene) {
                         instance->probe_located_capacity * sizeof(uint32_t));
   }
   if (scene->probes)
-    for (uint32_t o = 0; o < scene->object_count; ++o)
-      free_layout(allocator, &scene->probes[o], scene->objects[o]->vertex_count);
+    for (uint32_t o = 0; o < scene->object_count; ++o) free_layout(allocator, &scene->probes[o]);
   if (scene->probe_cells)
     prt_internal_free(allocator, scene->probe_cells,
                       scene->probe_cell_capacity * sizeof(prt_sf_cell));

@@ -82,6 +82,7 @@ typedef struct prt_sf_probes {
   uint32_t count;         /* probes; 0 when the object gathers per vertex at this spacing */
   float* positions;       /* count x 3, in the object's frame */
   prt_sf_lookup* lookups; /* one per vertex (count 1..8, the probes' indices and weights) */
+  uint32_t lookup_count;  /* the object's vertices, kept so that freeing reads no object */
 } prt_sf_probes;
 
 typedef struct prt_sf_instance {

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -307,6 +308,33 @@ TEST(ShadowfieldProbes, ProbesOnlyWhereTheyAreFewerThanVerticesAndBouncesReadThe
     for (const auto& o : out)
       for (const float v : o) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << c.spacing;
   }
+}
+
+// A game may free an asset before the scene that read it: destroying the scene then frees the
+// probes' layouts without reading the object (under ASan, a read would fail here).
+TEST(ShadowfieldProbes, DestroyingASceneAfterItsObjectsReadsNoObject) {
+  auto patch = std::make_unique<SyntheticObject>(make_patch(4, 9));
+  patch->set_basis(1,
+                   [](uint32_t, uint32_t, uint64_t, uint32_t c) { return c == 0 ? 0.2f : 0.0f; });
+  prt_context* context = nullptr;
+  ASSERT_EQ(prt_context_create(nullptr, &context), PRT_OK);
+  prt_shadowfield_scene* scene = nullptr;
+  ASSERT_EQ(prt_shadowfield_scene_create(context, 2, &scene), PRT_OK);
+  uint32_t object = 0, instance = 0;
+  ASSERT_EQ(prt_internal_sf_scene_add_object(scene, patch->view(), &object), PRT_OK);
+  for (const float x : {0.0f, 0.6f}) {
+    const prt_shadowfield_transform t = make_transform(identity_rotation(), x, 0.2f, 0.0f);
+    ASSERT_EQ(prt_shadowfield_scene_add_instance(scene, object, &t, &instance), PRT_OK);
+  }
+  prt_shadowfield_settings settings{};
+  settings.struct_size = sizeof settings;
+  settings.bounces = 1;
+  settings.bounce_probe_spacing = 0.25f;
+  ASSERT_EQ(prt_shadowfield_prepare(scene, test_light(4).data(), kEye, &settings), PRT_OK);
+  ASSERT_EQ(prt_shadowfield_instance_probe_count(scene, 0), 25u);
+  patch.reset();
+  prt_shadowfield_scene_destroy(scene);
+  prt_context_destroy(context);
 }
 
 TEST(ShadowfieldProbes, BadSpacingsAreRefusedAndA10SettingsStructHasNone) {
