@@ -140,7 +140,7 @@ static uint64_t place_probes(prt_gl_shadowfield* s) {
     s->objects[o].probe_positions = (uint32_t)floats;
     floats += 3u * count;
     s->objects[o].probe_lookups = (uint32_t)floats;
-    floats += count > 0u ? 16u * (uint64_t)scene->objects[o]->vertex_count : 0u;
+    floats += 16u * (uint64_t)scene->probes[o].lookup_count;
   }
   for (uint32_t i = 0; i < s->instance_count; ++i) {
     s->instances[i].probe_light = (uint32_t)floats;
@@ -157,7 +157,7 @@ static void write_probes(const prt_gl_shadowfield* s, float* words) {
     if (probes->count == 0u) continue;
     memcpy(words + s->objects[o].probe_positions, probes->positions,
            (size_t)probes->count * 3u * sizeof(float));
-    for (uint32_t v = 0; v < scene->objects[o]->vertex_count; ++v) {
+    for (uint32_t v = 0; v < probes->lookup_count; ++v) {
       const prt_sf_lookup* lookup = &probes->lookups[v];
       float* at = words + s->objects[o].probe_lookups + 16u * (size_t)v;
       for (uint32_t e = 0; e < 8u; ++e) {
@@ -247,8 +247,8 @@ static void bind_buffers(const prt_gl_shadowfield* s, int bind) {
 }
 
 /* The settings for prt_shadowfield_prepare: a GL backend asked for becomes AUTO there (the
- * preparation is the CPU's); a CPU or SIMD one is refused. Others go to
- * prepare as they are, so that it refuses them as it does for prt_shadowfield_shade. */
+ * preparation is the CPU's); a CPU or SIMD one is refused. Others go to prepare as they are, so
+ * that it refuses them as it does for prt_shadowfield_shade. */
 static prt_result prepare_settings(prt_context* context, const prt_shadowfield_settings* settings,
                                    prt_shadowfield_settings* copy,
                                    const prt_shadowfield_settings** out) {
