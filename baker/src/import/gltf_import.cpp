@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
-// glTF 2.0 → Scene: images, materials, the node hierarchy, skins, animations and one Mesh per
-// primitive instance (a primitive reached through two nodes gives two meshes), in world space.
+// glTF 2.0 → Scene: images, materials, the node hierarchy (with its extras.prt hints), skins,
+// animations and one Mesh per primitive instance (a primitive reached through two nodes gives
+// two meshes), in world space.
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <functional>
 
@@ -75,9 +77,152 @@ glm::mat3 texture_transform(const tinygltf::ExtensionMap& extensions, int* texco
   return t * rot * s;
 }
 
-Material convert_material(const tinygltf::Model& model, const tinygltf::Material& source) {
+// ---- extras.prt and KHR_materials_sheen ------------------------------------------------------
+// Hints for `prt-bake scene` (docs/pipeline.md). A malformed hint is the artist's slip, not a
+// broken file: it is reported and ignored so the rest of the scene still imports.
+
+// "<file>: node 3 'cape'": who a warning is about.
+std::string subject(const std::string& file, const char* kind, std::size_t index,
+                    const std::string& name) {
+  return file + ": " + kind + " " + std::to_string(index) + " '" + name + "'";
+}
+
+// The object under extras.prt, or null when there is none (extras without "prt" are the file's
+// business, not ours) or it is not an object (then a warning).
+const tinygltf::Value* prt_extras(const tinygltf::Value& extras, const std::string& who,
+                                  const Context& ctx) {
+  if (!extras.Has("prt")) return nullptr;
+  const tinygltf::Value& prt = extras.Get("prt");
+  if (!prt.IsObject()) {
+    ctx.warn(who + ": extras.prt should be an object; ignored");
+    return nullptr;
+  }
+  return &prt;
+}
+
+void wrong_type(const std::string& who, const std::string& key, const char* expected,
+                const Context& ctx) {
+  ctx.warn(who + ": extras.prt." + key + " should be " + expected + "; ignored");
+}
+
+void unknown_key(const std::string& who, const std::string& key, const char* known,
+                 const Context& ctx) {
+  ctx.warn(who + ": extras.prt has the unknown key '" + key + "' (known: " + known + "); ignored");
+}
+
+// The shortest text that reads back as the same number ("4", "0.5", "1e+20"), independent of
+// the C locale, so a setting reaches the technique's option parser as the artist wrote it.
+std::string number_text(const tinygltf::Value& value) {
+  if (value.IsInt()) return std::to_string(value.Get<int>());
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof(text), value.GetNumberAsDouble()).ptr;
+  return std::string(text, end);
+}
+
+// extras.prt.settings: each entry becomes an option and its argument, {"rays_per_vertex": 64}
+// -> {"--rays-per-vertex", "64"}, in tinygltf's (alphabetical) key order.
+void read_settings(const tinygltf::Value& settings, const std::string& who, const Context& ctx,
+                   std::vector<std::pair<std::string, std::string>>& out) {
+  if (!settings.IsObject()) return wrong_type(who, "settings", "an object", ctx);
+  for (const std::string& key : settings.Keys()) {
+    const tinygltf::Value& value = settings.Get(key);
+    std::string option = "--" + key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    if (key.empty()) {
+      ctx.warn(who + ": extras.prt.settings has an empty key; ignored");
+    } else if (value.IsNumber()) {
+      out.emplace_back(option, number_text(value));
+    } else if (value.IsString()) {
+      out.emplace_back(option, value.Get<std::string>());
+    } else if (value.IsBool()) {
+      out.emplace_back(option, value.Get<bool>() ? "true" : "false");
+    } else {
+      wrong_type(who, "settings." + key, "a number, string or boolean", ctx);
+    }
+  }
+}
+
+void read_node_hints(const tinygltf::Value& extras, const std::string& who, const Context& ctx,
+                     Node::Hints& hints) {
+  const tinygltf::Value* prt = prt_extras(extras, who, ctx);
+  if (!prt) return;
+  for (const std::string& key : prt->Keys()) {
+    const tinygltf::Value& value = prt->Get(key);
+    if (key == "dynamic" || key == "skip") {
+      if (!value.IsBool()) {
+        wrong_type(who, key, "true or false", ctx);
+      } else {
+        (key == "dynamic" ? hints.dynamic : hints.skip) = value.Get<bool>();
+      }
+    } else if (key == "technique") {
+      if (!value.IsString()) {
+        wrong_type(who, key, "a string", ctx);
+      } else {
+        hints.technique = value.Get<std::string>();
+      }
+    } else if (key == "settings") {
+      read_settings(value, who, ctx, hints.settings);
+    } else {
+      unknown_key(who, key, "dynamic, technique, settings, skip", ctx);
+    }
+  }
+}
+
+void read_material_extras(const tinygltf::Value& extras, const std::string& who, const Context& ctx,
+                          Material& material) {
+  const tinygltf::Value* prt = prt_extras(extras, who, ctx);
+  if (!prt) return;
+  for (const std::string& key : prt->Keys()) {
+    const tinygltf::Value& value = prt->Get(key);
+    if (key != "cloth") {
+      unknown_key(who, key, "cloth", ctx);
+    } else if (!value.IsBool()) {
+      wrong_type(who, key, "true or false", ctx);
+    } else {
+      material.cloth = value.Get<bool>();
+    }
+  }
+}
+
+// KHR_materials_sheen's factors (the extension's defaults: black, roughness 0). Its textures
+// would modulate them per texel; only the factors are carried, so say so once.
+void read_sheen(const tinygltf::ExtensionMap& extensions, const std::string& who,
+                const Context& ctx, Material& material) {
+  const auto it = extensions.find("KHR_materials_sheen");
+  if (it == extensions.end() || !it->second.IsObject()) return;
+  const tinygltf::Value& sheen = it->second;
+  material.sheen = true;
+  const tinygltf::Value& color = sheen.Get("sheenColorFactor");
+  if (color.IsArray() && color.ArrayLen() == 3 && color.Get(0).IsNumber() &&
+      color.Get(1).IsNumber() && color.Get(2).IsNumber()) {
+    for (int c = 0; c < 3; ++c) {
+      material.sheen_color[c] = static_cast<float>(color.Get(c).GetNumberAsDouble());
+    }
+  } else if (sheen.Has("sheenColorFactor")) {
+    ctx.warn(who + ": KHR_materials_sheen sheenColorFactor is not three numbers; black used");
+  }
+  const tinygltf::Value& roughness = sheen.Get("sheenRoughnessFactor");
+  if (roughness.IsNumber()) {
+    material.sheen_roughness = static_cast<float>(roughness.GetNumberAsDouble());
+  } else if (sheen.Has("sheenRoughnessFactor")) {
+    ctx.warn(who + ": KHR_materials_sheen sheenRoughnessFactor is not a number; 0 used");
+  }
+  std::string textures;
+  for (const char* name : {"sheenColorTexture", "sheenRoughnessTexture"}) {
+    if (sheen.Has(name)) textures += (textures.empty() ? "" : " and ") + std::string(name);
+  }
+  if (!textures.empty()) {
+    ctx.warn(who + ": KHR_materials_sheen " + textures +
+             " ignored; the sheen colour and roughness factors are used");
+  }
+}
+
+Material convert_material(const tinygltf::Model& model, const tinygltf::Material& source,
+                          const std::string& who, const Context& ctx) {
   Material material;
   material.name = source.name;
+  read_sheen(source.extensions, who, ctx, material);
+  read_material_extras(source.extras, who, ctx, material);
   const auto& pbr = source.pbrMetallicRoughness;
   for (int c = 0; c < 4 && c < static_cast<int>(pbr.baseColorFactor.size()); ++c) {
     material.base_color[c] = static_cast<float>(pbr.baseColorFactor[c]);
@@ -260,6 +405,21 @@ Animation convert_animation(const tinygltf::Model& model, const tinygltf::Animat
     animation.channels.push_back(std::move(out));
   }
   return animation;
+}
+
+// Marks the nodes a translation, rotation or scale channel moves, and everything under them (a
+// weights channel only deforms the mesh in place). The tree is checked acyclic by link_nodes.
+void mark_animated(Scene& scene) {
+  std::function<void(int)> mark = [&](int n) {
+    if (scene.nodes[n].animated) return;  // its subtree is already marked
+    scene.nodes[n].animated = true;
+    for (int child : scene.nodes[n].children) mark(child);
+  };
+  for (const Animation& animation : scene.animations) {
+    for (const AnimationChannel& channel : animation.channels) {
+      if (channel.path != AnimationChannel::Path::Weights) mark(channel.node);
+    }
+  }
 }
 
 // ---- meshes ------------------------------------------------------------------------------------
@@ -470,10 +630,16 @@ Scene import_gltf(const std::string& path, const Context& ctx) {
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     scene.images.push_back(convert_image(model.images[i], i));
   }
-  for (const tinygltf::Material& material : model.materials) {
-    scene.materials.push_back(convert_material(model, material));
+  for (std::size_t i = 0; i < model.materials.size(); ++i) {
+    const tinygltf::Material& material = model.materials[i];
+    scene.materials.push_back(
+        convert_material(model, material, subject(path, "material", i, material.name), ctx));
   }
-  for (const tinygltf::Node& node : model.nodes) scene.nodes.push_back(convert_node(node));
+  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    scene.nodes.push_back(convert_node(model.nodes[i]));
+    read_node_hints(model.nodes[i].extras, subject(path, "node", i, model.nodes[i].name), ctx,
+                    scene.nodes.back().hints);
+  }
   link_nodes(scene.nodes, path);
   for (std::size_t i = 0; i < model.skins.size(); ++i) {
     scene.skins.push_back(convert_skin(model, model.skins[i], i, path));
@@ -481,6 +647,7 @@ Scene import_gltf(const std::string& path, const Context& ctx) {
   for (std::size_t i = 0; i < model.animations.size(); ++i) {
     scene.animations.push_back(convert_animation(model, model.animations[i], i, path, ctx));
   }
+  mark_animated(scene);
 
   // The default scene's root nodes, or every root node when the file names no scene.
   std::vector<int> roots;

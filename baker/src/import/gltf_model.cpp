@@ -105,8 +105,10 @@ std::size_t array_size(const Json& doc, const char* key) {
 }
 
 void check_required_extensions(const std::string& path, const Json& doc) {
-  static const std::set<std::string> kSupported = {
-      "KHR_draco_mesh_compression", "KHR_texture_transform", "KHR_mesh_quantization"};
+  // KHR_materials_sheen: its factors are read; its textures are ignored with a warning.
+  static const std::set<std::string> kSupported = {"KHR_draco_mesh_compression",
+                                                   "KHR_texture_transform", "KHR_mesh_quantization",
+                                                   "KHR_materials_sheen"};
   const auto it = doc.find("extensionsRequired");
   if (it == doc.end() || !it->is_array()) return;
   for (const Json& name : *it) {

@@ -225,6 +225,14 @@ TEST(ImportAssets, SheenClothKeepsTangents) {
   // KHR_texture_transform scale (30, -30) on the base colour texture.
   EXPECT_FLOAT_EQ(scene.materials[0].base_color_uv_transform[0][0], 30.0f);
   EXPECT_FLOAT_EQ(scene.materials[0].base_color_uv_transform[1][1], -30.0f);
+  // KHR_materials_sheen's factors as the file states them (its sheen textures are not read).
+  const nlohmann::json sheen = gltf_json(shared_asset(
+      "meshes/SheenCloth/SheenCloth.gltf"))["materials"][0]["extensions"]["KHR_materials_sheen"];
+  EXPECT_TRUE(scene.materials[0].sheen);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_FLOAT_EQ(scene.materials[0].sheen_color[c], sheen["sheenColorFactor"][c].get<float>());
+  }
+  EXPECT_FLOAT_EQ(scene.materials[0].sheen_roughness, sheen["sheenRoughnessFactor"].get<float>());
   expect_positions_match_recorded_bounds("meshes/SheenCloth/SheenCloth.gltf", scene, 1e-5);
 }
 

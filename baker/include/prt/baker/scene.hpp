@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,6 +26,12 @@ struct Material {
   // KHR_texture_transform of the base colour texture: uv' = (M * vec3(uv, 1)).xy.
   glm::mat3 base_color_uv_transform{1.0f};
   bool double_sided = false;
+  // KHR_materials_sheen (cloth-like materials); sheen = false when the extension is absent.
+  bool sheen = false;
+  glm::vec3 sheen_color{0.0f};   // sheenColorFactor (linear)
+  float sheen_roughness = 0.0f;  // sheenRoughnessFactor
+  // extras.prt.cloth: true marks the material as woven cloth for `prt-bake scene`.
+  bool cloth = false;
 };
 
 // A decoded texture image, RGBA8 as stored (sRGB for base colour).
@@ -45,6 +52,17 @@ struct Node {
   glm::mat4 world{1.0f};  // parent world * local
   int mesh = -1;          // glTF mesh index, -1 = none
   int skin = -1;          // index into Scene::skins, -1 = none
+  // What extras.prt says to `prt-bake scene` (docs/pipeline.md).
+  struct Hints {
+    bool dynamic = false;   // extras.prt.dynamic: true: the node moves at run time
+    std::string technique;  // extras.prt.technique: forces this technique; empty: none
+    // extras.prt.settings: {"order": 4, "rays": 256} as option arguments
+    // {"--order","4"},{"--rays","256"}
+    std::vector<std::pair<std::string, std::string>> settings;
+    bool skip = false;  // extras.prt.skip: true: not baked
+  } hints;
+  bool animated = false;  // an animation channel (translation, rotation or scale) targets this
+                          // node or one of its ancestors
 };
 
 struct Skin {
