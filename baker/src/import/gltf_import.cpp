@@ -11,6 +11,8 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <set>
 
 #include "gltf_model.hpp"
 #include "import_detail.hpp"
@@ -569,14 +571,130 @@ void place_in_world(Mesh& mesh, const Scene& scene, const glm::mat4& node_world)
   }
 }
 
-void add_node_meshes(const tinygltf::Model& model, int node_index, Scene& scene,
-                     const std::string& file, const Context& ctx) {
+// One primitive of a node's mesh, read, placed in the world and completed; Error when unusable.
+Mesh import_primitive(const tinygltf::Model& model, const Scene& scene, int node_index,
+                      const PrimitiveRef& ref, const std::string& file, const Context& ctx) {
   const Node& node = scene.nodes[node_index];
-  if (node.mesh >= 0) {
-    if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
-      throw Error(file + ": node " + std::to_string(node_index) + " refers to mesh " +
-                  std::to_string(node.mesh) + ", which does not exist");
+  const tinygltf::Primitive& primitive = model.meshes[ref.mesh].primitives[ref.primitive];
+  Mesh mesh = read_primitive(model, ref, file);
+  mesh.node = node_index;
+  if (primitive.material >= 0) {
+    if (static_cast<std::size_t>(primitive.material) >= scene.materials.size()) {
+      throw Error(file + ": " + ref.what + " uses material " + std::to_string(primitive.material) +
+                  ", which does not exist");
     }
+    mesh.material = primitive.material;
+  }
+  if (node.skin >= 0 && !mesh.joints0.empty()) {
+    if (static_cast<std::size_t>(node.skin) >= scene.skins.size()) {
+      throw Error(file + ": node " + std::to_string(node_index) +
+                  " uses a skin that does not exist");
+    }
+    mesh.skin = node.skin;
+  }
+  if (!primitive.targets.empty()) {
+    ctx.info(file + ": " + ref.what + " has morph targets; the base shape is imported");
+  }
+  place_in_world(mesh, scene, node.world);
+  validate_mesh(mesh, file, ref.what);
+  complete_mesh_attributes(mesh);
+  if (mesh.normals_generated) {
+    ctx.warn(file + ": " + ref.what + " has no NORMAL; generated area-weighted normals");
+  }
+  return mesh;
+}
+
+// ---- keep-going ------------------------------------------------------------------------------
+
+std::string node_name(const Scene& scene, int node) {
+  return "node " + std::to_string(node) + " '" + scene.nodes[node].name + "'";
+}
+
+// Records what a keep-going import set aside, and warns of it with what was done about it.
+void record(Scene& scene, ImportProblem problem, const std::string& done, const Context& ctx) {
+  std::string who;  // the node, unless the reason starts by naming it
+  if (problem.node >= 0 && problem.reason.rfind(node_name(scene, problem.node), 0) != 0)
+    who = node_name(scene, problem.node) + ": ";
+  ctx.warn(scene.source + ": " + who + problem.reason + "; " + done);
+  scene.problems.push_back(std::move(problem));
+}
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(m[c][r])) return false;
+    }
+  }
+  return true;
+}
+
+// Why a node's world transform is not finite: its own transform, an ancestor's (the topmost one
+// it inherits from), or a product that overflows.
+std::string non_finite_reason(const Scene& scene, int node) {
+  if (!finite(scene.nodes[node].local)) {
+    return node_name(scene, node) +
+           " has a non-finite transform (a NaN or infinity in its translation, rotation, scale or "
+           "matrix)";
+  }
+  int origin = scene.nodes[node].parent;
+  if (origin < 0 || finite(scene.nodes[origin].world)) {
+    return node_name(scene, node) + " has a non-finite world transform (it overflows)";
+  }
+  while (scene.nodes[origin].parent >= 0 && !finite(scene.nodes[scene.nodes[origin].parent].world))
+    origin = scene.nodes[origin].parent;
+  return node_name(scene, node) + " inherits a non-finite transform from " +
+         node_name(scene, origin);
+}
+
+// Keep-going: why material m's base colour texture cannot be used; empty when it can, or when
+// the material has none.
+std::string texture_problem(const tinygltf::Model& model, const Scene& scene, std::size_t m,
+                            const std::map<int, std::string>& undecoded) {
+  const tinygltf::Material& material = model.materials[m];
+  const int texture = material.pbrMetallicRoughness.baseColorTexture.index;
+  if (texture < 0) return "";
+  const std::string what = "material " + std::to_string(m) + " '" + material.name +
+                           "' base colour texture " + std::to_string(texture);
+  if (static_cast<std::size_t>(texture) >= model.textures.size()) return what + " does not exist";
+  const int image = model.textures[texture].source;
+  if (image < 0 || static_cast<std::size_t>(image) >= model.images.size()) {
+    return what + " has no image that exists";
+  }
+  if (scene.images[image].width > 0 && scene.images[image].height > 0) return "";
+  const tinygltf::Image& source = model.images[image];
+  const std::string name = "image " + std::to_string(image) + " '" +
+                           (source.name.empty() ? source.uri : source.name) + "'";
+  const auto why = undecoded.find(image);
+  if (why != undecoded.end()) return what + ": " + name + " does not decode (" + why->second + ")";
+  return what + ": " + name +
+         " did not load (its file is missing or empty, or its pixel format is not supported)";
+}
+
+// ---- the node tree -----------------------------------------------------------------------------
+
+struct MeshImport {
+  const tinygltf::Model& model;
+  const std::string& file;
+  const Context& ctx;
+  const BrokenParts* keep_going;  // null: every problem throws
+  std::set<int> reached_meshes;   // the glTF meshes that nodes of the scene refer to
+};
+
+void add_node_meshes(MeshImport& in, int node_index, Scene& scene) {
+  const tinygltf::Model& model = in.model;
+  const std::string& file = in.file;
+  const Node& node = scene.nodes[node_index];
+  const bool mesh_exists = static_cast<std::size_t>(node.mesh) < model.meshes.size();
+  if (node.mesh >= 0 && mesh_exists) in.reached_meshes.insert(node.mesh);
+  if (in.keep_going && !finite(node.world)) {
+    record(scene, {node_index, -1, -1, non_finite_reason(scene, node_index)},
+           node.mesh >= 0 ? "its meshes are not imported" : "it has no mesh", in.ctx);
+  } else if (node.mesh >= 0 && !mesh_exists) {
+    const std::string what = "node " + std::to_string(node_index) + " refers to mesh " +
+                             std::to_string(node.mesh) + ", which does not exist";
+    if (!in.keep_going) throw Error(file + ": " + what);
+    record(scene, {node_index, -1, -1, what}, "no mesh imported for it", in.ctx);
+  } else if (node.mesh >= 0) {
     const tinygltf::Mesh& source = model.meshes[node.mesh];
     for (std::size_t p = 0; p < source.primitives.size(); ++p) {
       const tinygltf::Primitive& primitive = source.primitives[p];
@@ -586,54 +704,51 @@ void add_node_meshes(const tinygltf::Model& model, int node_index, Scene& scene,
       if (primitive.mode != TINYGLTF_MODE_TRIANGLES &&
           primitive.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
           primitive.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        ctx.warn(file + ": " + ref.what + " draws points or lines (mode " +
-                 std::to_string(primitive.mode) + "); skipped, only triangles are imported");
+        in.ctx.warn(file + ": " + ref.what + " draws points or lines (mode " +
+                    std::to_string(primitive.mode) + "); skipped, only triangles are imported");
         continue;
       }
-      Mesh mesh = read_primitive(model, ref, file);
-      mesh.node = node_index;
-      if (primitive.material >= 0) {
-        if (static_cast<std::size_t>(primitive.material) >= scene.materials.size()) {
-          throw Error(file + ": " + ref.what + " uses material " +
-                      std::to_string(primitive.material) + ", which does not exist");
-        }
-        mesh.material = primitive.material;
+      if (!in.keep_going) {
+        scene.meshes.push_back(import_primitive(model, scene, node_index, ref, file, in.ctx));
+        continue;
       }
-      if (node.skin >= 0 && !mesh.joints0.empty()) {
-        if (static_cast<std::size_t>(node.skin) >= scene.skins.size()) {
-          throw Error(file + ": node " + std::to_string(node_index) +
-                      " uses a skin that does not exist");
-        }
-        mesh.skin = node.skin;
+      const auto broken = in.keep_going->primitives.find({ref.mesh, ref.primitive});
+      if (broken != in.keep_going->primitives.end()) {
+        record(scene, {node_index, ref.mesh, -1, broken->second}, "primitive skipped", in.ctx);
+        continue;
       }
-      if (!primitive.targets.empty()) {
-        ctx.info(file + ": " + ref.what + " has morph targets; the base shape is imported");
+      try {
+        scene.meshes.push_back(import_primitive(model, scene, node_index, ref, file, in.ctx));
+      } catch (const Error& e) {
+        record(scene, {node_index, ref.mesh, -1, without_path(e.what(), file)}, "primitive skipped",
+               in.ctx);
       }
-      place_in_world(mesh, scene, node.world);
-      validate_mesh(mesh, file, ref.what);
-      complete_mesh_attributes(mesh);
-      if (mesh.normals_generated) {
-        ctx.warn(file + ": " + ref.what + " has no NORMAL; generated area-weighted normals");
-      }
-      scene.meshes.push_back(std::move(mesh));
     }
   }
-  for (int child : node.children) add_node_meshes(model, child, scene, file, ctx);
+  for (int child : node.children) add_node_meshes(in, child, scene);
 }
 
 }  // namespace
 
-Scene import_gltf(const std::string& path, const Context& ctx) {
-  const tinygltf::Model model = load_gltf_model(path, ctx);
+Scene import_gltf(const std::string& path, const Context& ctx, const ImportOptions& options) {
+  BrokenParts broken;
+  BrokenParts* const keep_going = options.keep_going ? &broken : nullptr;
+  const tinygltf::Model model = load_gltf_model(path, ctx, keep_going);
   Scene scene;
   scene.source = path;
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     scene.images.push_back(convert_image(model.images[i], i));
   }
+  std::map<int, std::string> texture_problems;  // keep-going: material -> reason
   for (std::size_t i = 0; i < model.materials.size(); ++i) {
     const tinygltf::Material& material = model.materials[i];
     scene.materials.push_back(
         convert_material(model, material, subject(path, "material", i, material.name), ctx));
+    if (!keep_going) continue;
+    std::string reason = texture_problem(model, scene, i, broken.images);
+    if (reason.empty()) continue;
+    scene.materials.back().base_color_texture = -1;
+    texture_problems[int(i)] = std::move(reason);
   }
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
     scene.nodes.push_back(convert_node(model.nodes[i]));
@@ -661,14 +776,46 @@ Scene import_gltf(const std::string& path, const Context& ctx) {
       if (scene.nodes[i].parent < 0) roots.push_back(static_cast<int>(i));
     }
   }
+  MeshImport in{model, path, ctx, keep_going, {}};
   for (int root : roots) {
     if (root < 0 || static_cast<std::size_t>(root) >= scene.nodes.size()) {
       throw Error(path + ": the scene lists node " + std::to_string(root) +
                   ", which does not exist");
     }
-    add_node_meshes(model, root, scene, path, ctx);
+    add_node_meshes(in, root, scene);
   }
-  if (scene.meshes.empty()) {
+  if (keep_going) {
+    for (const auto& [which, reason] : broken.primitives) {
+      if (in.reached_meshes.count(which.first)) continue;
+      record(scene, {-1, which.first, -1, reason},
+             "not imported (no node of the scene places its mesh)", ctx);
+    }
+    // A texture problem is the problem of every node whose meshes use the material.
+    for (const auto& [material, reason] : texture_problems) {
+      std::set<int> nodes;
+      for (const Mesh& mesh : scene.meshes) {
+        if (mesh.material == material) nodes.insert(mesh.node);
+      }
+      if (nodes.empty()) nodes.insert(-1);
+      for (int node : nodes) {
+        record(scene, {node, -1, material, reason},
+               "the material's base colour factor is used without it", ctx);
+      }
+    }
+    std::set<int> textured;  // images a base colour texture refers to
+    for (const tinygltf::Material& material : model.materials) {
+      const int texture = material.pbrMetallicRoughness.baseColorTexture.index;
+      if (texture >= 0 && static_cast<std::size_t>(texture) < model.textures.size())
+        textured.insert(model.textures[texture].source);
+    }
+    for (const auto& [image, why] : broken.images) {
+      if (textured.count(image)) continue;
+      ctx.warn(path + ": image " + std::to_string(image) + " does not decode (" + why +
+               "); no base colour texture uses it");
+    }
+  }
+  // With keep-going, a scene whose every mesh is broken comes back empty, with its problems.
+  if (scene.meshes.empty() && scene.problems.empty()) {
     throw Error(path + ": the scene has no triangle meshes (empty mesh, no triangles)");
   }
   return scene;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -174,11 +175,25 @@ void check_buffer_views(const std::string& path, const Json& doc) {
   }
 }
 
-// Accessor index -> "mesh M primitive P" for the accessors Draco decoding fills in.
-using DracoAccessors = std::map<int, std::string>;
+// A primitive with KHR_draco_mesh_compression, and "mesh M primitive P" for messages.
+struct DracoPrimitive {
+  int mesh = -1, primitive = -1;
+  std::string id;
+};
+// Accessor index -> the primitive whose Draco decoding fills it in.
+using DracoAccessors = std::map<int, DracoPrimitive>;
+
+// A problem of one primitive: Error("<path>: <what>"), or with keep-going set aside (the first
+// reason found for a primitive is kept).
+void primitive_fails(const std::string& path, BrokenParts* keep_going, int mesh, int primitive,
+                     const std::string& what) {
+  if (!keep_going) throw Error(path + ": " + what);
+  keep_going->primitives.emplace(std::make_pair(mesh, primitive), what);
+}
 
 // tinygltf's Draco path indexes bufferViews and accessors without checking them.
-void check_draco_primitives(const std::string& path, const Json& doc, DracoAccessors& draco_out) {
+void check_draco_primitives(const std::string& path, const Json& doc, DracoAccessors& draco_out,
+                            BrokenParts* keep_going) {
   const std::size_t view_count = array_size(doc, "bufferViews");
   const std::size_t accessor_count = array_size(doc, "accessors");
   const auto meshes = doc.find("meshes");
@@ -195,34 +210,44 @@ void check_draco_primitives(const std::string& path, const Json& doc, DracoAcces
         draco = &primitive["extensions"]["KHR_draco_mesh_compression"];
       }
       if (!draco) continue;
+      const auto fails = [&](const std::string& what) {
+        primitive_fails(path, keep_going, int(m), int(p), id + ": " + what);
+      };
       if (!draco->is_object() || !is_index(draco->value("bufferView", Json()), view_count)) {
-        throw Error(path + ": " + id + ": KHR_draco_mesh_compression has a bad bufferView");
+        fails("KHR_draco_mesh_compression has a bad bufferView");
+        continue;
       }
       if (!primitive.contains("indices") || !is_index(primitive["indices"], accessor_count)) {
-        throw Error(path + ": " + id + ": Draco primitive without a valid indices accessor");
+        fails("Draco primitive without a valid indices accessor");
+        continue;
       }
       const auto attributes = draco->find("attributes");
       if (attributes == draco->end() || !attributes->is_object()) {
-        throw Error(path + ": " + id + ": KHR_draco_mesh_compression has no attributes");
+        fails("KHR_draco_mesh_compression has no attributes");
+        continue;
       }
-      draco_out[primitive["indices"].get<int>()] = id;
+      const DracoPrimitive which{int(m), int(p), id};
+      DracoAccessors filled{{primitive["indices"].get<int>(), which}};
+      bool usable = true;
       for (const auto& [name, unique_id] : attributes->items()) {
         if (!unique_id.is_number_integer() || !primitive.contains("attributes") ||
             !primitive["attributes"].contains(name) ||
             !is_index(primitive["attributes"][name], accessor_count)) {
-          throw Error(path + ": " + id + ": Draco attribute " + name +
-                      " has no valid accessor in the primitive");
+          fails("Draco attribute " + name + " has no valid accessor in the primitive");
+          usable = false;
+          break;
         }
-        draco_out[primitive["attributes"][name].get<int>()] = id;
+        filled[primitive["attributes"][name].get<int>()] = which;
       }
+      if (!usable) continue;
+      for (const auto& [accessor, filler] : filled) draco_out[accessor] = filler;
     }
   }
 }
 
-// The checks tinygltf needs to have been made before it runs.
-DracoAccessors precheck(const std::string& path, const std::string& json_text,
-                        const GlbChunks* glb) {
-  Json doc;
+// The checks tinygltf needs to have been made before it runs; doc receives the parsed JSON.
+DracoAccessors precheck(const std::string& path, const std::string& json_text, const GlbChunks* glb,
+                        Json& doc, BrokenParts* keep_going) {
   try {
     doc = Json::parse(json_text);
   } catch (const std::exception& e) {
@@ -238,19 +263,20 @@ DracoAccessors precheck(const std::string& path, const std::string& json_text,
   check_buffers(path, doc, glb);
   check_buffer_views(path, doc);
   DracoAccessors draco;
-  check_draco_primitives(path, doc, draco);
+  check_draco_primitives(path, doc, draco, keep_going);
   return draco;
 }
 
 // Draco-filled accessors left without data mean the bitstream did not decode (tinygltf ignores
 // the decoder's failure and only notices the missing bufferView later).
 void check_draco_decoded(const std::string& path, const tinygltf::Model& model,
-                         const DracoAccessors& draco) {
+                         const DracoAccessors& draco, BrokenParts* keep_going) {
   for (const auto& [accessor, primitive] : draco) {
     if (model.accessors[accessor].bufferView < 0) {
-      throw Error(path + ": " + primitive +
-                  ": the KHR_draco_mesh_compression data does not decode (corrupt or truncated "
-                  "Draco bitstream)");
+      primitive_fails(path, keep_going, primitive.mesh, primitive.primitive,
+                      primitive.id +
+                          ": the KHR_draco_mesh_compression data does not decode (corrupt or "
+                          "truncated Draco bitstream)");
     }
   }
 }
@@ -433,16 +459,176 @@ void fix_draco_views(tinygltf::Model& model) {
   }
 }
 
-void validate_accessors(const tinygltf::Model& model, const std::string& file) {
-  for (std::size_t i = 0; i < model.accessors.size(); ++i) {
-    const tinygltf::Accessor& accessor = model.accessors[i];
-    if (accessor.bufferView < 0 && !accessor.sparse.isSparse) {
-      throw Error(file + ": accessor " + std::to_string(i) +
-                  " has no valid bufferView (bad accessor, or a Draco primitive that failed to "
-                  "decode)");
-    }
-    read_accessor(model, static_cast<int>(i), false, file, "accessor " + std::to_string(i));
+void validate_accessor(const tinygltf::Model& model, std::size_t i, const std::string& file) {
+  const tinygltf::Accessor& accessor = model.accessors[i];
+  if (accessor.bufferView < 0 && !accessor.sparse.isSparse) {
+    throw Error(file + ": accessor " + std::to_string(i) +
+                " has no valid bufferView (bad accessor, or a Draco primitive that failed to "
+                "decode)");
   }
+  read_accessor(model, static_cast<int>(i), false, file, "accessor " + std::to_string(i));
+}
+
+void validate_accessors(const tinygltf::Model& model, const std::string& file) {
+  for (std::size_t i = 0; i < model.accessors.size(); ++i) validate_accessor(model, i, file);
+}
+
+// ---- keep-going ------------------------------------------------------------------------------
+
+// "mesh 0 'Fox' primitive 1", as the importer names a primitive.
+std::string primitive_name(const tinygltf::Model& model, int mesh, int primitive) {
+  return "mesh " + std::to_string(mesh) + " '" + model.meshes[mesh].name + "' primitive " +
+         std::to_string(primitive);
+}
+
+// Keep-going validation: an unusable accessor that only primitives use sets those primitives
+// aside; one that nothing uses is a warning (none when it belonged to a primitive already set
+// aside and emptied); one that a skin or an animation uses throws, as without keep-going.
+void validate_accessors(const tinygltf::Model& model, const std::string& file,
+                        const std::set<int>& emptied_accessors, const Context& ctx,
+                        BrokenParts& keep_going) {
+  std::map<int, std::vector<std::pair<int, int>>> primitive_users;
+  for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+    for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+      const tinygltf::Primitive& primitive = model.meshes[m].primitives[p];
+      std::set<int> used;
+      if (primitive.indices >= 0) used.insert(primitive.indices);
+      for (const auto& [name, accessor] : primitive.attributes) used.insert(accessor);
+      for (const auto& target : primitive.targets) {
+        for (const auto& [name, accessor] : target) used.insert(accessor);
+      }
+      for (int accessor : used) primitive_users[accessor].emplace_back(int(m), int(p));
+    }
+  }
+  std::set<int> other_users;
+  for (const tinygltf::Skin& skin : model.skins) other_users.insert(skin.inverseBindMatrices);
+  for (const tinygltf::Animation& animation : model.animations) {
+    for (const tinygltf::AnimationSampler& sampler : animation.samplers) {
+      other_users.insert({sampler.input, sampler.output});
+    }
+  }
+  for (std::size_t i = 0; i < model.accessors.size(); ++i) {
+    try {
+      validate_accessor(model, i, file);
+    } catch (const Error& e) {
+      const int accessor = int(i);
+      if (other_users.count(accessor)) throw;
+      const auto users = primitive_users.find(accessor);
+      if (users == primitive_users.end()) {
+        if (!emptied_accessors.count(accessor)) {
+          ctx.warn(std::string(e.what()) + "; nothing uses it: ignored");
+        }
+        continue;
+      }
+      for (const auto& [m, p] : users->second) {
+        primitive_fails(file, &keep_going, m, p,
+                        primitive_name(model, m, p) + ": " + without_path(e.what(), file));
+      }
+    }
+  }
+}
+
+// The image loader of a keep-going load: an image whose bytes do not decode is left empty and
+// set aside instead of failing the file.
+bool load_image_or_set_aside(tinygltf::Image* image, const int index, std::string* /*err*/,
+                             std::string* warn, int width, int height, const unsigned char* bytes,
+                             int size, void* images) {
+  std::string why;
+  if (tinygltf::LoadImageData(image, index, &why, warn, width, height, bytes, size, nullptr)) {
+    return true;
+  }
+  (*static_cast<std::map<int, std::string>*>(images))[index] = trimmed(why);
+  return true;
+}
+
+// Empties, in doc, the primitives set aside and not emptied yet: tinygltf stops at (or, for
+// Draco, indexes out of bounds through) what makes them unusable. Adds the accessors they used to
+// emptied_accessors; returns whether it emptied any.
+bool empty_set_aside(Json& doc, const BrokenParts& keep_going,
+                     std::set<std::pair<int, int>>& emptied, std::set<int>& emptied_accessors) {
+  bool any = false;
+  const auto accessor = [&](const Json& value) {
+    if (value.is_number_integer()) emptied_accessors.insert(value.get<int>());
+  };
+  for (const auto& [which, reason] : keep_going.primitives) {
+    if (!emptied.insert(which).second) continue;
+    Json& primitive = doc["meshes"][which.first]["primitives"][which.second];
+    if (primitive.contains("indices")) accessor(primitive["indices"]);
+    if (primitive.contains("attributes") && primitive["attributes"].is_object()) {
+      for (const auto& [name, value] : primitive["attributes"].items()) accessor(value);
+    }
+    if (primitive.contains("targets") && primitive["targets"].is_array()) {
+      for (const Json& target : primitive["targets"]) {
+        if (!target.is_object()) continue;
+        for (const auto& [name, value] : target.items()) accessor(value);
+      }
+    }
+    primitive = Json{{"attributes", Json::object()}};
+    any = true;
+  }
+  return any;
+}
+
+// tinygltf stops at the first primitive whose indices accessor has no bufferView (a Draco
+// bitstream that did not decode leaves it so). Sets aside the primitives err points at; false
+// when it points at none.
+bool set_aside_stopping_primitives(const std::string& path, const Json& doc, const std::string& err,
+                                   BrokenParts& keep_going) {
+  const std::size_t end = err.find("] invalid bufferView");
+  const std::size_t begin = err.rfind("accessor[", end);
+  if (end == std::string::npos || begin == std::string::npos) return false;
+  const std::string number = err.substr(begin + 9, end - begin - 9);
+  int accessor = -1;
+  const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), accessor);
+  if (ec != std::errc() || ptr != number.data() + number.size()) return false;
+  const auto meshes = doc.find("meshes");
+  if (meshes == doc.end() || !meshes->is_array()) return false;
+  bool any = false;
+  for (std::size_t m = 0; m < meshes->size(); ++m) {
+    const Json& mesh = (*meshes)[m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+      continue;
+    const Json& primitives = mesh["primitives"];
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      const Json& primitive = primitives[p];
+      if (!primitive.is_object() || !primitive.contains("indices") ||
+          primitive["indices"] != accessor)
+        continue;
+      const bool draco = primitive.contains("extensions") && primitive["extensions"].is_object() &&
+                         primitive["extensions"].contains("KHR_draco_mesh_compression");
+      const std::string id = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+      primitive_fails(path, &keep_going, int(m), int(p),
+                      draco ? id + ": the KHR_draco_mesh_compression data does not decode "
+                                   "(corrupt or truncated Draco bitstream)"
+                            : id + ": its indices accessor " + std::to_string(accessor) +
+                                  " has no valid bufferView");
+      any = true;
+    }
+  }
+  return any;
+}
+
+// The file's bytes with doc as its JSON (for a .glb, the binary chunk kept as it is).
+std::vector<unsigned char> with_json(const std::vector<unsigned char>& bytes, bool binary,
+                                     const Json& doc) {
+  std::string json = doc.dump();
+  if (!binary) return std::vector<unsigned char>(json.begin(), json.end());
+  while (json.size() % 4) json += ' ';
+  const std::size_t old_json = read_u32(&bytes[12]), length = read_u32(&bytes[8]);
+  const std::size_t rest = 20 + old_json;  // the binary chunk, when there is one
+  const std::size_t tail = length > rest ? length - rest : 0;
+  std::vector<unsigned char> out;
+  const auto u32 = [&](std::size_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>((v >> (8 * i)) & 0xFF));
+  };
+  out.insert(out.end(), {'g', 'l', 'T', 'F'});
+  u32(2);
+  u32(20 + json.size() + tail);
+  u32(json.size());
+  u32(0x4E4F534Au);  // "JSON"
+  out.insert(out.end(), json.begin(), json.end());
+  out.insert(out.end(), bytes.begin() + rest, bytes.begin() + rest + tail);
+  return out;
 }
 
 }  // namespace
@@ -503,7 +689,13 @@ AccessorData read_accessor(const tinygltf::Model& model, int index, bool normali
   return out;
 }
 
-tinygltf::Model load_gltf_model(const std::string& path, const Context& ctx) {
+std::string without_path(const std::string& message, const std::string& path) {
+  const std::string prefix = path + ": ";
+  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+}
+
+tinygltf::Model load_gltf_model(const std::string& path, const Context& ctx,
+                                BrokenParts* keep_going) {
   const std::vector<unsigned char> bytes = io::read_file(path);
   // A .glb must be a GLB container; anything else is taken as JSON unless it has GLB's magic.
   const bool glb_name = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 ||
@@ -511,39 +703,60 @@ tinygltf::Model load_gltf_model(const std::string& path, const Context& ctx) {
   const bool binary = glb_name || (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0);
   GlbChunks glb;
   DracoAccessors draco;
+  Json doc;
   if (binary) {
     glb = split_glb(path, bytes);
-    draco = precheck(path, glb.json, &glb);
+    draco = precheck(path, glb.json, &glb, doc, keep_going);
   } else {
-    draco = precheck(path, std::string(bytes.begin(), bytes.end()), nullptr);
+    draco = precheck(path, std::string(bytes.begin(), bytes.end()), nullptr, doc, keep_going);
   }
 
   tinygltf::TinyGLTF loader;
+  if (keep_going) loader.SetImageLoader(&load_image_or_set_aside, &keep_going->images);
   tinygltf::Model model;
   std::string err, warn;
   const std::string base_dir = base_dir_of(path);
-  const bool ok = binary
-                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                                    static_cast<unsigned>(bytes.size()), base_dir)
-                      : loader.LoadASCIIFromString(&model, &err, &warn,
-                                                   reinterpret_cast<const char*>(bytes.data()),
-                                                   static_cast<unsigned>(bytes.size()), base_dir);
+  // Keep-going: tinygltf reads the file with the primitives set aside emptied, and what it still
+  // stops at is set aside and emptied in turn (each round empties at least one primitive).
+  std::vector<unsigned char> edited;
+  std::set<std::pair<int, int>> emptied;
+  std::set<int> emptied_accessors;
+  bool ok = false;
+  for (;;) {
+    if (keep_going && empty_set_aside(doc, *keep_going, emptied, emptied_accessors)) {
+      edited = with_json(bytes, binary, doc);
+    }
+    const std::vector<unsigned char>& input = edited.empty() ? bytes : edited;
+    model = tinygltf::Model();
+    err.clear();
+    warn.clear();
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(),
+                                              static_cast<unsigned>(input.size()), base_dir)
+                : loader.LoadASCIIFromString(&model, &err, &warn,
+                                             reinterpret_cast<const char*>(input.data()),
+                                             static_cast<unsigned>(input.size()), base_dir);
+    if (ok || !keep_going || !set_aside_stopping_primitives(path, doc, err, *keep_going)) break;
+  }
   if (!warn.empty()) ctx.warn(path + ": " + trimmed(warn));
   if (!ok) {
     // tinygltf stops at the first Draco index accessor without data; say why.
     for (const auto& [accessor, primitive] : draco) {
       if (err.find("accessor[" + std::to_string(accessor) + "] invalid bufferView") !=
           std::string::npos) {
-        throw Error(path + ": " + primitive +
+        throw Error(path + ": " + primitive.id +
                     ": the KHR_draco_mesh_compression data does not decode (corrupt or "
                     "truncated Draco bitstream)");
       }
     }
     throw Error(path + ": " + (err.empty() ? "cannot load glTF" : trimmed(err)));
   }
-  check_draco_decoded(path, model, draco);
+  check_draco_decoded(path, model, draco, keep_going);
   fix_draco_views(model);
-  validate_accessors(model, path);
+  if (keep_going) {
+    validate_accessors(model, path, emptied_accessors, ctx, *keep_going);
+  } else {
+    validate_accessors(model, path);
+  }
   return model;
 }
 

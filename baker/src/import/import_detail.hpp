@@ -8,7 +8,7 @@
 
 namespace prt::bake::detail {
 
-Scene import_gltf(const std::string& path, const Context& ctx);
+Scene import_gltf(const std::string& path, const Context& ctx, const ImportOptions& options);
 Scene import_obj(const std::string& path, const Context& ctx);
 
 // Area-weighted vertex normals from positions and indices (degenerate triangles add nothing;

@@ -109,8 +109,12 @@ void generate_tangents(Mesh& mesh) {
 }
 
 Scene import_scene(const std::string& path, const Context& ctx) {
+  return import_scene(path, ctx, ImportOptions{});
+}
+
+Scene import_scene(const std::string& path, const Context& ctx, const ImportOptions& options) {
   const std::string ext = lower_extension(path);
-  if (ext == "gltf" || ext == "glb") return detail::import_gltf(path, ctx);
+  if (ext == "gltf" || ext == "glb") return detail::import_gltf(path, ctx, options);
   if (ext == "obj") return detail::import_obj(path, ctx);
   throw Error(path + ": unknown scene file extension '" + ext + "' (expected .gltf, .glb or .obj)");
 }

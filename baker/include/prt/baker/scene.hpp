@@ -119,6 +119,35 @@ struct Mesh {
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
+// What a keep-going import (ImportOptions::keep_going) dropped or repaired, one entry per node it
+// concerns:
+// - a primitive whose data is unusable (a bad accessor, a non-finite position, an index out of
+//   range, Draco data that does not decode, no triangles, ...): dropped; one problem per node
+//   that instances its mesh (node and mesh set), or one with node -1 when no node places it;
+// - a node whose world transform is not finite (NaN or infinity in its TRS or matrix, or in an
+//   ancestor's): its meshes are not imported; one problem for it and one for each such node
+//   under it (node set), whether it has a mesh or not; likewise a node whose mesh does not exist;
+// - a base colour texture that does not load (its image does not decode or its file is missing,
+//   or the texture does not exist): the material keeps its factor, base_color_texture = -1; one
+//   problem per node whose imported meshes use the material (node and material set), or one with
+//   node -1 when none does. So a consumer finds all of a node's problems by its index alone.
+struct ImportProblem {
+  int node = -1;      // the node it concerns (-1: the file as a whole, or an unplaced mesh)
+  int mesh = -1;      // glTF mesh index, -1 when not about a mesh
+  int material = -1;  // material index, -1 when not about a material
+  // What is wrong, as the throwing import would have said it without the leading "<file>: "
+  // (Scene::source names the file), e.g. "mesh 4 'lost' primitive 0 has a non-finite vertex
+  // position".
+  std::string reason;
+};
+
+struct ImportOptions {
+  // false (default): any problem throws Error, as import_scene(path, ctx) does. true: a problem
+  // confined to a primitive, a node or a texture is recorded in Scene::problems and the rest is
+  // imported.
+  bool keep_going = false;
+};
+
 struct Scene {
   std::string source;  // the file it came from
   std::vector<Mesh> meshes;
@@ -127,6 +156,8 @@ struct Scene {
   std::vector<Node> nodes;
   std::vector<Skin> skins;
   std::vector<Animation> animations;
+  // What a keep-going import set aside (ImportProblem); always empty otherwise.
+  std::vector<ImportProblem> problems;
 
   // Vertices are numbered by concatenating meshes in order: this is "the order of the imported
   // mesh" used by every per-vertex output (e.g. prt-bake reference --vertex-out).
@@ -150,5 +181,13 @@ void generate_tangents(Mesh& mesh);
 // Reads .gltf / .glb (with KHR_draco_mesh_compression) or .obj, chosen by the file extension.
 // Throws Error naming the file and what is wrong. Warnings (e.g. generated normals) go to ctx.
 Scene import_scene(const std::string& path, const Context& ctx);
+// The same, with options. With keep_going, a glTF file's broken primitives, nodes and base
+// colour textures are recorded in Scene::problems (each also a warning through ctx) and the rest
+// is imported. What concerns the file as a whole still throws: it cannot be read, its JSON or GLB
+// container is broken, it is not glTF 2.0 or requires an unsupported extension, a buffer is
+// missing or short, the node graph is not a tree, a skin or an animation (or an accessor they
+// use) is broken. When every mesh is broken the scene comes back with no meshes and its problems;
+// a file with no problems and no meshes still throws. An OBJ file is read as without options.
+Scene import_scene(const std::string& path, const Context& ctx, const ImportOptions& options);
 
 }  // namespace prt::bake
