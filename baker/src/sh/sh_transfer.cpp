@@ -12,6 +12,7 @@
 #include <mutex>
 #include <string>
 
+#include "../common/numbers.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "../render/vertex_directions.hpp"
 #include "prt/baker/ray_batch.hpp"
@@ -61,21 +62,25 @@ struct ShVertexTable {
   std::size_t size() const { return position.size(); }
 };
 
+// Bakes the vertices [first, first + count) of the table; a bounce pass needs them all.
 class TransferBaker {
  public:
   TransferBaker(const Scene& scene, const EmbreeScene* rays, const ShTransferSettings& settings,
-                const ShVertexTable& vertices)
+                const ShVertexTable& vertices, std::size_t first, std::size_t count)
       : scene_(scene),
         rays_(rays),
         settings_(settings),
         vertices_(vertices),
+        first_(first),
+        count_(count),
         coeffs_(static_cast<std::size_t>(settings.order) * settings.order),
-        tasks_((vertices.size() + kShVerticesPerTask - 1) / kShVerticesPerTask),
+        tasks_((count + kShVerticesPerTask - 1) / kShVerticesPerTask),
         task_rays_(tasks_, 0) {}
 
-  // Pass 0: rho * mean over directions of V(w) y(w), V = 1 when unshadowed.
+  // Pass 0: rho * mean over directions of V(w) y(w), V = 1 when unshadowed. Row v - first is
+  // vertex v's: its directions are keyed by v, so a range's rows are the whole bake's.
   std::vector<float> direct(const Context& ctx) {
-    std::vector<float> out(vertices_.size() * 3 * coeffs_, 0.0f);
+    std::vector<float> out(count_ * 3 * coeffs_, 0.0f);
     const bool shadowed = settings_.kind != ShTransferKind::Unshadowed;
     render::parallel_tasks(tasks_, ctx, "sh transfer: direct", [&](std::size_t task) {
       std::vector<double> sum(coeffs_);
@@ -85,7 +90,7 @@ class TransferBaker {
       std::unique_ptr<RayBatch> batch;
       if (shadowed) batch = std::make_unique<RayBatch>(*rays_);
       std::uint64_t traced = 0;
-      for (std::size_t v = task * kShVerticesPerTask; v < task_end(task); ++v) {
+      for (std::size_t v = task_begin(task); v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
         const render::VertexDirections directions(settings_.seed, v, n, kDirectionsTag);
@@ -111,7 +116,8 @@ class TransferBaker {
   }
 
   // One bounce (Sloan 2002 §5): rho * mean over directions that hit the front of a surface of
-  // the previous pass's transfer interpolated at the hit.
+  // the previous pass's transfer interpolated at the hit. The baker must cover every vertex
+  // (`previous` is every vertex's pass).
   std::vector<float> bounce(const std::vector<float>& previous, int index, const Context& ctx) {
     std::vector<float> out(previous.size(), 0.0f);
     const std::string stage = "sh transfer: bounce " + std::to_string(index);
@@ -122,7 +128,7 @@ class TransferBaker {
       std::vector<unsigned char> found(settings_.rays);
       RayBatch batch(*rays_);
       std::uint64_t traced = 0;
-      for (std::size_t v = task * kShVerticesPerTask; v < task_end(task); ++v) {
+      for (std::size_t v = task_begin(task); v < task_end(task); ++v) {
         if (!vertices_.usable[v]) continue;
         const glm::vec3 n = vertices_.normal[v];
         const render::VertexDirections directions(settings_.seed, v, n, kDirectionsTag);
@@ -147,18 +153,19 @@ class TransferBaker {
   }
 
  private:
+  std::size_t task_begin(std::size_t task) const { return first_ + task * kShVerticesPerTask; }
   std::size_t task_end(std::size_t task) const {
-    return std::min(vertices_.size(), (task + 1) * kShVerticesPerTask);
+    return first_ + std::min(count_, (task + 1) * kShVerticesPerTask);
   }
 
-  // Writes rho_c * sum / rays for each channel c; sum holds channel_stride values per channel
-  // (0: one set shared by the three channels).
+  // Writes rho_c * sum / rays for each channel c into row v - first; sum holds channel_stride
+  // values per channel (0: one set shared by the three channels).
   void store(std::size_t v, const std::vector<double>& sum, std::size_t channel_stride,
              std::vector<float>* out) const {
     for (int c = 0; c < 3; ++c) {
       const double scale = static_cast<double>(vertices_.albedo[v][c]) / settings_.rays;
       const double* s = sum.data() + c * channel_stride;
-      float* t = out->data() + (v * 3 + c) * coeffs_;
+      float* t = out->data() + ((v - first_) * 3 + c) * coeffs_;
       for (std::size_t k = 0; k < coeffs_; ++k) t[k] = static_cast<float>(s[k] * scale);
     }
   }
@@ -187,7 +194,7 @@ class TransferBaker {
   const EmbreeScene* rays_;
   const ShTransferSettings& settings_;
   const ShVertexTable& vertices_;
-  std::size_t coeffs_, tasks_;
+  std::size_t first_, count_, coeffs_, tasks_;
   std::vector<std::uint64_t> task_rays_;  // per task, summed at the end: deterministic
 };
 
@@ -214,40 +221,131 @@ ShTransferKind parse_sh_transfer_kind(const char* name) {
               "' (unshadowed, shadowed or interreflected)");
 }
 
+namespace {
+
+// An Embree scene of `scene` when the kind traces rays and none is given (null otherwise).
+std::unique_ptr<EmbreeScene> sh_own_rays(const Scene& scene, const EmbreeScene* rays,
+                                         const ShTransferSettings& settings, const Context& ctx) {
+  std::unique_ptr<EmbreeScene> own;
+  if (!rays && settings.kind != ShTransferKind::Unshadowed) {
+    tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+    arena.execute([&] { own = std::make_unique<EmbreeScene>(scene, ctx); });
+  }
+  return own;
+}
+
+void warn_sh_without_normal(const ShTransfer& transfer, const Context& ctx) {
+  if (transfer.vertices_without_normal == 0) return;
+  ctx.warn("sh transfer: " + std::to_string(transfer.vertices_without_normal) +
+           " vertices have no usable normal (zero or non-finite) or position; their transfer "
+           "is 0");
+}
+
+// The direct pass of vertices [first, first + count), without timing or warning.
+ShTransfer sh_direct_range(const Scene& scene, const EmbreeScene* rays,
+                           const ShTransferSettings& settings, const ShVertexTable& vertices,
+                           std::size_t first, std::size_t count, const Context& ctx) {
+  if (first > vertices.size() || count > vertices.size() - first) {
+    throw Error("sh transfer: vertices [" + std::to_string(first) + ", " +
+                std::to_string(first + count) + ") are not all in the scene (" +
+                std::to_string(vertices.size()) + " vertices)");
+  }
+  TransferBaker baker(scene, rays, settings, vertices, first, count);
+  ShTransfer result;
+  result.order = settings.order;
+  result.kind = settings.kind;
+  result.vertex_count = count;
+  result.coefficients = baker.direct(ctx);
+  for (std::size_t v = first; v < first + count; ++v)
+    result.vertices_without_normal += vertices.usable[v] ? 0 : 1;
+  result.rays_traced = baker.rays_traced();
+  return result;
+}
+
+// The bounce passes added to every vertex's direct pass, without timing or warning.
+void sh_bounces(const Scene& scene, const EmbreeScene* rays, const ShTransferSettings& settings,
+                const ShVertexTable& vertices, ShTransfer& whole, const Context& ctx) {
+  if (whole.order != settings.order || whole.kind != settings.kind ||
+      whole.vertex_count != vertices.size() ||
+      whole.coefficients.size() != vertices.size() * 3 * whole.coefficient_count()) {
+    throw Error("sh transfer: the bounces need every vertex's direct pass with these settings");
+  }
+  if (settings.kind != ShTransferKind::Interreflected || settings.bounces == 0) return;
+  TransferBaker baker(scene, rays, settings, vertices, 0, vertices.size());
+  std::vector<float> pass = whole.coefficients;
+  for (int b = 1; b <= settings.bounces; ++b) {
+    pass = baker.bounce(pass, b, ctx);
+    for (std::size_t i = 0; i < pass.size(); ++i) whole.coefficients[i] += pass[i];
+  }
+  whole.rays_traced += baker.rays_traced();
+}
+
+}  // namespace
+
 ShTransfer compute_sh_transfer(const Scene& scene, const EmbreeScene* rays,
                                const ShTransferSettings& settings, const Context& ctx) {
   validate(settings);
   const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<EmbreeScene> own_rays = sh_own_rays(scene, rays, settings, ctx);
+  if (own_rays) rays = own_rays.get();
+  const ShVertexTable vertices(scene, settings);
+  ShTransfer result = sh_direct_range(scene, rays, settings, vertices, 0, vertices.size(), ctx);
+  sh_bounces(scene, rays, settings, vertices, result, ctx);
+  warn_sh_without_normal(result, ctx);
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+ShTransfer compute_sh_direct_range(const Scene& scene, const EmbreeScene* rays,
+                                   const ShTransferSettings& settings, std::size_t first,
+                                   std::size_t count, const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<EmbreeScene> own_rays = sh_own_rays(scene, rays, settings, ctx);
+  if (own_rays) rays = own_rays.get();
+  const ShVertexTable vertices(scene, settings);
+  ShTransfer result = sh_direct_range(scene, rays, settings, vertices, first, count, ctx);
+  warn_sh_without_normal(result, ctx);
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+ShTransfer join_sh_ranges(std::vector<ShTransfer> ranges) {
+  if (ranges.empty()) throw Error("sh transfer: no ranges to join");
+  std::size_t floats = 0;
+  for (const ShTransfer& part : ranges) floats += part.coefficients.size();
+  ShTransfer whole = std::move(ranges.front());
+  whole.coefficients.reserve(floats);
+  for (std::size_t i = 1; i < ranges.size(); ++i) {
+    ShTransfer& part = ranges[i];
+    if (part.order != whole.order || part.kind != whole.kind) {
+      throw Error("sh transfer: range " + std::to_string(i) +
+                  " has another order or kind than range 0");
+    }
+    whole.vertex_count += part.vertex_count;
+    whole.coefficients.insert(whole.coefficients.end(), part.coefficients.begin(),
+                              part.coefficients.end());
+    whole.vertices_without_normal += part.vertices_without_normal;
+    whole.rays_traced += part.rays_traced;
+    whole.seconds += part.seconds;
+    std::vector<float>().swap(part.coefficients);  // freed as soon as copied
+  }
+  return whole;
+}
+
+void add_sh_bounces(const Scene& scene, const EmbreeScene* rays, const ShTransferSettings& settings,
+                    ShTransfer& whole_direct, const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<EmbreeScene> own_rays;
-  if (!rays && settings.kind != ShTransferKind::Unshadowed) {
-    tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
-    arena.execute([&] { own_rays = std::make_unique<EmbreeScene>(scene, ctx); });
-    rays = own_rays.get();
+  if (settings.kind == ShTransferKind::Interreflected && settings.bounces > 0) {
+    own_rays = sh_own_rays(scene, rays, settings, ctx);
+    if (own_rays) rays = own_rays.get();
   }
   const ShVertexTable vertices(scene, settings);
-  TransferBaker baker(scene, rays, settings, vertices);
-
-  ShTransfer result;
-  result.order = settings.order;
-  result.kind = settings.kind;
-  result.vertex_count = vertices.size();
-  result.coefficients = baker.direct(ctx);
-  if (settings.kind == ShTransferKind::Interreflected) {
-    std::vector<float> pass = result.coefficients;
-    for (int b = 1; b <= settings.bounces; ++b) {
-      pass = baker.bounce(pass, b, ctx);
-      for (std::size_t i = 0; i < pass.size(); ++i) result.coefficients[i] += pass[i];
-    }
-  }
-  for (unsigned char ok : vertices.usable) result.vertices_without_normal += ok ? 0 : 1;
-  if (result.vertices_without_normal > 0) {
-    ctx.warn("sh transfer: " + std::to_string(result.vertices_without_normal) +
-             " vertices have no usable normal (zero or non-finite) or position; their transfer "
-             "is 0");
-  }
-  result.rays_traced = baker.rays_traced();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
+  sh_bounces(scene, rays, settings, vertices, whole_direct, ctx);
+  warn_sh_without_normal(whole_direct, ctx);
+  whole_direct.seconds += seconds_since(start);
 }
 
 std::vector<glm::vec3> shade_sh_transfer(const ShTransfer& transfer,

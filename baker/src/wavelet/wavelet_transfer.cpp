@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "../common/numbers.hpp"
 #include "../render/parallel_tasks.hpp"
 #include "prt/baker/ray_batch.hpp"
 #include "prt/baker/sampling.hpp"
@@ -226,12 +227,12 @@ std::vector<std::uint32_t> subset(const WaveletTransferSettings& s, std::size_t 
   return out;
 }
 
-// One task's output: the sparse rows of its vertices, in order.
+// One task's output: the sparse rows of its vertices, in order, and their statistics.
 struct TaskRows {
-  std::vector<std::uint32_t> vertex, count, index;
+  std::vector<std::uint32_t> vertex, count, index, nonzeros_before;
   std::vector<float> value;
+  std::vector<double> energy_kept;
   std::uint64_t traced = 0;
-  double energy_kept = 0.0, nonzeros_before = 0.0;
 };
 
 // What every pass knows about the scene's vertices (Scene order).
@@ -270,56 +271,83 @@ void keep_row(std::uint32_t v, const std::vector<float>& row, const WaveletTrans
   }
   rows.vertex.push_back(v);
   rows.count.push_back(static_cast<std::uint32_t>(kept.size()));
-  rows.energy_kept += total > 0.0 ? sum / total : 1.0;
-  rows.nonzeros_before += double(nonzeros);
+  rows.energy_kept.push_back(total > 0.0 ? sum / total : 1.0);
+  rows.nonzeros_before.push_back(static_cast<std::uint32_t>(nonzeros));
 }
 
-// The tasks' rows as one transfer (rows of vertices not in any task empty).
-WaveletTransfer gather_rows(const std::vector<TaskRows>& task_rows, std::size_t vertex_count) {
-  WaveletTransfer out;
-  out.vertex_count = vertex_count;
-  out.baked.assign(vertex_count, 0);
-  out.row_start.assign(vertex_count + 1, 0);
-  std::vector<std::uint32_t> count(vertex_count, 0);
+// The means of the per-vertex statistics over the baked vertices of `todo` (t's row v - first is
+// vertex v's), summed per task of a pass over `todo` and then over the tasks, as the bake has
+// always summed them: a whole bake and the join of its ranges then give the same doubles.
+void set_wavelet_means(const std::vector<std::uint32_t>& todo, std::size_t first,
+                       WaveletTransfer& t) {
   double energy = 0.0, nonzeros = 0.0;
   std::size_t baked = 0;
+  for (std::size_t at = 0; at < todo.size(); at += kWaveletVerticesPerTask) {
+    double task_energy = 0.0, task_nonzeros = 0.0;
+    for (std::size_t i = at; i < std::min(todo.size(), at + kWaveletVerticesPerTask); ++i) {
+      const std::size_t v = todo[i] - first;
+      if (!t.baked[v]) continue;
+      task_energy += t.energy_kept[v];
+      task_nonzeros += double(t.nonzeros_before[v]);
+      ++baked;
+    }
+    energy += task_energy;
+    nonzeros += task_nonzeros;
+  }
+  t.mean_energy_kept = baked > 0 ? energy / baked : 1.0;
+  t.mean_nonzeros_before = baked > 0 ? nonzeros / baked : 0.0;
+}
+
+// The tasks' rows (of vertices of `todo`, all in [first, first + count)) as the transfer of
+// vertices [first, first + count) (rows of vertices not in any task empty).
+WaveletTransfer gather_rows(const std::vector<TaskRows>& task_rows,
+                            const std::vector<std::uint32_t>& todo, std::size_t first,
+                            std::size_t count) {
+  WaveletTransfer out;
+  out.vertex_count = count;
+  out.baked.assign(count, 0);
+  out.energy_kept.assign(count, 0.0);
+  out.nonzeros_before.assign(count, 0);
+  out.row_start.assign(count + 1, 0);
+  std::vector<std::uint32_t> row_size(count, 0);
   for (const TaskRows& rows : task_rows) {
     for (std::size_t i = 0; i < rows.vertex.size(); ++i) {
-      count[rows.vertex[i]] = rows.count[i];
-      out.baked[rows.vertex[i]] = 1;
+      const std::size_t v = rows.vertex[i] - first;
+      row_size[v] = rows.count[i];
+      out.baked[v] = 1;
+      out.energy_kept[v] = rows.energy_kept[i];
+      out.nonzeros_before[v] = rows.nonzeros_before[i];
     }
-    baked += rows.vertex.size();
     out.rays_traced += rows.traced;
-    energy += rows.energy_kept;
-    nonzeros += rows.nonzeros_before;
   }
-  for (std::size_t v = 0; v < vertex_count; ++v) out.row_start[v + 1] = out.row_start[v] + count[v];
+  for (std::size_t v = 0; v < count; ++v) out.row_start[v + 1] = out.row_start[v] + row_size[v];
   out.index.resize(out.row_start.back());
   out.value.resize(out.row_start.back());
   for (const TaskRows& rows : task_rows) {
     std::size_t at = 0;
     for (std::size_t i = 0; i < rows.vertex.size(); ++i) {
-      const std::uint64_t first = out.row_start[rows.vertex[i]];
-      std::copy_n(rows.index.begin() + at, rows.count[i], out.index.begin() + first);
-      std::copy_n(rows.value.begin() + at, rows.count[i], out.value.begin() + first);
+      const std::uint64_t start = out.row_start[rows.vertex[i] - first];
+      std::copy_n(rows.index.begin() + at, rows.count[i], out.index.begin() + start);
+      std::copy_n(rows.value.begin() + at, rows.count[i], out.value.begin() + start);
       at += rows.count[i];
     }
   }
-  out.mean_energy_kept = baked > 0 ? energy / baked : 1.0;
-  out.mean_nonzeros_before = baked > 0 ? nonzeros / baked : 0.0;
+  set_wavelet_means(todo, first, out);
   return out;
 }
 
-// One pass over the usable vertices of `todo`: row_of(v, row) fills vertex v's dense row in the
-// wavelet domain and returns the rays it traced; rows are truncated by the settings.
+// One pass over the usable vertices of `todo` (all in [first, first + count)): row_of(v, row)
+// fills vertex v's dense row in the wavelet domain and returns the rays it traced; rows are
+// truncated by the settings. The transfer returned has the rows of [first, first + count).
 template <typename RowOf>
 WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const WaveletVertexTable& vertices,
-                         std::uint32_t count, const WaveletTransferSettings& s, const Context& ctx,
+                         std::size_t first, std::size_t count, std::uint32_t coefficients,
+                         const WaveletTransferSettings& s, const Context& ctx,
                          const std::string& stage, RowOf row_of) {
   const std::size_t tasks = (todo.size() + kWaveletVerticesPerTask - 1) / kWaveletVerticesPerTask;
   std::vector<TaskRows> task_rows(tasks);
   render::parallel_tasks(tasks, ctx, stage, [&](std::size_t task) {
-    std::vector<float> row(count);
+    std::vector<float> row(coefficients);
     const std::size_t end = std::min(todo.size(), (task + 1) * kWaveletVerticesPerTask);
     for (std::size_t i = task * kWaveletVerticesPerTask; i < end; ++i) {
       if (!vertices.usable[todo[i]]) continue;
@@ -327,7 +355,7 @@ WaveletTransfer run_pass(const std::vector<std::uint32_t>& todo, const WaveletVe
       keep_row(todo[i], row, s, task_rows[task]);
     }
   });
-  return gather_rows(task_rows, vertices.size());
+  return gather_rows(task_rows, todo, first, count);
 }
 
 // A bounce (Sloan 2002 §5 in the wavelet domain): along vertex v's texel samples that hit the
@@ -511,20 +539,44 @@ std::vector<float> unoccluded_wavelet_texels(std::uint32_t param, std::uint32_t 
   return row;
 }
 
-WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
-                                         const WaveletTransferSettings& settings,
-                                         const Context& ctx) {
-  validate(settings);
-  const auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<EmbreeScene> own_rays;
-  if (!rays) {
-    tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
-    arena.execute([&] { own_rays = std::make_unique<EmbreeScene>(scene, ctx); });
-    rays = own_rays.get();
+namespace {
+
+std::unique_ptr<EmbreeScene> wavelet_own_rays(const Scene& scene, const Context& ctx) {
+  std::unique_ptr<EmbreeScene> own;
+  tbb::task_arena arena(static_cast<int>(ctx.thread_count()));
+  arena.execute([&] { own = std::make_unique<EmbreeScene>(scene, ctx); });
+  return own;
+}
+
+void warn_wavelet_without_normal(const WaveletTransfer& transfer, const Context& ctx) {
+  if (transfer.vertices_without_normal == 0) return;
+  ctx.warn("wavelet transfer: " + std::to_string(transfer.vertices_without_normal) +
+           " vertices have no usable normal (zero or non-finite) or position; their row is "
+           "empty");
+}
+
+// The subset's vertices in [first, first + count), ascending.
+std::vector<std::uint32_t> wavelet_subset_in(const WaveletTransferSettings& s,
+                                             std::size_t vertex_count, std::size_t first,
+                                             std::size_t count) {
+  std::vector<std::uint32_t> todo = subset(s, vertex_count);
+  const auto begin = std::lower_bound(todo.begin(), todo.end(), first);
+  const auto end = std::lower_bound(begin, todo.end(), first + count);
+  return std::vector<std::uint32_t>(begin, end);
+}
+
+// The direct pass of the subset's vertices in [first, first + count), without timing or warning.
+WaveletTransfer wavelet_direct_range(const EmbreeScene& rays, const wavelet::TexelGrid& grid,
+                                     const WaveletVertexTable& vertices,
+                                     const WaveletTransferSettings& settings, std::size_t first,
+                                     std::size_t count, const Context& ctx) {
+  if (first > vertices.size() || count > vertices.size() - first) {
+    throw Error("wavelet transfer: vertices [" + std::to_string(first) + ", " +
+                std::to_string(first + count) + ") are not all in the scene (" +
+                std::to_string(vertices.size()) + " vertices)");
   }
-  const wavelet::TexelGrid grid(settings.param, settings.size);
-  const WaveletVertexTable vertices(scene, settings);
-  const std::vector<std::uint32_t> todo = subset(settings, vertices.size());
+  const std::vector<std::uint32_t> todo =
+      wavelet_subset_in(settings, vertices.size(), first, count);
   // A ray batch and texel buffers per thread, not per vertex: the bake then does not allocate.
   struct DirectScratch {
     RayBatch batch;
@@ -532,48 +584,174 @@ WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* 
     explicit DirectScratch(const EmbreeScene& scene) : batch(scene) {}
   };
   tbb::enumerable_thread_specific<std::unique_ptr<DirectScratch>> direct_scratch;
+  // Every random number is keyed by the vertex's index in the scene: a range's rows are the
+  // whole bake's.
   WaveletTransfer out = run_pass(
-      todo, vertices, grid.count(), settings, ctx, "wavelet transfer: direct",
+      todo, vertices, first, count, grid.count(), settings, ctx, "wavelet transfer: direct",
       [&](std::uint32_t v, std::vector<float>& row) {
         const glm::vec3 n = vertices.normal[v];
         std::unique_ptr<DirectScratch>& local = direct_scratch.local();
-        if (!local) local = std::make_unique<DirectScratch>(*rays);
+        if (!local) local = std::make_unique<DirectScratch>(rays);
         DirectScratch& scratch = *local;
         const std::uint64_t traced = bake_texels(
-            grid, n, rays->offset_origin(vertices.position[v], n), &scratch.batch,
+            grid, n, rays.offset_origin(vertices.position[v], n), &scratch.batch,
             hash_key(settings.seed, v, kJitterTag), settings.samples, scratch.texels, row.data());
         transform_faces(grid, row.data());
         return traced;
       });
-  WaveletTransfer previous = out;
-  for (int b = 1; b <= settings.bounces; ++b) {
-    const std::string stage = "wavelet transfer: bounce " + std::to_string(b);
-    WaveletTransfer bounce =
-        run_pass(todo, vertices, grid.count(), settings, ctx, stage,
-                 [&](std::uint32_t v, std::vector<float>& row) {
-                   return gather_bounce(v, previous, vertices, scene, *rays, grid, settings, row);
-                 });
-    const std::uint64_t traced = out.rays_traced + bounce.rays_traced;
-    out = run_pass(todo, vertices, grid.count(), settings, ctx, stage + " (sum)",
-                   [&](std::uint32_t v, std::vector<float>& row) {
-                     add_rows(out, bounce, v, row);
-                     return std::uint64_t(0);
-                   });
-    out.rays_traced = traced;
-    previous = std::move(bounce);
-  }
   out.param = settings.param;
   out.size = settings.size;
   out.coefficient_count = grid.count();
-  out.albedo = vertices.albedo;
+  out.albedo.assign(vertices.albedo.begin() + std::ptrdiff_t(first),
+                    vertices.albedo.begin() + std::ptrdiff_t(first + count));
   for (std::uint32_t v : todo) out.vertices_without_normal += vertices.usable[v] ? 0 : 1;
-  if (out.vertices_without_normal > 0) {
-    ctx.warn("wavelet transfer: " + std::to_string(out.vertices_without_normal) +
-             " vertices have no usable normal (zero or non-finite) or position; their row is "
-             "empty");
-  }
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+// Replaces t's rows and their statistics by `pass`'s (a pass over the same vertices).
+void take_wavelet_rows(WaveletTransfer& t, WaveletTransfer&& pass) {
+  t.row_start = std::move(pass.row_start);
+  t.index = std::move(pass.index);
+  t.value = std::move(pass.value);
+  t.baked = std::move(pass.baked);
+  t.energy_kept = std::move(pass.energy_kept);
+  t.nonzeros_before = std::move(pass.nonzeros_before);
+  t.mean_energy_kept = pass.mean_energy_kept;
+  t.mean_nonzeros_before = pass.mean_nonzeros_before;
+}
+
+// The bounce passes added to every vertex's direct pass, without timing or warning. A bounce
+// reads the previous pass's truncated rows (the direct pass's for the first), as the rows the
+// direct pass stores.
+void wavelet_bounces(const Scene& scene, const EmbreeScene& rays, const wavelet::TexelGrid& grid,
+                     const WaveletVertexTable& vertices, const WaveletTransferSettings& settings,
+                     WaveletTransfer& whole, const Context& ctx) {
+  const std::vector<std::uint32_t> todo = subset(settings, vertices.size());
+  const std::size_t all = vertices.size();
+  WaveletTransfer last_bounce;
+  for (int b = 1; b <= settings.bounces; ++b) {
+    const WaveletTransfer& previous = b == 1 ? whole : last_bounce;
+    const std::string stage = "wavelet transfer: bounce " + std::to_string(b);
+    WaveletTransfer bounce =
+        run_pass(todo, vertices, 0, all, grid.count(), settings, ctx, stage,
+                 [&](std::uint32_t v, std::vector<float>& row) {
+                   return gather_bounce(v, previous, vertices, scene, rays, grid, settings, row);
+                 });
+    WaveletTransfer sum = run_pass(todo, vertices, 0, all, grid.count(), settings, ctx,
+                                   stage + " (sum)", [&](std::uint32_t v, std::vector<float>& row) {
+                                     add_rows(whole, bounce, v, row);
+                                     return std::uint64_t(0);
+                                   });
+    take_wavelet_rows(whole, std::move(sum));
+    whole.rays_traced += bounce.rays_traced;
+    last_bounce = std::move(bounce);
+  }
+}
+
+// Error unless t is every vertex's transfer with these settings.
+void check_wavelet_whole(const WaveletTransfer& t, const WaveletTransferSettings& settings,
+                         std::size_t vertex_count) {
+  if (t.param != settings.param || t.size != settings.size || t.vertex_count != vertex_count ||
+      t.row_start.size() != vertex_count + 1 || t.baked.size() != vertex_count ||
+      t.albedo.size() != vertex_count || t.energy_kept.size() != vertex_count ||
+      t.nonzeros_before.size() != vertex_count || t.index.size() != t.row_start.back() ||
+      t.value.size() != t.row_start.back()) {
+    throw Error(
+        "wavelet transfer: the bounces need every vertex's direct pass with these "
+        "settings");
+  }
+}
+
+}  // namespace
+
+WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
+                                         const WaveletTransferSettings& settings,
+                                         const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<EmbreeScene> own_rays;
+  if (!rays) rays = (own_rays = wavelet_own_rays(scene, ctx)).get();
+  const wavelet::TexelGrid grid(settings.param, settings.size);
+  const WaveletVertexTable vertices(scene, settings);
+  WaveletTransfer out =
+      wavelet_direct_range(*rays, grid, vertices, settings, 0, vertices.size(), ctx);
+  wavelet_bounces(scene, *rays, grid, vertices, settings, out, ctx);
+  warn_wavelet_without_normal(out, ctx);
+  out.seconds = seconds_since(start);
+  return out;
+}
+
+WaveletTransfer compute_wavelet_direct_range(const Scene& scene, const EmbreeScene* rays,
+                                             const WaveletTransferSettings& settings,
+                                             std::size_t first, std::size_t count,
+                                             const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<EmbreeScene> own_rays;
+  if (!rays) rays = (own_rays = wavelet_own_rays(scene, ctx)).get();
+  const wavelet::TexelGrid grid(settings.param, settings.size);
+  const WaveletVertexTable vertices(scene, settings);
+  WaveletTransfer out = wavelet_direct_range(*rays, grid, vertices, settings, first, count, ctx);
+  warn_wavelet_without_normal(out, ctx);
+  out.seconds = seconds_since(start);
+  return out;
+}
+
+WaveletTransfer join_wavelet_ranges(const WaveletTransferSettings& settings,
+                                    std::vector<WaveletTransfer> ranges) {
+  validate(settings);
+  if (ranges.empty()) throw Error("wavelet transfer: no ranges to join");
+  std::size_t vertices = 0, pairs = 0;
+  for (const WaveletTransfer& part : ranges) {
+    vertices += part.vertex_count;
+    pairs += part.index.size();
+  }
+  WaveletTransfer whole = std::move(ranges.front());
+  whole.row_start.reserve(vertices + 1);
+  whole.index.reserve(pairs);
+  whole.value.reserve(pairs);
+  for (std::size_t i = 1; i < ranges.size(); ++i) {
+    WaveletTransfer& part = ranges[i];
+    if (part.param != whole.param || part.size != whole.size) {
+      throw Error("wavelet transfer: range " + std::to_string(i) +
+                  " has another parameterisation or size than range 0");
+    }
+    const std::uint64_t offset = whole.row_start.back();
+    for (std::size_t v = 1; v < part.row_start.size(); ++v)
+      whole.row_start.push_back(offset + part.row_start[v]);
+    whole.vertex_count += part.vertex_count;
+    whole.index.insert(whole.index.end(), part.index.begin(), part.index.end());
+    whole.value.insert(whole.value.end(), part.value.begin(), part.value.end());
+    whole.albedo.insert(whole.albedo.end(), part.albedo.begin(), part.albedo.end());
+    whole.baked.insert(whole.baked.end(), part.baked.begin(), part.baked.end());
+    whole.energy_kept.insert(whole.energy_kept.end(), part.energy_kept.begin(),
+                             part.energy_kept.end());
+    whole.nonzeros_before.insert(whole.nonzeros_before.end(), part.nonzeros_before.begin(),
+                                 part.nonzeros_before.end());
+    whole.vertices_without_normal += part.vertices_without_normal;
+    whole.rays_traced += part.rays_traced;
+    whole.seconds += part.seconds;
+    part = WaveletTransfer();  // freed as soon as copied
+  }
+  set_wavelet_means(subset(settings, whole.vertex_count), 0, whole);
+  return whole;
+}
+
+void add_wavelet_bounces(const Scene& scene, const EmbreeScene* rays,
+                         const WaveletTransferSettings& settings, WaveletTransfer& whole_direct,
+                         const Context& ctx) {
+  validate(settings);
+  const auto start = std::chrono::steady_clock::now();
+  const WaveletVertexTable vertices(scene, settings);
+  check_wavelet_whole(whole_direct, settings, vertices.size());
+  if (settings.bounces > 0) {
+    std::unique_ptr<EmbreeScene> own_rays;
+    if (!rays) rays = (own_rays = wavelet_own_rays(scene, ctx)).get();
+    const wavelet::TexelGrid grid(settings.param, settings.size);
+    wavelet_bounces(scene, *rays, grid, vertices, settings, whole_direct, ctx);
+  }
+  warn_wavelet_without_normal(whole_direct, ctx);
+  whole_direct.seconds += seconds_since(start);
 }
 
 std::vector<glm::vec3> shade_wavelet_transfer(const WaveletTransfer& transfer,

@@ -24,6 +24,13 @@
 // Vertices whose normal is zero or non-finite (or whose position is non-finite) get a zero
 // transfer vector; they are counted and reported through the context as one warning.
 // Results are bitwise deterministic for any thread count.
+//
+// Ranges (distributed bakes, docs/farm.md): a vertex's directions are keyed by its index in the
+// scene, so the direct pass of a range of vertices gives, bit for bit, the rows the whole bake
+// gives them. A bounce pass reads the previous pass of every vertex its rays hit, so an
+// interreflected bake splits only its direct pass: the ranges are joined, then the bounces run
+// over the whole (compute_sh_transfer is compute_sh_direct_range over every vertex followed by
+// add_sh_bounces).
 #pragma once
 
 #include <cstddef>
@@ -78,6 +85,25 @@ struct ShTransfer {
 // then built for the kinds that need one; if given it must have been built from `scene`.
 ShTransfer compute_sh_transfer(const Scene& scene, const EmbreeScene* rays,
                                const ShTransferSettings& settings, const Context& ctx);
+
+// The direct pass (pass 0) of vertices [first, first + count) only: vertex_count = count, row i is
+// vertex first + i's, bitwise the whole bake's; vertices_without_normal and rays_traced count
+// these vertices only (the warning too). For Unshadowed and Shadowed this is the range's final
+// transfer. Error when the range is not in the scene; `rays` as for compute_sh_transfer.
+ShTransfer compute_sh_direct_range(const Scene& scene, const EmbreeScene* rays,
+                                   const ShTransferSettings& settings, std::size_t first,
+                                   std::size_t count, const Context& ctx);
+
+// Consecutive ranges' direct passes, in vertex order, as one: rows concatenated, counts, rays
+// and seconds summed. Error when they differ in order or kind.
+ShTransfer join_sh_ranges(std::vector<ShTransfer> ranges);
+
+// Finishes a whole bake from the direct pass of every vertex of `scene` (the settings' order and
+// kind): adds the bounce passes when the kind is Interreflected (nothing otherwise), then warns
+// once about the vertices without a usable normal. Adds the rays and seconds it spends. Error
+// when `whole_direct` is not every vertex's pass with these settings.
+void add_sh_bounces(const Scene& scene, const EmbreeScene* rays, const ShTransferSettings& settings,
+                    ShTransfer& whole_direct, const Context& ctx);
 
 // Outgoing radiance per vertex: sum_k t_k L_k per channel, with `light` the RGB SH projection of
 // the environment (order^2 entries, the transfer's order). Throws Error on a size mismatch.

@@ -32,6 +32,13 @@
 //
 // Deterministic: every random number is a hash of (seed, vertex, texel, sample), so 1 and N
 // threads give the same rows bit for bit.
+//
+// Ranges (distributed bakes, docs/farm.md): the vertex in that hash is its index in the scene,
+// so the direct pass of a range of vertices gives, bit for bit, the truncated rows the whole bake
+// gives them. A bounce reads the previous pass's truncated rows of every vertex its rays hit
+// (the direct pass's for the first bounce): with bounces, a bake splits only its direct pass;
+// the ranges are joined, then the bounces run over the whole (compute_wavelet_transfer is
+// compute_wavelet_direct_range over every vertex followed by add_wavelet_bounces).
 #pragma once
 
 #include <cstddef>
@@ -89,6 +96,10 @@ struct WaveletTransfer {
   // and the mean count of non-zero coefficients before truncation.
   double mean_energy_kept = 1.0;
   double mean_nonzeros_before = 0.0;
+  // Per vertex (0 where not baked): that fraction and that count, so that the means of joined
+  // ranges are summed as the whole bake sums them.
+  std::vector<double> energy_kept;
+  std::vector<std::uint32_t> nonzeros_before;
 
   std::size_t row_size(std::size_t v) const { return row_start[v + 1] - row_start[v]; }
 };
@@ -99,6 +110,30 @@ struct WaveletTransfer {
 WaveletTransfer compute_wavelet_transfer(const Scene& scene, const EmbreeScene* rays,
                                          const WaveletTransferSettings& settings,
                                          const Context& ctx);
+
+// The direct pass of the subset's vertices in [first, first + count) only: vertex_count = count,
+// row i (and albedo, baked, the statistics) is vertex first + i's, bitwise the whole bake's
+// direct rows (truncated); vertices_without_normal and rays_traced count these vertices only (the
+// warning too). With bounces = 0 these are the range's final rows. Error when the range is not
+// in the scene; `rays` as for compute_wavelet_transfer.
+WaveletTransfer compute_wavelet_direct_range(const Scene& scene, const EmbreeScene* rays,
+                                             const WaveletTransferSettings& settings,
+                                             std::size_t first, std::size_t count,
+                                             const Context& ctx);
+
+// Consecutive ranges' direct passes, in vertex order, as one: rows and per-vertex data
+// concatenated, counts, rays and seconds summed, the means recomputed over the whole subset as
+// the whole bake sums them. Error when they differ in parameterisation or size.
+WaveletTransfer join_wavelet_ranges(const WaveletTransferSettings& settings,
+                                    std::vector<WaveletTransfer> ranges);
+
+// Finishes a whole bake from the direct pass of every vertex of `scene`: adds the settings'
+// bounce passes (none for bounces = 0), then warns once about the vertices without a usable
+// normal. Adds the rays and seconds it spends. Error when `whole_direct` is not every vertex's
+// pass with these settings.
+void add_wavelet_bounces(const Scene& scene, const EmbreeScene* rays,
+                         const WaveletTransferSettings& settings, WaveletTransfer& whole_direct,
+                         const Context& ctx);
 
 // The texel values of one vertex before the transform (dense, faces * size^2 floats), with an
 // unoccluded hemisphere (no scene): for tests of the sampling and the horizon rule.
