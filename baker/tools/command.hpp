@@ -32,6 +32,8 @@ void add_inspect_command(CLI::App& app, CommandEnv& env);
 void add_demo_scene_command(CLI::App& app, CommandEnv& env);
 void add_info_command(CLI::App& app, CommandEnv& env);
 void add_env_sh_command(CLI::App& app, CommandEnv& env);
+// `scene`: the content pipeline (cmd_scene.cpp).
+void add_scene_command(CLI::App& app, CommandEnv& env);
 // shadowfield-scene, shadowfield-reference and shadowfield-measure (cmd_shadowfield_scene.cpp).
 void add_shadowfield_scene_commands(CLI::App& app, CommandEnv& env);
 // `bake` and `trade`, with one subcommand per technique of prt::bake::techniques().

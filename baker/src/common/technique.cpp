@@ -2,6 +2,8 @@
 // The steps every technique's bake and trade run in the same order (prt/baker/technique.hpp).
 #include "prt/baker/technique.hpp"
 
+#include "atomic_file.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -13,14 +15,6 @@ namespace prt::bake {
 namespace {
 
 namespace fs = std::filesystem;
-
-void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream file(path, std::ios::binary);
-  if (!file || !file.write(reinterpret_cast<const char*>(bytes.data()),
-                           static_cast<std::streamsize>(bytes.size()))) {
-    throw Error(path + ": cannot write the blob");
-  }
-}
 
 // The map names a trade's tables and reference cache use: each file's stem, once.
 void check_map_names(const std::vector<std::string>& envs) {
@@ -79,14 +73,24 @@ glm::vec3 parse_albedo(const std::string& text) {
   return rgb;
 }
 
-void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx) {
+Scene import_bake_scene(const BakeInput& input, const Context& ctx) {
   if (!input.albedo.empty()) parse_albedo(input.albedo);  // a typo fails before the import
-  const Scene scene = import_scene(input.scene, ctx);
+  Scene scene = import_scene(input.scene, ctx);
   warn_about_degenerate_meshes(scene, input.scene, ctx);
+  return scene;
+}
+
+void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx) {
+  const Scene scene = import_bake_scene(input, ctx);
   bake.bake(scene, input, ctx);
+  finish_bake(bake, scene, input, ctx);
+}
+
+void finish_bake(TechniqueBake& bake, const Scene& scene, const BakeInput& input,
+                 const Context& ctx) {
   bake.quantize();
   const std::vector<std::uint8_t> blob = bake.write(scene, input);
-  write_bytes(input.output, blob);
+  write_file_atomic(input.output, blob);
   ctx.info(bake.summary(scene, input, blob.size()));
 
   const SelfCheck check = bake.self_check(blob);
@@ -101,6 +105,29 @@ void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx) {
   }
   if (!check.passed) throw Error("self-check of " + input.output + ": " + check.message);
   ctx.info("self-check passed: " + check.message);
+}
+
+std::size_t TechniqueBake::shard_units(const Scene&) const { return 0; }
+
+std::vector<std::uint8_t> TechniqueBake::bake_shard(const Scene&, const BakeInput&, std::size_t,
+                                                    std::size_t, const Context&) {
+  throw Error("this technique's bake does not split into shards");
+}
+
+void TechniqueBake::merge_shards(const Scene&, const BakeInput&,
+                                 const std::vector<std::vector<std::uint8_t>>&, const Context&) {
+  throw Error("this technique's bake does not split into shards");
+}
+
+ObjectFit Technique::fit(const Scene&, int) const {
+  return {false, std::string("technique ") + name() + " does not bake objects of a scene yet"};
+}
+
+std::vector<Rung> Technique::ladder(int) const { return {}; }
+
+std::vector<glm::vec3> Technique::shade(const std::vector<std::uint8_t>&, const io::EnvMap&,
+                                        const Context&) const {
+  throw Error(std::string("technique ") + name() + " cannot be measured in a scene bake yet");
 }
 
 Scene TechniqueTrade::load_scene(const TradeInput& input, const Context& ctx) {

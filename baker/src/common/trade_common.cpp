@@ -43,6 +43,16 @@ void check_runtime(prt_result result, const std::string& what) {
   if (result != PRT_OK) throw Error(what + ": " + prt_result_string(result));
 }
 
+prt_env_image runtime_env_image(const io::EnvMap& map, int face_size, std::vector<float>* faces) {
+  if (map.mapping() == io::EnvMapping::LatLong)
+    return prt::latlong_env(map.width(), map.height(), map.pixels().data());
+  if (map.mapping() == io::EnvMapping::VerticalCross) face_size = map.face_size();
+  faces->clear();
+  for (const std::vector<float>& face : io::resample_to_cube(map, face_size))
+    faces->insert(faces->end(), face.begin(), face.end());
+  return prt::cube_env(face_size, faces->data());
+}
+
 // --- SH lights ----------------------------------------------------------------------------------
 
 namespace {

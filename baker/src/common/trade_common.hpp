@@ -83,6 +83,10 @@ double time_sh_shading(const prt_asset* asset, prt_backend backend, const std::v
 
 std::vector<glm::vec3> as_vec3(const std::vector<float>& rgb);
 
+// A map as the runtime's environment image: lat-long as it is, any other mapping as six cube
+// faces (a vertical cross at its own face size, others at `face_size`) held in `faces`.
+prt_env_image runtime_env_image(const io::EnvMap& map, int face_size, std::vector<float>* faces);
+
 // "Scene `<file name>`: V vertices, T triangles", the first words of every trade.md.
 std::string scene_description(const std::string& path, const Scene& scene);
 // "<CPU model>, N hardware threads; bakes on T threads; SIMD backend: <what the runtime says>".

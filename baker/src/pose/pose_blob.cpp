@@ -41,7 +41,7 @@ class SectionBytes {
   std::vector<std::uint8_t> bytes_;
 };
 
-std::uint32_t kind_code(ShTransferKind kind) {
+std::uint32_t pose_kind_code(ShTransferKind kind) {
   switch (kind) {
     case ShTransferKind::Unshadowed:
       return PRT_BLOB_SHTR_KIND_UNSHADOWED;
@@ -75,7 +75,7 @@ void write_header(SectionBytes& out, const PoseSkeleton& s, const PoseModel& m, 
                                                                    : PRT_BLOB_PSTR_MODEL_RESIDUAL);
   out.u32(PRT_BLOB_PSTR_OFF_BITS, std::uint32_t(m.bits));
   out.u32(PRT_BLOB_PSTR_OFF_MODEL_JOINT, s.model_joint);
-  out.u32(PRT_BLOB_PSTR_OFF_KIND, kind_code(kind));
+  out.u32(PRT_BLOB_PSTR_OFF_KIND, pose_kind_code(kind));
   out.u32(PRT_BLOB_PSTR_OFF_BOUNCES, std::uint32_t(bounces > 0 ? bounces : 0));
   out.f32(PRT_BLOB_PSTR_OFF_ALBEDO, m.albedo);
   out.u32(PRT_BLOB_PSTR_OFF_FLAGS, m.clamp ? PRT_BLOB_PSTR_FLAG_CLAMP : 0u);

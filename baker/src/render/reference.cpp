@@ -121,10 +121,22 @@ const ReferenceSettings& ReferenceRenderer::settings() const {
 
 VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx,
                                                   const std::optional<glm::vec3>& eye) const {
+  std::vector<std::size_t> all(impl_->estimator.vertex_count());
+  for (std::size_t v = 0; v < all.size(); ++v) all[v] = v;
+  return render_vertices(all, ctx, eye);
+}
+
+VertexRadiance ReferenceRenderer::render_vertices(const std::vector<std::size_t>& subset,
+                                                  const Context& ctx,
+                                                  const std::optional<glm::vec3>& eye) const {
   const auto start = std::chrono::steady_clock::now();
   const render::PathEstimator& estimator = impl_->estimator;
   const ReferenceSettings& settings = impl_->settings;
-  const std::size_t vertices = estimator.vertex_count();
+  for (const std::size_t v : subset) {
+    if (v >= estimator.vertex_count())
+      throw Error("reference renderer: vertex " + std::to_string(v) + " is not in the scene");
+  }
+  const std::size_t vertices = subset.size();
   const std::uint32_t spp_a = (settings.spp + 1) / 2, spp_b = settings.spp / 2;
 
   VertexRadiance result;
@@ -137,12 +149,13 @@ VertexRadiance ReferenceRenderer::render_vertices(const Context& ctx,
   render::parallel_tasks(tasks, ctx, "reference: vertices", [&](std::size_t task) {
     const std::size_t end = std::min(vertices, (task + 1) * kReferenceVerticesPerTask);
     for (std::size_t v = task * kReferenceVerticesPerTask; v < end; ++v) {
+      const std::size_t vertex = subset[v];  // v: where the result goes; vertex: which one
       render::SurfacePoint point;
-      if (!estimator.vertex_point(v, &point)) continue;
+      if (!estimator.vertex_point(vertex, &point)) continue;
       point.outgoing = towards_eye(eye, point.position, point.normal);
       has_normal[v] = 1;
-      const SampleStream half_a(hash_key(settings.seed, v, kVertexHalfA));
-      const SampleStream half_b(hash_key(settings.seed, v, kVertexHalfB));
+      const SampleStream half_a(hash_key(settings.seed, vertex, kVertexHalfA));
+      const SampleStream half_b(hash_key(settings.seed, vertex, kVertexHalfB));
       glm::dvec3 sum_a(0.0), sum_b(0.0);
       for (std::uint32_t i = 0; i < spp_a; ++i) {
         sum_a += glm::dvec3(estimator.sample(point, half_a, i, 0, &task_rays[task]));

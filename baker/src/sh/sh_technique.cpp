@@ -12,6 +12,7 @@
 
 #include "prt/baker/sh/sh_blob.hpp"
 #include "prt/baker/sh/sh_transfer.hpp"
+#include "prt/baker/scene_bake.hpp"
 #include "prt/baker/text.hpp"
 
 #include "../common/shard_payload.hpp"
@@ -227,6 +228,14 @@ class ShTechnique final : public Technique {
   }
   std::unique_ptr<TechniqueBake> make_bake() const override { return std::make_unique<ShBake>(); }
   std::unique_ptr<TechniqueTrade> make_trade() const override { return make_sh_trade(); }
+  ObjectFit fit(const Scene& scene, int node) const override {
+    return static_diffuse_fit(scene, node);
+  }
+  std::vector<Rung> ladder(int bounces) const override { return sh_scene_ladder(bounces); }
+  std::vector<glm::vec3> shade(const std::vector<std::uint8_t>& blob, const io::EnvMap& light,
+                               const Context& ctx) const override {
+    return sh_scene_shade(blob, light, ctx);
+  }
 };
 
 }  // namespace

@@ -47,7 +47,7 @@ double usable_weight(float w) {
   return std::isfinite(w) && w > 0.0f ? double(w) : 0.0;
 }
 
-double luminance(const glm::vec3& rgb) {
+double rgb_luminance(const glm::vec3& rgb) {
   return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
 }
 
@@ -437,7 +437,7 @@ std::vector<TestRadiance> sky_radiances(const Scene& scene, std::size_t vertices
     *noise = std::max(*noise, radiance.relative_rmse);
     TestRadiance r;
     r.sky = true;
-    for (std::size_t v = 0; v < vertices; ++v) r.values.push_back(luminance(radiance.radiance[v]));
+    for (std::size_t v = 0; v < vertices; ++v) r.values.push_back(rgb_luminance(radiance.radiance[v]));
     out.push_back(std::move(r));
   }
   return out;

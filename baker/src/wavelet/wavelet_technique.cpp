@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/baker/scene_bake.hpp"
 #include "prt/baker/text.hpp"
 #include "prt/baker/wavelet/wavelet_blob.hpp"
 #include "prt/baker/wavelet/wavelet_transfer.hpp"
@@ -316,6 +317,14 @@ class WaveletTechnique final : public Technique {
     return std::make_unique<WaveletBake>();
   }
   std::unique_ptr<TechniqueTrade> make_trade() const override { return make_wavelet_trade(); }
+  ObjectFit fit(const Scene& scene, int node) const override {
+    return static_diffuse_fit(scene, node);
+  }
+  std::vector<Rung> ladder(int bounces) const override { return wavelet_scene_ladder(bounces); }
+  std::vector<glm::vec3> shade(const std::vector<std::uint8_t>& blob, const io::EnvMap& light,
+                               const Context& ctx) const override {
+    return wavelet_scene_shade(blob, light, ctx);
+  }
 };
 
 }  // namespace

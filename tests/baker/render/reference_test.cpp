@@ -183,6 +183,27 @@ TEST(ReferenceRenderer, SameSeedGivesIdenticalResultsOnOneAndTwoThreads) {
   EXPECT_NE(std::memcmp(one.radiance.data(), three.radiance.data(), one.radiance.size() * 12), 0);
 }
 
+// The scene command measures a few vertices of an object: each gets the bits it gets in the
+// whole scene's render, in the list's order; an index past the scene is refused.
+TEST(ReferenceRenderer, AListOfVerticesGetsTheirWholeSceneBits) {
+  const Scene scene = make_demo_scene();
+  const io::EnvMap sky = make_demo_sky(128);
+  ReferenceSettings settings;
+  settings.bounces = 1;
+  settings.spp = 4;
+  settings.seed = 5;
+  const ReferenceRenderer renderer(scene, sky, settings, Context{});
+  const VertexRadiance all = renderer.render_vertices(threads(2));
+  const std::vector<std::size_t> subset = {9000, 3, 3, 12000, 0, scene.vertex_count() - 1};
+  const VertexRadiance some = renderer.render_vertices(subset, threads(2));
+  ASSERT_EQ(some.radiance.size(), subset.size());
+  for (std::size_t i = 0; i < subset.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&some.radiance[i], &all.radiance[subset[i]], 12), 0) << subset[i];
+  }
+  EXPECT_GT(some.relative_rmse, 0.0);
+  EXPECT_THROW(renderer.render_vertices({scene.vertex_count()}, Context{}), Error);
+}
+
 TEST(ReferenceRenderer, StatedNoiseMatchesTheDifferenceBetweenSeeds) {
   // Two independent runs differ by sqrt(2) x the RMSE of one: the estimate from the two halves
   // of each run must agree with that. Both are RMS over every vertex and channel of the demo

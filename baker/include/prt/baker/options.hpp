@@ -68,4 +68,9 @@ class OptionList {
   std::deque<OptionSpec> specs_;
 };
 
+// Sets options of `list` from arguments as a command line spells them: {"--order", "4"} or
+// {"--order=4"}; a flag (bool) takes no value. Checks choices and ranges as the command does;
+// throws Error naming the option on an unknown name, a missing or bad value.
+void apply_option_args(const OptionList& list, const std::vector<std::string>& args);
+
 }  // namespace prt::bake

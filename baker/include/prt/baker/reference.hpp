@@ -99,6 +99,11 @@ class ReferenceRenderer {
   // Lambertian surface's radiance does not depend on the eye: it is the same, bit for bit.
   VertexRadiance render_vertices(const Context& ctx,
                                  const std::optional<glm::vec3>& eye = std::nullopt) const;
+  // The same for the listed vertices only (Scene order indices), radiance in the list's order:
+  // each vertex gets the same samples, hence the same bits, as in the whole scene's render, and
+  // the noise estimate is over the listed vertices. Throws Error for an index out of range.
+  VertexRadiance render_vertices(const std::vector<std::size_t>& subset, const Context& ctx,
+                                 const std::optional<glm::vec3>& eye = std::nullopt) const;
   // A camera image: primary rays jittered in each pixel; a hit is shaded by the same estimator as
   // the vertices (at the hit, with its interpolated normal and albedo, towards the camera), a
   // miss shows the map.

@@ -24,6 +24,7 @@
 #include "prt/baker/embree_scene.hpp"
 #include "prt/baker/options.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/io/envmap.hpp"
 
 namespace prt::bake {
 
@@ -69,6 +70,24 @@ class TechniqueBake {
   // Writes the JSON report (settings, bake, blob, quantisation, self-check); Error on failure.
   virtual void write_report(const std::string& path, const BakeInput& input,
                             const BakeFacts& facts) const = 0;
+
+  // --- Shards: `prt-bake bake <t> --shard i/N` bakes a part, `prt-bake merge` the whole
+  // (docs/farm.md). A bake that keeps these defaults does not split.
+  // What a shard takes a range of ("vertices"), and how many there are in `scene`; 0: the bake
+  // does not split.
+  virtual const char* shard_unit() const { return "vertices"; }
+  virtual std::size_t shard_units(const Scene& scene) const;
+  // Bakes units [first, first + count) of `scene` only, with the settings its options hold, and
+  // returns what a shard file carries for them.
+  virtual std::vector<std::uint8_t> bake_shard(const Scene& scene, const BakeInput& input,
+                                               std::size_t first, std::size_t count,
+                                               const Context& ctx);
+  // Takes every shard's bytes in unit order (the ranges cover the units once, in order) and
+  // finishes the bake as bake() would have: quantize() and write() then give the bytes of the
+  // whole bake. Throws Error when a part does not fit.
+  virtual void merge_shards(const Scene& scene, const BakeInput& input,
+                            const std::vector<std::vector<std::uint8_t>>& parts,
+                            const Context& ctx);
 };
 
 // The flags every trade takes; a technique gives their defaults (TechniqueTrade::defaults).
@@ -100,6 +119,18 @@ class TechniqueTrade {
                      const Context& ctx) = 0;
 };
 
+// One candidate setting of a technique for `prt-bake scene`: the arguments of its bake options,
+// e.g. {"--order", "4", "--bits", "8"}.
+struct Rung {
+  std::vector<std::string> args;
+};
+
+// Whether a technique suits an object of a scene, and why (said in the scene report).
+struct ObjectFit {
+  bool suits = false;
+  std::string reason;
+};
+
 class Technique {
  public:
   virtual ~Technique() = default;
@@ -110,6 +141,20 @@ class Technique {
   virtual const char* trade_summary() const = 0;
   virtual std::unique_ptr<TechniqueBake> make_bake() const = 0;
   virtual std::unique_ptr<TechniqueTrade> make_trade() const = 0;
+
+  // --- prt-bake scene (prt/baker/scene_bake.hpp). A technique that keeps these defaults is
+  // never chosen for an object, but can still be forced on one it can bake.
+  // Whether the technique suits node `node` of `scene` (its skin, animation, materials, hints).
+  virtual ObjectFit fit(const Scene& scene, int node) const;
+  // Candidate settings, cheapest first (the fewest bytes, then the shortest bake), for a scene
+  // whose reference has `bounces` indirect bounces. The scene command climbs it until one meets
+  // the error budget.
+  virtual std::vector<Rung> ladder(int bounces) const;
+  // Outgoing radiance of every vertex of a blob this technique baked, shaded through the runtime
+  // under `light` as a diffuse surface is seen (the reference's estimate for no eye). Throws
+  // Error when the technique cannot be measured this way.
+  virtual std::vector<glm::vec3> shade(const std::vector<std::uint8_t>& blob,
+                                       const io::EnvMap& light, const Context& ctx) const;
 };
 
 // Every technique of the baker, in the order the command lists them (baker/src/techniques.cpp).
@@ -120,6 +165,11 @@ const Technique* find_technique(const std::string& name);
 // Imports input.scene, runs every step of `bake` and writes the blob (and the report); throws
 // Error when a step or the self-check fails, after writing what it could.
 void run_bake(TechniqueBake& bake, const BakeInput& input, const Context& ctx);
+// run_bake's steps: the import (with its checks of --albedo and degenerate meshes), and what
+// follows the transfer (quantise, write, self-check, report), which a merge of shards runs too.
+Scene import_bake_scene(const BakeInput& input, const Context& ctx);
+void finish_bake(TechniqueBake& bake, const Scene& scene, const BakeInput& input,
+                 const Context& ctx);
 
 // Checks the shared flags and the technique's, then runs the sweep (see the top of this file).
 void run_trade(TechniqueTrade& trade, TradeInput input, const Context& ctx);

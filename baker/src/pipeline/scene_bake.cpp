@@ -1,0 +1,371 @@
+// SPDX-License-Identifier: MIT
+// prt-bake scene: picks, bakes and measures each object's technique and settings
+// (prt/baker/scene_bake.hpp).
+#include "prt/baker/scene_bake.hpp"
+
+#include <prt/prt_version.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "prt/baker/demo_scene.hpp"
+#include "prt/baker/reference.hpp"
+#include "prt/baker/text.hpp"
+#include "prt/io/radiance_error.hpp"
+
+#include "../common/atomic_file.hpp"
+#include "../common/numbers.hpp"
+#include "../common/trade_common.hpp"
+#include "content_hash.hpp"
+#include "scene_bake_detail.hpp"
+
+namespace prt::bake {
+namespace {
+
+namespace fs = std::filesystem;
+using pipeline::Candidate;
+using pipeline::LightInfo;
+using pipeline::ObjectResult;
+
+struct Light {
+  LightInfo info;
+  std::unique_ptr<io::EnvMap> map;
+};
+
+std::vector<Light> load_lights(const SceneBakeSettings& settings, const Context& ctx) {
+  std::vector<Light> lights;
+  if (settings.envs.empty()) {
+    Light sky;
+    sky.map = std::make_unique<io::EnvMap>(make_demo_sky());
+    ContentHash hash;
+    hash.values(sky.map->pixels());
+    sky.info = {"sky", hash.hex()};
+    lights.push_back(std::move(sky));
+  }
+  for (const std::string& path : settings.envs) {
+    Light light;
+    light.map = std::make_unique<io::EnvMap>(
+        io::load_envmap(path, io::EnvMapping::Auto, ctx.io_messages()));
+    light.info = {fs::path(path).stem().string(), file_hash(path)};
+    lights.push_back(std::move(light));
+  }
+  return lights;
+}
+
+// The measured vertices: all, or `count` spread evenly over the object's vertex order.
+std::vector<std::size_t> probe_vertices(std::size_t vertices, std::size_t count) {
+  std::vector<std::size_t> probes;
+  const std::size_t n = std::min(vertices, std::max<std::size_t>(count, 1));
+  for (std::size_t i = 0; i < n; ++i) probes.push_back((2 * i + 1) * vertices / (2 * n));
+  return probes;
+}
+
+// "NAME=TECHNIQUE[:ARG,ARG,...]" overrides, by object name.
+struct Override {
+  std::string technique;
+  std::vector<std::string> args;
+};
+
+std::optional<Override> override_for(const SceneBakeSettings& settings, const SceneObject& object,
+                                     const Scene& scene) {
+  for (const std::string& text : settings.overrides) {
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos || text.substr(0, eq) != object.name) continue;
+    const std::string rest = text.substr(eq + 1);
+    const std::size_t colon = rest.find(':');
+    Override o{rest.substr(0, colon), {}};
+    if (colon != std::string::npos) {
+      std::stringstream args(rest.substr(colon + 1));
+      for (std::string arg; std::getline(args, arg, ',');) o.args.push_back(arg);
+    }
+    return o;
+  }
+  const Node::Hints& hints = scene.nodes[std::size_t(object.node)].hints;
+  if (hints.technique.empty()) return std::nullopt;
+  Override o{hints.technique, {}};
+  for (const auto& [key, value] : hints.settings) o.args.insert(o.args.end(), {key, value});
+  return o;
+}
+
+// Measures and caches candidates of one object; the reference is rendered on first need.
+class ObjectBaker {
+ public:
+  ObjectBaker(const SceneBakeSettings& settings, const std::vector<Light>& lights,
+              const SceneObject& object, const std::string& object_hash, const Context& ctx)
+      : settings_(settings), lights_(lights), object_(object), hash_(object_hash), ctx_(ctx) {}
+
+  Candidate candidate(const Technique& technique, const std::vector<std::string>& args,
+                      std::vector<std::uint8_t>* blob) {
+    Candidate c;
+    c.technique = technique.name();
+    c.args = args;
+    const std::string key = candidate_key(c);
+    if (read_cached(key, &c, blob)) return c;
+    try {
+      bake(technique, args, &c, blob);
+      measure(technique, *blob, &c);
+    } catch (const Error& e) {
+      c.failure = e.what();
+      blob->clear();
+      return c;
+    }
+    write_cached(key, c, *blob);
+    return c;
+  }
+
+ private:
+  std::string candidate_key(const Candidate& c) const {
+    ContentHash hash;
+    hash.text(hash_).text(c.technique).value(c.args.size());
+    for (const std::string& arg : c.args) hash.text(arg);
+    return hash.hex();
+  }
+
+  void bake(const Technique& technique, const std::vector<std::string>& args, Candidate* c,
+            std::vector<std::uint8_t>* blob) {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<TechniqueBake> bake = technique.make_bake();
+    apply_option_args(bake->options(), args);
+    BakeInput input;
+    input.scene = "object " + object_.name;  // not the path: a moved file bakes the same bytes
+    input.seed = settings_.seed;
+    bake->bake(object_.scene, input, ctx_);
+    bake->quantize();
+    *blob = bake->write(object_.scene, input);
+    const SelfCheck check = bake->self_check(*blob);
+    if (!check.passed) throw Error("self-check: " + check.message);
+    c->bytes = blob->size();
+    c->bake_seconds = seconds_since(start);
+  }
+
+  void measure(const Technique& technique, const std::vector<std::uint8_t>& blob, Candidate* c) {
+    const std::vector<std::size_t>& probes = probes_of();
+    c->error = 0.0;
+    for (std::size_t l = 0; l < lights_.size(); ++l) {
+      const std::vector<glm::vec3> shaded = technique.shade(blob, *lights_[l].map, ctx_);
+      if (shaded.size() != object_.scene.vertex_count())
+        throw Error("the blob shades " + std::to_string(shaded.size()) + " vertices, not " +
+                    std::to_string(object_.scene.vertex_count()));
+      std::vector<glm::vec3> at_probes;
+      for (const std::size_t v : probes) at_probes.push_back(shaded[v]);
+      const VertexRadiance& ref = reference(l);
+      const double error =
+          trade::noise_removed(io::relative_rmse(at_probes, ref.radiance), ref.relative_rmse);
+      if (!(error <= c->error)) c->ref_noise = ref.relative_rmse;
+      c->error = std::max(c->error, std::isfinite(error) ? error : HUGE_VAL);
+    }
+    c->meets = c->error <= settings_.error_budget;
+  }
+
+  const std::vector<std::size_t>& probes_of() {
+    if (probes_.empty())
+      probes_ = probe_vertices(object_.scene.vertex_count(), settings_.probe_vertices);
+    return probes_;
+  }
+
+  const VertexRadiance& reference(std::size_t light) {
+    if (references_.empty()) references_.resize(lights_.size());
+    if (!references_[light]) {
+      ReferenceSettings rs;
+      rs.bounces = settings_.bounces;
+      rs.spp = settings_.ref_spp;
+      rs.seed = settings_.seed;
+      const ReferenceRenderer renderer(object_.scene, *lights_[light].map, rs, ctx_);
+      references_[light] =
+          std::make_unique<VertexRadiance>(renderer.render_vertices(probes_of(), ctx_));
+    }
+    return *references_[light];
+  }
+
+  std::string cache_path(const std::string& key, const char* extension) const {
+    return settings_.cache_dir + "/" + key + extension;
+  }
+
+  bool read_cached(const std::string& key, Candidate* c, std::vector<std::uint8_t>* blob) const {
+    std::ifstream figures(cache_path(key, ".txt"));
+    std::ifstream bytes(cache_path(key, ".prtk"), std::ios::binary);
+    if (!figures || !bytes) return false;
+    if (!(figures >> c->error >> c->ref_noise >> c->bake_seconds)) return false;
+    blob->assign(std::istreambuf_iterator<char>(bytes), std::istreambuf_iterator<char>());
+    c->bytes = blob->size();
+    c->from_cache = true;
+    c->meets = c->error <= settings_.error_budget;
+    return !blob->empty();
+  }
+
+  void write_cached(const std::string& key, const Candidate& c,
+                    const std::vector<std::uint8_t>& blob) const {
+    std::ostringstream figures;
+    figures.precision(17);
+    figures << c.error << ' ' << c.ref_noise << ' ' << c.bake_seconds << '\n';
+    // The blob first: a figures file is only ever next to a whole blob.
+    write_file_atomic(cache_path(key, ".prtk"), std::string(blob.begin(), blob.end()));
+    write_file_atomic(cache_path(key, ".txt"), figures.str());
+  }
+
+  const SceneBakeSettings& settings_;
+  const std::vector<Light>& lights_;
+  const SceneObject& object_;
+  std::string hash_;
+  const Context& ctx_;
+  std::vector<std::size_t> probes_;
+  std::vector<std::unique_ptr<VertexRadiance>> references_;
+};
+
+std::string joined(const std::vector<std::string>& args) {
+  std::string text;
+  for (const std::string& arg : args) text += (text.empty() ? "" : " ") + arg;
+  return text;
+}
+
+// Everything a candidate's figures depend on besides its technique and settings.
+std::string object_hash(const SceneBakeSettings& settings, const std::vector<Light>& lights,
+                        const SceneObject& object) {
+  ContentHash hash;
+  hash.text(PRT_VERSION_STRING);
+  hash_object_scene(hash, object.scene, object.node);
+  for (const Light& light : lights) hash.text(light.info.name).text(light.info.hash);
+  hash.value(settings.bounces).value(settings.ref_spp).value(settings.probe_vertices);
+  hash.value(settings.seed);
+  return hash.hex();
+}
+
+// The techniques to try on the object and the settings of each: an override's one technique
+// (with its settings when given, else its ladder), or every technique that suits it.
+struct Plan {
+  const Technique* technique;
+  std::vector<Rung> rungs;
+};
+
+std::vector<Plan> plan_object(const SceneBakeSettings& settings, const Scene& scene,
+                              const SceneObject& object, ObjectResult* result) {
+  std::vector<Plan> plans;
+  if (const std::optional<Override> o = override_for(settings, object, scene)) {
+    const Technique* technique = find_technique(o->technique);
+    if (!technique) {
+      result->problems.push_back("no technique is named '" + o->technique + "'");
+      return plans;
+    }
+    result->reason = "forced (command line or the node's extras)";
+    plans.push_back({technique, o->args.empty() ? technique->ladder(settings.bounces)
+                                                : std::vector<Rung>{{o->args}}});
+    return plans;
+  }
+  for (const Technique* technique : techniques()) {
+    const ObjectFit fit = technique->fit(scene, object.node);
+    result->fits.push_back(std::string(technique->name()) + ": " + fit.reason);
+    if (fit.suits) plans.push_back({technique, technique->ladder(settings.bounces)});
+  }
+  if (plans.empty()) result->problems.push_back("no technique suits it");
+  return plans;
+}
+
+// Climbs each plan's ladder to its first rung that meets E; keeps the fewest bytes among those
+// that do, else the smallest error. Returns the chosen blob.
+std::vector<std::uint8_t> choose(const std::vector<Plan>& plans, ObjectBaker& baker,
+                                 ObjectResult* result, const Context& ctx) {
+  std::vector<std::uint8_t> best_blob, blob;
+  for (const Plan& plan : plans) {
+    if (plan.rungs.empty())
+      result->problems.push_back(std::string(plan.technique->name()) + " has no settings to try");
+    for (const Rung& rung : plan.rungs) {
+      result->candidates.push_back(baker.candidate(*plan.technique, rung.args, &blob));
+      const Candidate& c = result->candidates.back();
+      ctx.info(result->object->name + ": " + c.technique + " " + joined(c.args) + ": " +
+               (c.failure.empty() ? format("error %.3g %%, %zu bytes%s", 100 * c.error, c.bytes,
+                                           c.from_cache ? " (cached)" : "")
+                                  : "failed: " + c.failure));
+      if (!c.failure.empty()) continue;
+      const Candidate* best = result->choice();
+      const bool better = !best || (c.meets && (!best->meets || c.bytes < best->bytes)) ||
+                          (!c.meets && !best->meets && c.error < best->error);
+      if (better) {
+        result->chosen = int(result->candidates.size()) - 1;
+        best_blob = blob;
+      }
+      // The ladder only grows from here: a rung that meets E, or one already larger than a
+      // choice that does, ends this technique's climb.
+      if (c.meets || (result->choice()->meets && c.bytes >= result->choice()->bytes)) break;
+    }
+  }
+  if (!result->choice() && result->problems.empty())
+    result->problems.push_back("no candidate could be baked (see its candidates)");
+  return best_blob;
+}
+
+void bake_object(const SceneBakeSettings& settings, const Scene& scene,
+                 const std::vector<Light>& lights, ObjectResult* result, const Context& ctx) {
+  const SceneObject& object = *result->object;
+  if (object.skipped || !object.problems.empty()) return;
+  const std::vector<Plan> plans = plan_object(settings, scene, object, result);
+  if (plans.empty()) return;
+  result->hash = object_hash(settings, lights, object);
+  ObjectBaker baker(settings, lights, object, result->hash, ctx);
+  const std::vector<std::uint8_t> blob = choose(plans, baker, result, ctx);
+  const Candidate* chosen = result->choice();
+  if (!chosen) return;
+  if (result->reason.empty()) {
+    result->reason = chosen->meets ? "the fewest bytes that meet the budget"
+                                   : "the smallest error: no candidate meets the budget";
+  }
+  result->blob_file = object.name + ".prtk";
+  write_file_atomic(settings.out_dir + "/" + result->blob_file,
+                              std::string(blob.begin(), blob.end()));
+}
+
+SceneBakeSummary summarise(const std::vector<ObjectResult>& results) {
+  SceneBakeSummary s;
+  for (const ObjectResult& r : results) {
+    ++s.objects;
+    if (!r.problems.empty() && !r.choice()) ++s.broken;
+    if (const Candidate* c = r.choice()) {
+      ++s.baked;
+      s.from_cache += c->from_cache;
+      s.over_budget += !c->meets;
+      s.bytes += c->bytes;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Context& ctx) {
+  SceneBakeSettings settings = input;
+  if (!(settings.error_budget > 0.0) || !std::isfinite(settings.error_budget))
+    throw Error("--error-budget: must be a positive fraction, e.g. 0.02 for 2 %");
+  if (settings.ref_spp < 2) throw Error("--ref-spp: must be >= 2");
+  if (settings.bounces < 0) throw Error("--bounces: must be >= 0");
+  if (settings.cache_dir.empty()) settings.cache_dir = settings.out_dir + "/.cache";
+  fs::create_directories(settings.out_dir);
+  fs::create_directories(settings.cache_dir);
+
+  // Keep going: a broken primitive, node or texture becomes a problem of its object (import: ...).
+  const Scene scene = import_scene(settings.scene, ctx, ImportOptions{true});
+  const std::vector<Light> lights = load_lights(settings, ctx);
+  const std::vector<SceneObject> objects = scene_objects(scene);
+  std::vector<ObjectResult> results(objects.size());
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    results[i].object = &objects[i];
+    results[i].problems = objects[i].problems;
+    bake_object(settings, scene, lights, &results[i], ctx);
+    for (const std::string& problem : results[i].problems)
+      ctx.warn(objects[i].name + ": " + problem);
+  }
+  const SceneBakeSummary summary = summarise(results);
+  std::vector<LightInfo> light_infos;
+  for (const Light& light : lights) light_infos.push_back(light.info);
+  pipeline::write_manifest(settings, results);
+  pipeline::write_report(settings, light_infos, results, summary);
+  return summary;
+}
+
+}  // namespace prt::bake

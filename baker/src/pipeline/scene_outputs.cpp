@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// The content pipeline's files: blobs written whole or not at all, the scene manifest and the
+// report (scene_bake_detail.hpp; docs/pipeline.md describes both JSON files).
+#include <prt/prt_version.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "../common/atomic_file.hpp"
+#include "scene_bake_detail.hpp"
+
+namespace prt::bake::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+// Why a candidate was or was not chosen.
+std::string verdict(const Candidate& c, bool chosen) {
+  if (chosen) return "chosen";
+  if (!c.failure.empty()) return "failed";
+  if (!c.meets) return "over the budget";
+  return "meets the budget in more bytes";
+}
+
+ordered_json candidate_json(const Candidate& c, bool chosen) {
+  ordered_json j;
+  j["technique"] = c.technique;
+  j["settings"] = c.args;
+  j["verdict"] = verdict(c, chosen);
+  if (!c.failure.empty()) {
+    j["failure"] = c.failure;
+    return j;
+  }
+  j["error"] = c.error;
+  j["ref_noise"] = c.ref_noise;
+  j["meets_budget"] = c.meets;
+  j["bytes"] = c.bytes;
+  j["bake_seconds"] = c.bake_seconds;
+  j["from_cache"] = c.from_cache;
+  return j;
+}
+
+ordered_json object_json(const ObjectResult& r) {
+  ordered_json j;
+  j["name"] = r.object->name;
+  j["node"] = r.object->node;
+  j["vertices"] = r.object->scene.vertex_count();
+  if (r.object->skipped) {
+    j["skipped"] = true;
+    return j;
+  }
+  j["problems"] = r.problems;
+  j["fits"] = r.fits;
+  if (const Candidate* c = r.choice()) {
+    j["technique"] = c->technique;
+    j["settings"] = c->args;
+    j["error"] = c->error;
+    j["meets_budget"] = c->meets;
+    j["bytes"] = c->bytes;
+    j["bake_seconds"] = c->bake_seconds;
+    j["from_cache"] = c->from_cache;
+    j["blob"] = r.blob_file;
+    j["reason"] = r.reason;
+    j["hash"] = r.hash;
+  }
+  ordered_json candidates = ordered_json::array();
+  for (std::size_t i = 0; i < r.candidates.size(); ++i)
+    candidates.push_back(candidate_json(r.candidates[i], int(i) == r.chosen));
+  j["candidates"] = candidates;
+  return j;
+}
+
+void write_json(const std::string& path, const ordered_json& j) {
+  write_file_atomic(path, j.dump(2) + "\n");
+}
+
+}  // namespace
+
+void write_manifest(const SceneBakeSettings& settings, const std::vector<ObjectResult>& results) {
+  ordered_json j;
+  j["format"] = "prtkit-scene";
+  j["version"] = 1;
+  j["source"] = fs::path(settings.scene).filename().string();
+  ordered_json objects = ordered_json::array();
+  for (const ObjectResult& r : results) {
+    const Candidate* c = r.choice();
+    if (!c) continue;
+    ordered_json o;
+    o["name"] = r.object->name;
+    o["node"] = r.object->node;
+    o["technique"] = c->technique;
+    o["blob"] = r.blob_file;
+    objects.push_back(o);
+  }
+  j["objects"] = objects;
+  write_json(settings.out_dir + "/scene.json", j);
+}
+
+void write_report(const SceneBakeSettings& settings, const std::vector<LightInfo>& lights,
+                  const std::vector<ObjectResult>& results, const SceneBakeSummary& summary) {
+  ordered_json j;
+  j["scene"] = settings.scene;
+  j["baker_version"] = PRT_VERSION_STRING;
+  j["error_budget"] = settings.error_budget;
+  j["bounces"] = settings.bounces;
+  j["ref_spp"] = settings.ref_spp;
+  j["probe_vertices"] = settings.probe_vertices;
+  j["seed"] = settings.seed;
+  ordered_json light_list = ordered_json::array();
+  for (const LightInfo& light : lights)
+    light_list.push_back({{"name", light.name}, {"hash", light.hash}});
+  j["lights"] = light_list;
+  j["summary"] = {{"objects", summary.objects},         {"baked", summary.baked},
+                  {"from_cache", summary.from_cache},   {"broken", summary.broken},
+                  {"over_budget", summary.over_budget}, {"bytes", summary.bytes}};
+  ordered_json objects = ordered_json::array();
+  for (const ObjectResult& r : results) objects.push_back(object_json(r));
+  j["objects"] = objects;
+  write_json(settings.out_dir + "/report.json", j);
+}
+
+}  // namespace prt::bake::pipeline
