@@ -54,4 +54,21 @@ std::function<void()> add_options(CLI::App* cmd, const OptionList& options) {
   };
 }
 
+std::vector<std::string> given_option_args(CLI::App* cmd, const OptionList& options) {
+  std::vector<std::string> args;
+  for (const OptionSpec& spec : options.specs()) {
+    const CLI::Option* option = cmd->get_option(spec.name);
+    if (option->count() == 0) continue;
+    const std::string name = spec.name.substr(spec.name.rfind(',') + 1);
+    if (std::holds_alternative<bool*>(spec.value)) {
+      args.push_back(name + "=" + (*std::get<bool*>(spec.value) ? "true" : "false"));
+      continue;
+    }
+    std::string value;
+    for (const std::string& item : option->results()) value += (value.empty() ? "" : ",") + item;
+    args.push_back(name + "=" + value);
+  }
+  return args;
+}
+
 }  // namespace prt::bake::cli

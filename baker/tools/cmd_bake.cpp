@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "prt/baker/shards.hpp"
 #include "technique_group.hpp"
 
 namespace prt::bake::cli {
@@ -24,6 +25,7 @@ void add_bake_input(CLI::App* cmd, BakeInput& input) {
 struct BakeCommand {
   std::unique_ptr<TechniqueBake> bake;
   BakeInput input;
+  std::string shard;  // --shard i/N; empty: the whole bake
 };
 
 }  // namespace
@@ -37,11 +39,22 @@ void add_bake_command(CLI::App& app, CommandEnv& env) {
     CLI::App* cmd = group->add_subcommand(technique->name(), technique->summary());
     cmd->fallthrough();  // the global flags may follow
     cmd->add_option("SCENE", command->input.scene, "Scene file (.gltf, .glb, .obj)")->required();
-    const auto record_given = add_options(cmd, command->bake->options());
+    const OptionList options = command->bake->options();
+    const auto record_given = add_options(cmd, options);
     add_bake_input(cmd, command->input);
-    cmd->callback([&env, command, record_given] {
+    cmd->add_option("--shard", command->shard,
+                    "i/N: bake the i-th of N parts (from 0) into a shard file at -o; "
+                    "`prt-bake merge` makes the blob from all N (docs/farm.md)");
+    cmd->callback([&env, technique, command, record_given, cmd, options] {
       record_given();
-      run_bake(*command->bake, command->input, env.context());
+      if (command->shard.empty()) {
+        run_bake(*command->bake, command->input, env.context());
+        return;
+      }
+      if (!command->input.report.empty())
+        throw Error("--report: a shard has no report; give it to `prt-bake merge`");
+      run_shard_bake(*technique, *command->bake, command->input, given_option_args(cmd, options),
+                     parse_shard_spec(command->shard), env.context());
     });
   }
 }

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   add_info_command(app, env);
   add_env_sh_command(app, env);
   add_scene_command(app, env);
+  add_merge_command(app, env);
   add_shadowfield_scene_commands(app, env);
   add_bake_command(app, env);
   add_trade_command(app, env);

@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # A farm bake on a real Slurm: starts a loopback cluster (scripts/slurm-local) in a fresh folder,
-# submits scripts/farm/shard.sbatch as an array of 4 tasks and scripts/farm/merge.sbatch after
-# them (afterok), with dummy commands: each task writes its part, task 2 kills itself with SIGKILL
-# on its first attempt, and the merge concatenates the parts. Passes when the merge wrote the 4
-# parts in order, task 2 ran twice (requeued by shard.sbatch) and every other task once.
-#   farm_bake.sh [SOURCE_DIR]      (ctest: pipeline.slurm.farm_bake, label "slurm")
+# bakes the demo scene with technique sh as a job array of 4 shards (scripts/farm/shard.sbatch
+# running `prt-bake bake sh --shard {task}/4`) and merges them in a job that waits for them
+# (scripts/farm/merge.sbatch running `prt-bake merge`, afterok). Task 2's first attempt is killed
+# with SIGKILL in the middle of its bake. Passes when the merged blob is byte for byte the blob of
+# the same bake run whole on this machine, task 2 ran twice (requeued by shard.sbatch) and every
+# other task once, and `prt-bake merge` refuses a set with a shard missing or with a shard of
+# another bake (another seed), saying so.
+#   farm_bake.sh SOURCE_DIR PRT_BAKE      (ctest: pipeline.slurm.farm_bake, label "slurm")
 # The cluster is stopped and its folder removed on any exit, and by a watchdog should the test be
 # killed outright (SIGKILL, as ctest does at its timeout).
 set -euo pipefail
 
 root=$(cd "${1:-$(dirname "$0")/../../..}" && pwd)
+prt_bake=$(realpath "${2:?give the prt-bake executable}")
 slurm_local=$root/scripts/slurm-local
 farm=$root/scripts/farm
 wait_seconds=${PRT_SLURM_TEST_WAIT:-90}
@@ -74,21 +78,32 @@ report() {
   exit 1
 }
 
-# Each task notes its attempt (SLURM_RESTART_COUNT), task 2 dies on its first, then the task
-# writes its part. shard.sbatch puts the task's index for {task}.
+# The scene, and the same bake run whole here: what the farm's blob must equal.
+"$prt_bake" --quiet demo-scene . --sky-width 16 || report "prt-bake demo-scene failed"
+bake=(bake sh demo_scene.glb --order 4 --rays 64)
+"$prt_bake" --quiet "${bake[@]}" -o whole.prtk || report "the whole bake failed"
+
+# Each task notes its attempt (SLURM_RESTART_COUNT) and bakes its shard; task 2's first attempt
+# is killed mid-bake. shard.sbatch puts the task's index for {task}.
 # shellcheck disable=SC2016 # expanded by the task's sh
 shard_command='echo "${SLURM_RESTART_COUNT:-0}" >>attempts.{task}
 if [ {task} = 2 ] && [ ! -e killed.2 ]; then
   : >killed.2
-  kill -KILL $$
+  "$0" --quiet "$@" &
+  sleep 0.1
+  kill -KILL $!
+  wait $!
+  exit $?
 fi
-echo "part {task}" >part.{task}'
+exec "$0" --quiet "$@"'
 array=$(sbatch --parsable --array=0-3 --output="$work/shard-%A_%a.out" \
-  "$farm/shard.sbatch" sh -c "$shard_command") || report "sbatch of the shards failed"
+  "$farm/shard.sbatch" sh -c "$shard_command" "$prt_bake" "${bake[@]}" \
+  --shard '{task}/4' -o 'part{task}.shard') || report "sbatch of the shards failed"
 array=${array%%;*}
 merge=$(sbatch --parsable --dependency="afterok:$array" --kill-on-invalid-dep=yes \
   --output="$work/merge-%j.out" "$farm/merge.sbatch" \
-  sh -c 'cat part.0 part.1 part.2 part.3 >merged') || report "sbatch of the merge failed"
+  "$prt_bake" merge -o merged.prtk part0.shard part1.shard part2.shard part3.shard) ||
+  report "sbatch of the merge failed"
 merge=${merge%%;*}
 echo "farm_bake: shards are job array $array, the merge job $merge"
 
@@ -108,10 +123,10 @@ while :; do
 done
 echo "farm_bake: merge done $((SECONDS - started)) s after the start"
 
-expected=$'part 0\npart 1\npart 2\npart 3'
-[ -f merged ] || report "the merge wrote no file"
-[ "$(cat merged)" = "$expected" ] ||
-  report "merged holds '$(tr '\n' '|' <merged)', not the 4 parts in order"
+[ -f merged.prtk ] || report "the merge wrote no blob"
+cmp -s merged.prtk whole.prtk ||
+  report "the merged blob differs from the whole bake's ($(stat -c %s merged.prtk) and" \
+    "$(stat -c %s whole.prtk) bytes)"
 for task in 0 1 3; do
   [ "$(cat "attempts.$task" 2>/dev/null)" = 0 ] ||
     report "task $task ran with restart counts '$(tr '\n' ' ' <"attempts.$task")', not once"
@@ -120,4 +135,20 @@ done
   report "task 2 ran with restart counts '$(tr '\n' ' ' <attempts.2)', not 0 then 1"
 grep -q 'requeuing' "shard-${array}_2.out" ||
   report "shard-${array}_2.out does not say that shard.sbatch requeued task 2"
-echo "farm_bake: passed in $((SECONDS - started)) s: 4 parts merged, task 2 retried once"
+# A set with a part missing, or with a part of another bake, is refused with a clear message.
+refused() {
+  local says=$1
+  shift
+  if "$prt_bake" --quiet merge -o refused.prtk "$@" 2>refused.log; then
+    report "prt-bake merge accepted $*"
+  fi
+  grep -q "$says" refused.log || report "prt-bake merge said '$(cat refused.log)', not '$says'"
+  [ ! -e refused.prtk ] || report "a refused merge wrote refused.prtk"
+}
+refused "shard 2/4 is missing" part0.shard part1.shard part3.shard
+"$prt_bake" --quiet "${bake[@]}" --seed 1 --shard 2/4 -o foreign.shard ||
+  report "the foreign shard's bake failed"
+refused "foreign.shard: belongs to another bake than part0.shard (other settings)" \
+  part0.shard part1.shard foreign.shard part3.shard
+echo "farm_bake: passed in $((SECONDS - started)) s: 4 shards merged into the whole bake's" \
+  "bytes, task 2 retried once, a missing and a foreign shard refused"
