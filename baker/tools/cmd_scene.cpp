@@ -41,6 +41,9 @@ void add_scene_command(CLI::App& app, CommandEnv& env) {
   cmd->add_option("--object", s->overrides,
                   "NAME=TECHNIQUE[:--opt,value,...]: force a technique (and settings) on an "
                   "object, over its node's extras");
+  cmd->add_flag("--compare-single", s->compare_single,
+                "Also report the bytes of baking every object with one technique at the "
+                "settings the hardest object needs");
   cmd->add_flag("--strict", s->strict,
                 "Exit non-zero when an object is broken or does not meet the budget");
   cmd->callback([s, budget_percent, &env] {
@@ -53,6 +56,13 @@ void add_scene_command(CLI::App& app, CommandEnv& env) {
                "%zu bytes; wrote %s/scene.json and report.json",
                summary.objects, summary.baked, summary.from_cache, summary.broken,
                summary.over_budget, summary.bytes, settings.out_dir.c_str()));
+    if (summary.single_bytes > 0) {
+      ctx.info(
+          format("one technique for every object: %zu bytes; the choice per object: %zu "
+                 "(%.0f %%)",
+                 summary.single_bytes, summary.bytes,
+                 100.0 * double(summary.bytes) / double(summary.single_bytes)));
+    }
     if (summary.failed() && settings.strict) env.exit_code = 1;
   });
 }

@@ -34,6 +34,7 @@ namespace fs = std::filesystem;
 using pipeline::Candidate;
 using pipeline::LightInfo;
 using pipeline::ObjectResult;
+using pipeline::SingleTechnique;
 
 struct Light {
   LightInfo info;
@@ -301,24 +302,63 @@ std::vector<std::uint8_t> choose(const std::vector<Plan>& plans, ObjectBaker& ba
   return best_blob;
 }
 
-void bake_object(const SceneBakeSettings& settings, const Scene& scene,
-                 const std::vector<Light>& lights, ObjectResult* result, const Context& ctx) {
+// Chooses, bakes and writes the object; returns its baker (which holds its references) when
+// something was baked.
+std::unique_ptr<ObjectBaker> bake_object(const SceneBakeSettings& settings, const Scene& scene,
+                                         const std::vector<Light>& lights, ObjectResult* result,
+                                         const Context& ctx) {
   const SceneObject& object = *result->object;
-  if (object.skipped || !object.problems.empty()) return;
+  if (object.skipped || !object.problems.empty()) return nullptr;
   const std::vector<Plan> plans = plan_object(settings, scene, object, result);
-  if (plans.empty()) return;
+  if (plans.empty()) return nullptr;
   result->hash = object_hash(settings, lights, object);
-  ObjectBaker baker(settings, lights, object, result->hash, ctx);
-  const std::vector<std::uint8_t> blob = choose(plans, baker, result, ctx);
+  auto baker = std::make_unique<ObjectBaker>(settings, lights, object, result->hash, ctx);
+  const std::vector<std::uint8_t> blob = choose(plans, *baker, result, ctx);
   const Candidate* chosen = result->choice();
-  if (!chosen) return;
+  if (!chosen) return nullptr;
   if (result->reason.empty()) {
     result->reason = chosen->meets ? "the fewest bytes that meet the budget"
                                    : "the smallest error: no candidate meets the budget";
   }
   result->blob_file = object.name + ".prtk";
   write_file_atomic(settings.out_dir + "/" + result->blob_file,
-                              std::string(blob.begin(), blob.end()));
+                    std::string(blob.begin(), blob.end()));
+  return baker;
+}
+
+// The first rung of `ladder` that meets E for the object, or the last rung when none does.
+std::size_t rung_meeting(const Technique& technique, const std::vector<Rung>& ladder,
+                         ObjectBaker& baker, bool* meets) {
+  std::vector<std::uint8_t> blob;
+  for (std::size_t k = 0; k < ladder.size(); ++k) {
+    if (baker.candidate(technique, ladder[k].args, &blob).meets) return k;
+  }
+  *meets = false;
+  return ladder.size() - 1;
+}
+
+// Every baked object with `technique` at the rung its hardest object needs: what a pipeline
+// without a choice per object would bake. Null when the technique does not suit every object.
+std::optional<SingleTechnique> single_technique(
+    const Technique& technique, const SceneBakeSettings& settings, const Scene& scene,
+    const std::vector<ObjectResult>& results,
+    const std::vector<std::unique_ptr<ObjectBaker>>& bakers) {
+  const std::vector<Rung> ladder = technique.ladder(settings.bounces);
+  if (ladder.empty()) return std::nullopt;
+  SingleTechnique single;
+  single.technique = technique.name();
+  std::size_t hardest = 0;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    if (!bakers[i]) continue;
+    if (!technique.fit(scene, results[i].object->node).suits) return std::nullopt;
+    hardest = std::max(hardest, rung_meeting(technique, ladder, *bakers[i], &single.meets));
+  }
+  single.args = ladder[hardest].args;
+  std::vector<std::uint8_t> blob;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    if (bakers[i]) single.bytes += bakers[i]->candidate(technique, single.args, &blob).bytes;
+  }
+  return single;
 }
 
 SceneBakeSummary summarise(const std::vector<ObjectResult>& results) {
@@ -353,18 +393,32 @@ SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Context& c
   const std::vector<Light> lights = load_lights(settings, ctx);
   const std::vector<SceneObject> objects = scene_objects(scene);
   std::vector<ObjectResult> results(objects.size());
+  std::vector<std::unique_ptr<ObjectBaker>> bakers(objects.size());
   for (std::size_t i = 0; i < objects.size(); ++i) {
     results[i].object = &objects[i];
     results[i].problems = objects[i].problems;
-    bake_object(settings, scene, lights, &results[i], ctx);
+    bakers[i] = bake_object(settings, scene, lights, &results[i], ctx);
     for (const std::string& problem : results[i].problems)
       ctx.warn(objects[i].name + ": " + problem);
   }
-  const SceneBakeSummary summary = summarise(results);
+  SceneBakeSummary summary = summarise(results);
+  std::vector<SingleTechnique> singles;
+  if (settings.compare_single) {
+    for (const Technique* technique : techniques()) {
+      if (auto single = single_technique(*technique, settings, scene, results, bakers)) {
+        ctx.info(format("every object with %s %s: %zu bytes%s", single->technique.c_str(),
+                        joined(single->args).c_str(), single->bytes,
+                        single->meets ? "" : " (the budget is not met everywhere)"));
+        if (single->meets && (summary.single_bytes == 0 || single->bytes < summary.single_bytes))
+          summary.single_bytes = single->bytes;
+        singles.push_back(std::move(*single));
+      }
+    }
+  }
   std::vector<LightInfo> light_infos;
   for (const Light& light : lights) light_infos.push_back(light.info);
   pipeline::write_manifest(settings, results);
-  pipeline::write_report(settings, light_infos, results, summary);
+  pipeline::write_report(settings, light_infos, results, singles, summary);
   return summary;
 }
 

@@ -44,11 +44,21 @@ struct ObjectResult {
   const Candidate* choice() const { return chosen >= 0 ? &candidates[chosen] : nullptr; }
 };
 
+// Every object baked with one technique at the settings its hardest object needs
+// (SceneBakeSettings::compare_single).
+struct SingleTechnique {
+  std::string technique;
+  std::vector<std::string> args;
+  std::size_t bytes = 0;
+  bool meets = true;  // false: some object does not meet E even at the ladder's top
+};
+
 // OUT_DIR/scene.json: the objects that were baked, their blobs, techniques and placement.
 void write_manifest(const SceneBakeSettings& settings, const std::vector<ObjectResult>& results);
 // OUT_DIR/report.json: the settings, lights, and per object what was chosen and why, with every
 // candidate tried and its figures.
 void write_report(const SceneBakeSettings& settings, const std::vector<LightInfo>& lights,
-                  const std::vector<ObjectResult>& results, const SceneBakeSummary& summary);
+                  const std::vector<ObjectResult>& results,
+                  const std::vector<SingleTechnique>& singles, const SceneBakeSummary& summary);
 
 }  // namespace prt::bake::pipeline

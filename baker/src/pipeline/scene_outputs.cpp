@@ -104,7 +104,8 @@ void write_manifest(const SceneBakeSettings& settings, const std::vector<ObjectR
 }
 
 void write_report(const SceneBakeSettings& settings, const std::vector<LightInfo>& lights,
-                  const std::vector<ObjectResult>& results, const SceneBakeSummary& summary) {
+                  const std::vector<ObjectResult>& results,
+                  const std::vector<SingleTechnique>& singles, const SceneBakeSummary& summary) {
   ordered_json j;
   j["scene"] = settings.scene;
   j["baker_version"] = PRT_VERSION_STRING;
@@ -120,6 +121,17 @@ void write_report(const SceneBakeSettings& settings, const std::vector<LightInfo
   j["summary"] = {{"objects", summary.objects},         {"baked", summary.baked},
                   {"from_cache", summary.from_cache},   {"broken", summary.broken},
                   {"over_budget", summary.over_budget}, {"bytes", summary.bytes}};
+  if (settings.compare_single) {
+    j["summary"]["single_technique_bytes"] = summary.single_bytes;
+    ordered_json single_list = ordered_json::array();
+    for (const SingleTechnique& single : singles) {
+      single_list.push_back({{"technique", single.technique},
+                             {"settings", single.args},
+                             {"bytes", single.bytes},
+                             {"meets_budget", single.meets}});
+    }
+    j["single_technique"] = single_list;
+  }
   ordered_json objects = ordered_json::array();
   for (const ObjectResult& r : results) objects.push_back(object_json(r));
   j["objects"] = objects;

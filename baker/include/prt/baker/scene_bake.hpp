@@ -61,11 +61,17 @@ struct SceneBakeSettings {
   // settings) on object NAME, over the node's extras.
   std::vector<std::string> overrides;
   bool strict = false;  // a broken object or an unmet budget fails the run
+  // Also bake every object with each technique that suits them all, at the settings the hardest
+  // object needs, for the report's comparison (more bakes; the cache keeps them).
+  bool compare_single = false;
 };
 
 struct SceneBakeSummary {
   std::size_t objects = 0, baked = 0, from_cache = 0, broken = 0, over_budget = 0;
   std::size_t bytes = 0;
+  // With compare_single: the fewest bytes of one technique for every object that meets E on
+  // all of them; 0 when none does (or not compared).
+  std::size_t single_bytes = 0;
   bool failed() const { return broken > 0 || over_budget > 0; }
 };
 
