@@ -9,9 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <utility>
-#include <variant>
 #include <vector>
 
 #include "prt/baker/technique.hpp"
@@ -27,33 +25,16 @@ inline std::unique_ptr<prt::bake::TechniqueBake> make_shard_test_bake(const std:
   const prt::bake::Technique* entry = prt::bake::find_technique(technique);
   if (!entry) throw prt::bake::Error("no technique " + technique);
   std::unique_ptr<prt::bake::TechniqueBake> bake = entry->make_bake();
-  const prt::bake::OptionList options = bake->options();
-  for (const auto& [name, value] : args) {
-    bool found = false;
-    for (const prt::bake::OptionSpec& spec : options.specs()) {
-      if (spec.name != name) continue;
-      found = true;
-      std::visit(
-          [&](auto* target) {
-            using T = std::remove_pointer_t<decltype(target)>;
-            if constexpr (std::is_same_v<T, int>) {
-              *target = std::stoi(value);
-            } else if constexpr (std::is_same_v<T, std::uint32_t>) {
-              *target = static_cast<std::uint32_t>(std::stoul(value));
-            } else if constexpr (std::is_same_v<T, double>) {
-              *target = std::stod(value);
-            } else if constexpr (std::is_same_v<T, std::string>) {
-              *target = value;
-            } else {
-              ADD_FAILURE() << name << ": this helper sets no option of its type";
-            }
-          },
-          spec.value);
-      if (spec.given) *spec.given = true;
-    }
-    if (!found) throw prt::bake::Error("no option " + name + " in technique " + technique);
-  }
+  std::vector<std::string> flat;
+  for (const auto& [name, value] : args) flat.insert(flat.end(), {name, value});
+  prt::bake::apply_option_args(bake->options(), flat);
   return bake;
+}
+
+inline prt::bake::Context two_threads() {
+  prt::bake::Context ctx;
+  ctx.threads = 2;
+  return ctx;
 }
 
 // bake(), quantize(), write(): the blob of the whole bake.

@@ -25,11 +25,7 @@ Scene shard_scene() {
   return scene;
 }
 
-Context two_threads() {
-  Context ctx;
-  ctx.threads = 2;
-  return ctx;
-}
+using prt_test::two_threads;
 
 ShTransferSettings shard_settings(ShTransferKind kind) {
   ShTransferSettings s;

@@ -27,11 +27,7 @@ Scene shard_scene() {
   return scene;
 }
 
-Context two_threads() {
-  Context ctx;
-  ctx.threads = 2;
-  return ctx;
-}
+using prt_test::two_threads;
 
 WaveletTransferSettings shard_settings(int bounces) {
   WaveletTransferSettings s;
