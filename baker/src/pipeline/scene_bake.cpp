@@ -269,6 +269,23 @@ std::vector<Plan> plan_object(const SceneBakeSettings& settings, const Scene& sc
   return plans;
 }
 
+// When no candidate meets E, more bytes soon buy almost nothing: this keeps the fewest bytes
+// whose error is within kOverBudgetSlack of the smallest error found.
+constexpr double kOverBudgetSlack = 1.05;
+
+void settle_over_budget(ObjectBaker& baker, ObjectResult* result, std::vector<std::uint8_t>* blob) {
+  const double smallest = result->choice()->error;
+  for (std::size_t i = 0; i < result->candidates.size(); ++i) {
+    const Candidate& c = result->candidates[i];
+    if (c.failure.empty() && c.error <= kOverBudgetSlack * smallest &&
+        c.bytes < result->choice()->bytes)
+      result->chosen = int(i);
+  }
+  const Candidate& chosen = *result->choice();
+  const Technique* technique = find_technique(chosen.technique);
+  baker.candidate(*technique, chosen.args, blob);  // from the cache
+}
+
 // Climbs each plan's ladder to its first rung that meets E; keeps the fewest bytes among those
 // that do, else the smallest error. Returns the chosen blob.
 std::vector<std::uint8_t> choose(const std::vector<Plan>& plans, ObjectBaker& baker,
@@ -299,6 +316,7 @@ std::vector<std::uint8_t> choose(const std::vector<Plan>& plans, ObjectBaker& ba
   }
   if (!result->choice() && result->problems.empty())
     result->problems.push_back("no candidate could be baked (see its candidates)");
+  if (result->choice() && !result->choice()->meets) settle_over_budget(baker, result, &best_blob);
   return best_blob;
 }
 
@@ -318,7 +336,8 @@ std::unique_ptr<ObjectBaker> bake_object(const SceneBakeSettings& settings, cons
   if (!chosen) return nullptr;
   if (result->reason.empty()) {
     result->reason = chosen->meets ? "the fewest bytes that meet the budget"
-                                   : "the smallest error: no candidate meets the budget";
+                                   : "no candidate meets the budget: the fewest bytes within 5 % "
+                                     "of the smallest error";
   }
   result->blob_file = object.name + ".prtk";
   write_file_atomic(settings.out_dir + "/" + result->blob_file,

@@ -237,6 +237,31 @@ TEST_F(SceneBake, AnOverrideNamingNoTechniqueBreaksThatObjectOnly) {
   EXPECT_NE(box["problems"][0].get<std::string>().find("haar"), std::string::npos);
 }
 
+// A budget nothing meets: each object keeps the fewest bytes within 5 % of the smallest error
+// its candidates reached, and says it is over budget.
+TEST_F(SceneBake, OverBudgetObjectsKeepTheFewestBytesNearTheSmallestError) {
+  SceneBakeSettings s = settings_for(dir_->file("small.glb"), dir_->file("tight"));
+  s.cache_dir = dir_->file("out/.cache");
+  s.error_budget = 1e-4;
+  s.overrides = {"ground=sh", "sphere=sh", "box=sh"};
+  const SceneBakeSummary summary = run_scene_bake(s, quiet());
+  // The flat ground's error is within the reference's noise: it measures 0 and meets any E.
+  EXPECT_EQ(summary.over_budget, 2u);
+  for (const json& o : read_json(dir_->file("tight/report.json"))["objects"]) {
+    if (o["meets_budget"].get<bool>()) continue;
+    double smallest = HUGE_VAL;
+    for (const json& c : o["candidates"]) smallest = std::min(smallest, c["error"].get<double>());
+    EXPECT_LE(o["error"].get<double>(), 1.05 * smallest) << o["name"];
+    for (const json& c : o["candidates"]) {
+      if (c["error"].get<double>() <= 1.05 * smallest) {
+        EXPECT_GE(c["bytes"].get<std::size_t>(), o["bytes"].get<std::size_t>()) << o["name"];
+      }
+    }
+    EXPECT_EQ(fs::file_size(dir_->file("tight/" + o["blob"].get<std::string>())),
+              o["bytes"].get<std::size_t>());
+  }
+}
+
 TEST(SceneObjects, BrokenMeshesAreListedWithTheirReason) {
   Scene scene = small_scene();
   Mesh flat = make_plane_mesh("flat", 0, 1.0f, 1.0f, 2, 2);
