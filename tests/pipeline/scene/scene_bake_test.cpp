@@ -247,7 +247,8 @@ TEST_F(SceneBake, OverBudgetObjectsKeepTheFewestBytesNearTheSmallestError) {
   const SceneBakeSummary summary = run_scene_bake(s, quiet());
   // The flat ground's error is within the reference's noise: it measures 0 and meets any E.
   EXPECT_EQ(summary.over_budget, 2u);
-  for (const json& o : read_json(dir_->file("tight/report.json"))["objects"]) {
+  const json report = read_json(dir_->file("tight/report.json"));  // outlives the loop
+  for (const json& o : report["objects"]) {
     if (o["meets_budget"].get<bool>()) continue;
     double smallest = HUGE_VAL;
     for (const json& c : o["candidates"]) smallest = std::min(smallest, c["error"].get<double>());
