@@ -108,6 +108,55 @@ void generate_tangents(Mesh& mesh) {
   mesh.tangents_generated = true;
 }
 
+namespace {
+
+int shifted_index(int index, std::size_t by) {
+  return index < 0 ? index : index + int(by);
+}
+
+}  // namespace
+
+void append_scene(Scene& scene, const Scene& other) {
+  const std::size_t nodes = scene.nodes.size(), materials = scene.materials.size();
+  const std::size_t images = scene.images.size(), skins = scene.skins.size();
+  int gltf_meshes = 0;
+  for (const Node& node : scene.nodes) gltf_meshes = std::max(gltf_meshes, node.mesh + 1);
+  for (Mesh mesh : other.meshes) {
+    mesh.node = shifted_index(mesh.node, nodes);
+    mesh.material = shifted_index(mesh.material, materials);
+    mesh.skin = shifted_index(mesh.skin, skins);
+    scene.meshes.push_back(std::move(mesh));
+  }
+  for (Material material : other.materials) {
+    material.base_color_texture = shifted_index(material.base_color_texture, images);
+    scene.materials.push_back(std::move(material));
+  }
+  scene.images.insert(scene.images.end(), other.images.begin(), other.images.end());
+  for (Node node : other.nodes) {
+    node.parent = shifted_index(node.parent, nodes);
+    for (int& child : node.children) child = shifted_index(child, nodes);
+    node.mesh = shifted_index(node.mesh, std::size_t(gltf_meshes));
+    node.skin = shifted_index(node.skin, skins);
+    scene.nodes.push_back(std::move(node));
+  }
+  for (Skin skin : other.skins) {
+    for (int& joint : skin.joints) joint = shifted_index(joint, nodes);
+    skin.skeleton = shifted_index(skin.skeleton, nodes);
+    scene.skins.push_back(std::move(skin));
+  }
+  for (Animation animation : other.animations) {
+    for (AnimationChannel& channel : animation.channels)
+      channel.node = shifted_index(channel.node, nodes);
+    scene.animations.push_back(std::move(animation));
+  }
+  for (ImportProblem problem : other.problems) {
+    problem.node = shifted_index(problem.node, nodes);
+    problem.mesh = shifted_index(problem.mesh, std::size_t(gltf_meshes));
+    problem.material = shifted_index(problem.material, materials);
+    scene.problems.push_back(std::move(problem));
+  }
+}
+
 Scene import_scene(const std::string& path, const Context& ctx) {
   return import_scene(path, ctx, ImportOptions{});
 }

@@ -178,6 +178,12 @@ void generate_normals(Mesh& mesh);
 // convention), and flags them generated. Clears them when the mesh has no UVs or normals.
 void generate_tangents(Mesh& mesh);
 
+// Appends `other` to `scene`: its meshes, materials, images, nodes (as further roots), skins,
+// animations and problems, with every index into them shifted (a node's glTF mesh index past
+// the largest of `scene`). How a scene is assembled from parts, e.g. a character placed in a
+// level.
+void append_scene(Scene& scene, const Scene& other);
+
 // Reads .gltf / .glb (with KHR_draco_mesh_compression) or .obj, chosen by the file extension.
 // Throws Error naming the file and what is wrong. Warnings (e.g. generated normals) go to ctx.
 Scene import_scene(const std::string& path, const Context& ctx);
