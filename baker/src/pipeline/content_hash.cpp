@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <set>
 
 #include "prt/baker/context.hpp"
 
@@ -61,10 +62,54 @@ void hash_node(ContentHash& hash, const Node& node) {
   for (const auto& [key, value] : node.hints.settings) hash.text(key).text(value);
 }
 
+// The node, its ancestors, and for a skinned node its joints and theirs: the nodes whose
+// transforms place or pose the object.
+std::set<int> placing_nodes(const Scene& scene, int node) {
+  std::set<int> nodes;
+  const auto add_with_ancestors = [&](int n) {
+    for (; n >= 0 && nodes.insert(n).second; n = scene.nodes.at(std::size_t(n)).parent) {
+    }
+  };
+  add_with_ancestors(node);
+  const int skin = scene.nodes.at(std::size_t(node)).skin;
+  if (skin >= 0 && std::size_t(skin) < scene.skins.size()) {
+    for (const int joint : scene.skins[std::size_t(skin)].joints) add_with_ancestors(joint);
+  }
+  return nodes;
+}
+
+void hash_channel(ContentHash& hash, const AnimationChannel& channel) {
+  hash.value(channel.node).value(channel.path).value(channel.interpolation);
+  hash.value(channel.components).values(channel.times).values(channel.values);
+}
+
+// The skin and every animation channel that moves a placing node: what poses and moves it.
+void hash_motion(ContentHash& hash, const Scene& scene, int node) {
+  const std::set<int> nodes = placing_nodes(scene, node);
+  for (const int n : nodes) {
+    const Node& placing = scene.nodes[std::size_t(n)];
+    hash.value(n).value(placing.parent).value(placing.local).value(placing.world);
+  }
+  const int skin = scene.nodes.at(std::size_t(node)).skin;
+  if (skin >= 0 && std::size_t(skin) < scene.skins.size()) {
+    const Skin& s = scene.skins[std::size_t(skin)];
+    hash.values(s.joints).values(s.inverse_bind).value(s.skeleton);
+  }
+  for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+    const Animation& animation = scene.animations[a];
+    for (const AnimationChannel& channel : animation.channels) {
+      if (!nodes.count(channel.node)) continue;
+      hash.value(a).text(animation.name).value(animation.duration);
+      hash_channel(hash, channel);
+    }
+  }
+}
+
 }  // namespace
 
 void hash_object_scene(ContentHash& hash, const Scene& scene, int node) {
   hash_node(hash, scene.nodes.at(static_cast<std::size_t>(node)));
+  hash_motion(hash, scene, node);
   hash.value(scene.meshes.size());
   for (const Mesh& mesh : scene.meshes) hash_mesh(hash, mesh);
   hash.value(scene.materials.size());

@@ -41,7 +41,8 @@ class ContentHash {
 };
 
 // Everything of an object's scene that a bake reads: meshes (every attribute), materials and the
-// images they use, and the node's own facts (transform, skin, animation, hints).
+// images they use, the node's own facts (transform, skin, hints), and what places, poses and
+// moves it: its ancestors, its skin's joints and theirs, and the animation channels of those.
 void hash_object_scene(ContentHash& hash, const Scene& scene, int node);
 
 // The file's bytes (a light), or Error when it cannot be read.
