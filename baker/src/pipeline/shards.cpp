@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../common/atomic_file.hpp"
+#include "../common/shard_payload.hpp"
 #include "content_hash.hpp"
 
 namespace prt::bake {
@@ -25,21 +26,6 @@ using nlohmann::ordered_json;
 constexpr char kShardMagic[8] = {'P', 'R', 'T', 'S', 'H', 'A', 'R', 'D'};
 constexpr std::uint32_t kShardVersion = 1;
 constexpr std::size_t kShardDigest = 32;
-
-template <typename T>
-void put(std::vector<std::uint8_t>& out, const T& value) {
-  const auto* bytes = reinterpret_cast<const std::uint8_t*>(&value);
-  out.insert(out.end(), bytes, bytes + sizeof value);
-}
-
-template <typename T>
-T take(const std::vector<std::uint8_t>& in, std::size_t& at, const std::string& path) {
-  if (in.size() - at < sizeof(T)) throw Error(path + ": not a whole shard file (truncated)");
-  T value;
-  std::memcpy(&value, in.data() + at, sizeof value);
-  at += sizeof value;
-  return value;
-}
 
 std::string digest_of(const std::uint8_t* data, std::size_t size) {
   ContentHash hash;
@@ -132,13 +118,15 @@ std::string ShardFile::bake_key() const {
 }
 
 std::vector<std::uint8_t> encode_shard(const ShardFile& shard) {
-  std::vector<std::uint8_t> out(kShardMagic, kShardMagic + sizeof kShardMagic);
-  put(out, kShardVersion);
+  ShardPayloadWriter writer;
+  writer.put_array(kShardMagic, sizeof kShardMagic);
+  writer.put(kShardVersion);
   const std::string header = header_json(shard).dump();
-  put(out, std::uint64_t(header.size()));
-  out.insert(out.end(), header.begin(), header.end());
-  put(out, std::uint64_t(shard.payload.size()));
-  out.insert(out.end(), shard.payload.begin(), shard.payload.end());
+  writer.put(std::uint64_t(header.size()));
+  writer.put_array(header.data(), header.size());
+  writer.put(std::uint64_t(shard.payload.size()));
+  writer.put_vector(shard.payload);
+  std::vector<std::uint8_t> out = std::move(writer).bytes();
   const std::string digest = digest_of(out.data(), out.size());
   out.insert(out.end(), digest.begin(), digest.end());
   return out;
@@ -153,23 +141,20 @@ ShardFile decode_shard(const std::vector<std::uint8_t>& bytes, const std::string
       std::string(bytes.begin() + std::ptrdiff_t(body), bytes.end()))
     throw Error(path + ": the shard file is damaged (its checksum does not match)");
   const std::vector<std::uint8_t> in(bytes.begin(), bytes.begin() + std::ptrdiff_t(body));
-  std::size_t at = sizeof kShardMagic;
-  if (const auto version = take<std::uint32_t>(in, at, path); version != kShardVersion)
+  ShardPayloadReader reader(in, path + ": not a whole shard file");
+  reader.get_vector<char>(sizeof kShardMagic);
+  if (const auto version = reader.get<std::uint32_t>(); version != kShardVersion)
     throw Error(path + ": shard file version " + std::to_string(version) + ", this baker reads " +
                 std::to_string(kShardVersion));
-  const auto header_size = take<std::uint64_t>(in, at, path);
-  if (in.size() - at < header_size) throw Error(path + ": not a whole shard file (truncated)");
+  const std::vector<char> header = reader.get_vector<char>(reader.get<std::uint64_t>());
   ShardFile shard;
   try {
-    shard = from_header(ordered_json::parse(in.begin() + std::ptrdiff_t(at),
-                                            in.begin() + std::ptrdiff_t(at + header_size)));
+    shard = from_header(ordered_json::parse(header.begin(), header.end()));
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": the shard's header does not read: " + e.what());
   }
-  at += header_size;
-  const auto payload_size = take<std::uint64_t>(in, at, path);
-  if (in.size() - at != payload_size) throw Error(path + ": not a whole shard file (truncated)");
-  shard.payload.assign(in.begin() + std::ptrdiff_t(at), in.end());
+  shard.payload = reader.get_vector<std::uint8_t>(reader.get<std::uint64_t>());
+  reader.finish();
   return shard;
 }
 
