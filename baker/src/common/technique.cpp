@@ -107,7 +107,9 @@ void finish_bake(TechniqueBake& bake, const Scene& scene, const BakeInput& input
   ctx.info("self-check passed: " + check.message);
 }
 
-std::size_t TechniqueBake::shard_units(const Scene&) const { return 0; }
+std::size_t TechniqueBake::shard_units(const Scene&) const {
+  return 0;
+}
 
 std::vector<std::uint8_t> TechniqueBake::bake_shard(const Scene&, const BakeInput&, std::size_t,
                                                     std::size_t, const Context&) {
@@ -123,11 +125,17 @@ ObjectFit Technique::fit(const Scene&, int) const {
   return {false, std::string("technique ") + name() + " does not bake objects of a scene yet"};
 }
 
-std::vector<Rung> Technique::ladder(int) const { return {}; }
+std::vector<Rung> Technique::ladder(int) const {
+  return {};
+}
 
 std::vector<glm::vec3> Technique::shade(const std::vector<std::uint8_t>&, const io::EnvMap&,
                                         const Context&) const {
   throw Error(std::string("technique ") + name() + " cannot be measured in a scene bake yet");
+}
+
+ObjectMeasureFactory Technique::measure() const {
+  return &make_diffuse_measure;
 }
 
 Scene TechniqueTrade::load_scene(const TradeInput& input, const Context& ctx) {

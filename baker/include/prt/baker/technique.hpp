@@ -131,6 +131,44 @@ struct ObjectFit {
   std::string reason;
 };
 
+class Technique;
+
+// What a scene bake measures one object's candidates in (prt/baker/scene_bake.hpp).
+struct ObjectMeasureInput {
+  const Scene* scene = nullptr;           // the whole scene: what surrounds the object
+  const Scene* object = nullptr;          // the object alone, as its candidates bake it
+  int node = -1;                          // the object's node, in both
+  std::vector<const io::EnvMap*> lights;  // every light the scene will see, at least one
+  int bounces = 1;                        // the reference's indirect bounces
+  std::uint32_t ref_spp = 1024;           // reference samples per vertex
+  std::uint32_t probe_vertices = 512;     // vertices measured (all when the object has fewer)
+  std::uint32_t seed = 0;
+};
+
+struct Measurement {
+  double error = 0.0;      // the worst light's relative RMSE, the reference's noise taken out
+  double ref_noise = 0.0;  // the reference's own relative RMSE estimate under that light
+};
+
+// Measures the candidates of one object against the reference renderer. Built once per object
+// (and per factory, see Technique::measure); it renders its references on first need, so that an
+// object whose candidates all come from the cache renders none.
+class ObjectMeasure {
+ public:
+  virtual ~ObjectMeasure() = default;
+  // The error of a blob `technique` baked for the object. Throws Error when it cannot be
+  // measured (the blob does not load, shades the wrong vertex count, ...).
+  virtual Measurement measure(const Technique& technique, const std::vector<std::uint8_t>& blob,
+                              const Context& ctx) = 0;
+};
+using ObjectMeasureFactory = std::unique_ptr<ObjectMeasure> (*)(const ObjectMeasureInput& input);
+
+// The measurement of static objects (sh, wavelet): each light's diffuse reference on
+// `probe_vertices` vertices of the object alone, against Technique::shade of every vertex.
+std::unique_ptr<ObjectMeasure> make_diffuse_measure(const ObjectMeasureInput& input);
+// `count` of `vertices` vertex indices spread evenly over the vertex order (all when fewer).
+std::vector<std::size_t> spread_vertices(std::size_t vertices, std::size_t count);
+
 class Technique {
  public:
   virtual ~Technique() = default;
@@ -155,6 +193,11 @@ class Technique {
   // Error when the technique cannot be measured this way.
   virtual std::vector<glm::vec3> shade(const std::vector<std::uint8_t>& blob,
                                        const io::EnvMap& light, const Context& ctx) const;
+  // How the scene command measures this technique's candidates. Techniques that return the same
+  // factory share one measurement per object, and so its reference renders. Default:
+  // make_diffuse_measure, which calls shade(). A technique whose output is not a diffuse
+  // vertex radiance (a pose, a view, other objects) returns its own.
+  virtual ObjectMeasureFactory measure() const;
 };
 
 // Every technique of the baker, in the order the command lists them (baker/src/techniques.cpp).
