@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -17,9 +18,7 @@
 #include <vector>
 
 #include "prt/baker/demo_scene.hpp"
-#include "prt/baker/reference.hpp"
 #include "prt/baker/text.hpp"
-#include "prt/io/radiance_error.hpp"
 
 #include "../common/atomic_file.hpp"
 #include "../common/numbers.hpp"
@@ -61,14 +60,6 @@ std::vector<Light> load_lights(const SceneBakeSettings& settings, const Context&
   return lights;
 }
 
-// The measured vertices: all, or `count` spread evenly over the object's vertex order.
-std::vector<std::size_t> probe_vertices(std::size_t vertices, std::size_t count) {
-  std::vector<std::size_t> probes;
-  const std::size_t n = std::min(vertices, std::max<std::size_t>(count, 1));
-  for (std::size_t i = 0; i < n; ++i) probes.push_back((2 * i + 1) * vertices / (2 * n));
-  return probes;
-}
-
 // "NAME=TECHNIQUE[:ARG,ARG,...]" overrides, by object name.
 struct Override {
   std::string technique;
@@ -99,9 +90,15 @@ std::optional<Override> override_for(const SceneBakeSettings& settings, const Sc
 // Measures and caches candidates of one object; the reference is rendered on first need.
 class ObjectBaker {
  public:
-  ObjectBaker(const SceneBakeSettings& settings, const std::vector<Light>& lights,
-              const SceneObject& object, const std::string& object_hash, const Context& ctx)
-      : settings_(settings), lights_(lights), object_(object), hash_(object_hash), ctx_(ctx) {}
+  ObjectBaker(const SceneBakeSettings& settings, const Scene& scene,
+              const std::vector<Light>& lights, const SceneObject& object,
+              const std::string& object_hash, const Context& ctx)
+      : settings_(settings),
+        scene_(scene),
+        lights_(lights),
+        object_(object),
+        hash_(object_hash),
+        ctx_(ctx) {}
 
   Candidate candidate(const Technique& technique, const std::vector<std::string>& args,
                       std::vector<std::uint8_t>* blob) {
@@ -148,42 +145,23 @@ class ObjectBaker {
   }
 
   void measure(const Technique& technique, const std::vector<std::uint8_t>& blob, Candidate* c) {
-    const std::vector<std::size_t>& probes = probes_of();
-    c->error = 0.0;
-    for (std::size_t l = 0; l < lights_.size(); ++l) {
-      const std::vector<glm::vec3> shaded = technique.shade(blob, *lights_[l].map, ctx_);
-      if (shaded.size() != object_.scene.vertex_count())
-        throw Error("the blob shades " + std::to_string(shaded.size()) + " vertices, not " +
-                    std::to_string(object_.scene.vertex_count()));
-      std::vector<glm::vec3> at_probes;
-      for (const std::size_t v : probes) at_probes.push_back(shaded[v]);
-      const VertexRadiance& ref = reference(l);
-      const double error =
-          trade::noise_removed(io::relative_rmse(at_probes, ref.radiance), ref.relative_rmse);
-      if (!(error <= c->error)) c->ref_noise = ref.relative_rmse;
-      c->error = std::max(c->error, std::isfinite(error) ? error : HUGE_VAL);
+    std::unique_ptr<ObjectMeasure>& measure = measures_[technique.measure()];
+    if (!measure) {
+      ObjectMeasureInput input;
+      input.scene = &scene_;
+      input.object = &object_.scene;
+      input.node = object_.node;
+      for (const Light& light : lights_) input.lights.push_back(light.map.get());
+      input.bounces = settings_.bounces;
+      input.ref_spp = settings_.ref_spp;
+      input.probe_vertices = settings_.probe_vertices;
+      input.seed = settings_.seed;
+      measure = technique.measure()(input);
     }
+    const Measurement m = measure->measure(technique, blob, ctx_);
+    c->error = m.error;
+    c->ref_noise = m.ref_noise;
     c->meets = c->error <= settings_.error_budget;
-  }
-
-  const std::vector<std::size_t>& probes_of() {
-    if (probes_.empty())
-      probes_ = probe_vertices(object_.scene.vertex_count(), settings_.probe_vertices);
-    return probes_;
-  }
-
-  const VertexRadiance& reference(std::size_t light) {
-    if (references_.empty()) references_.resize(lights_.size());
-    if (!references_[light]) {
-      ReferenceSettings rs;
-      rs.bounces = settings_.bounces;
-      rs.spp = settings_.ref_spp;
-      rs.seed = settings_.seed;
-      const ReferenceRenderer renderer(object_.scene, *lights_[light].map, rs, ctx_);
-      references_[light] =
-          std::make_unique<VertexRadiance>(renderer.render_vertices(probes_of(), ctx_));
-    }
-    return *references_[light];
   }
 
   std::string cache_path(const std::string& key, const char* extension) const {
@@ -213,12 +191,13 @@ class ObjectBaker {
   }
 
   const SceneBakeSettings& settings_;
+  const Scene& scene_;
   const std::vector<Light>& lights_;
   const SceneObject& object_;
   std::string hash_;
   const Context& ctx_;
-  std::vector<std::size_t> probes_;
-  std::vector<std::unique_ptr<VertexRadiance>> references_;
+  // One measurement per factory: techniques that share it share its references.
+  std::map<ObjectMeasureFactory, std::unique_ptr<ObjectMeasure>> measures_;
 };
 
 std::string joined(const std::vector<std::string>& args) {
@@ -330,7 +309,7 @@ std::unique_ptr<ObjectBaker> bake_object(const SceneBakeSettings& settings, cons
   const std::vector<Plan> plans = plan_object(settings, scene, object, result);
   if (plans.empty()) return nullptr;
   result->hash = object_hash(settings, lights, object);
-  auto baker = std::make_unique<ObjectBaker>(settings, lights, object, result->hash, ctx);
+  auto baker = std::make_unique<ObjectBaker>(settings, scene, lights, object, result->hash, ctx);
   const std::vector<std::uint8_t> blob = choose(plans, *baker, result, ctx);
   const Candidate* chosen = result->choice();
   if (!chosen) return nullptr;
@@ -356,27 +335,50 @@ std::size_t rung_meeting(const Technique& technique, const std::vector<Rung>& la
   return ladder.size() - 1;
 }
 
-// Every baked object with `technique` at the rung its hardest object needs: what a pipeline
-// without a choice per object would bake. Null when the technique does not suit every object.
+// The objects of each technique in a baseline, and the rung the hardest of them needs.
+struct BaselineGroup {
+  const Technique* technique;
+  std::vector<std::size_t> objects;
+};
+
+// What a pipeline without a choice per object would bake: every baked object that `technique`
+// suits with it, the others with their chosen technique (the only kind that bakes them), each
+// technique at one setting: the rung its hardest object needs. Null when `technique` suits no
+// baked object or has no ladder.
 std::optional<SingleTechnique> single_technique(
     const Technique& technique, const SceneBakeSettings& settings, const Scene& scene,
     const std::vector<ObjectResult>& results,
     const std::vector<std::unique_ptr<ObjectBaker>>& bakers) {
-  const std::vector<Rung> ladder = technique.ladder(settings.bounces);
-  if (ladder.empty()) return std::nullopt;
-  SingleTechnique single;
-  single.technique = technique.name();
-  std::size_t hardest = 0;
+  if (technique.ladder(settings.bounces).empty()) return std::nullopt;
+  std::vector<BaselineGroup> groups{{&technique, {}}};
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (!bakers[i]) continue;
-    if (!technique.fit(scene, results[i].object->node).suits) return std::nullopt;
-    hardest = std::max(hardest, rung_meeting(technique, ladder, *bakers[i], &single.meets));
+    const Technique* own = technique.fit(scene, results[i].object->node).suits
+                               ? &technique
+                               : find_technique(results[i].choice()->technique);
+    auto group = std::find_if(groups.begin(), groups.end(),
+                              [&](const BaselineGroup& g) { return g.technique == own; });
+    if (group == groups.end()) group = groups.insert(groups.end(), {own, {}});
+    group->objects.push_back(i);
   }
-  single.args = ladder[hardest].args;
+  if (groups.front().objects.empty()) return std::nullopt;
+  SingleTechnique single;
+  single.technique = technique.name();
   std::vector<std::uint8_t> blob;
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    if (bakers[i]) single.bytes += bakers[i]->candidate(technique, single.args, &blob).bytes;
+  for (const BaselineGroup& group : groups) {
+    const std::vector<Rung> ladder = group.technique->ladder(settings.bounces);
+    if (ladder.empty()) return std::nullopt;
+    std::size_t hardest = 0;
+    for (const std::size_t i : group.objects)
+      hardest =
+          std::max(hardest, rung_meeting(*group.technique, ladder, *bakers[i], &single.meets));
+    for (const std::size_t i : group.objects) {
+      single.bytes += bakers[i]->candidate(*group.technique, ladder[hardest].args, &blob).bytes;
+      single.objects.push_back({results[i].object->name, group.technique->name()});
+    }
+    single.settings.push_back({group.technique->name(), ladder[hardest].args});
   }
+  single.args = single.settings.front().second;
   return single;
 }
 
@@ -397,7 +399,14 @@ SceneBakeSummary summarise(const std::vector<ObjectResult>& results) {
 
 }  // namespace
 
-SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Context& ctx) {
+SceneBakeSummary run_scene_bake(const SceneBakeSettings& settings, const Context& ctx) {
+  // Keep going: a broken primitive, node or texture becomes a problem of its object (import: ...).
+  const Scene scene = import_scene(settings.scene, ctx, ImportOptions{true});
+  return run_scene_bake(settings, scene, ctx);
+}
+
+SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Scene& scene,
+                                const Context& ctx) {
   SceneBakeSettings settings = input;
   if (!(settings.error_budget > 0.0) || !std::isfinite(settings.error_budget))
     throw Error("--error-budget: must be a positive fraction, e.g. 0.02 for 2 %");
@@ -407,8 +416,6 @@ SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Context& c
   fs::create_directories(settings.out_dir);
   fs::create_directories(settings.cache_dir);
 
-  // Keep going: a broken primitive, node or texture becomes a problem of its object (import: ...).
-  const Scene scene = import_scene(settings.scene, ctx, ImportOptions{true});
   const std::vector<Light> lights = load_lights(settings, ctx);
   const std::vector<SceneObject> objects = scene_objects(scene);
   std::vector<ObjectResult> results(objects.size());

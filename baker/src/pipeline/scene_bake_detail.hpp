@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "prt/baker/scene_bake.hpp"
@@ -45,10 +46,15 @@ struct ObjectResult {
 };
 
 // Every object baked with one technique at the settings its hardest object needs
-// (SceneBakeSettings::compare_single).
+// (SceneBakeSettings::compare_single); objects it does not suit keep their chosen technique,
+// also at one setting for all of them.
 struct SingleTechnique {
   std::string technique;
-  std::vector<std::string> args;
+  std::vector<std::string> args;  // of `technique`
+  // Each technique of the baseline and its one setting, `technique` first.
+  std::vector<std::pair<std::string, std::vector<std::string>>> settings;
+  // Each object and the technique it is baked with.
+  std::vector<std::pair<std::string, std::string>> objects;
   std::size_t bytes = 0;
   bool meets = true;  // false: some object does not meet E even at the ladder's top
 };

@@ -125,8 +125,16 @@ void write_report(const SceneBakeSettings& settings, const std::vector<LightInfo
     j["summary"]["single_technique_bytes"] = summary.single_bytes;
     ordered_json single_list = ordered_json::array();
     for (const SingleTechnique& single : singles) {
+      ordered_json others = ordered_json::array();
+      for (std::size_t g = 1; g < single.settings.size(); ++g)
+        others.push_back(
+            {{"technique", single.settings[g].first}, {"settings", single.settings[g].second}});
+      ordered_json objects = ordered_json::object();
+      for (const auto& [object, technique] : single.objects) objects[object] = technique;
       single_list.push_back({{"technique", single.technique},
                              {"settings", single.args},
+                             {"others", others},
+                             {"objects", objects},
                              {"bytes", single.bytes},
                              {"meets_budget", single.meets}});
     }

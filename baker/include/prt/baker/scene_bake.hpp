@@ -79,5 +79,9 @@ struct SceneBakeSummary {
 // (the manifest) and OUT_DIR/report.json. Throws Error when the scene cannot be read at all or
 // an output cannot be written; a broken object is reported, not thrown.
 SceneBakeSummary run_scene_bake(const SceneBakeSettings& settings, const Context& ctx);
+// The same on a scene already in memory (settings.scene is then only its name in the outputs),
+// e.g. one assembled with append_scene.
+SceneBakeSummary run_scene_bake(const SceneBakeSettings& settings, const Scene& scene,
+                                const Context& ctx);
 
 }  // namespace prt::bake
