@@ -6,6 +6,7 @@
 
 #include "command.hpp"
 #include "prt/baker/scene_bake.hpp"
+#include "prt/baker/shards.hpp"
 #include "prt/baker/text.hpp"
 
 namespace prt::bake::cli {
@@ -44,13 +45,31 @@ void add_scene_command(CLI::App& app, CommandEnv& env) {
   cmd->add_flag("--compare-single", s->compare_single,
                 "Also report the bytes of baking every object with one technique at the "
                 "settings the hardest object needs");
+  auto shard = std::make_shared<std::string>();
+  cmd->add_option("--shard", *shard,
+                  "i/N: bake objects i, i+N, ... into the cache only; a run without --shard "
+                  "over the same --cache-dir writes the outputs");
   cmd->add_flag("--strict", s->strict,
                 "Exit non-zero when an object is broken or does not meet the budget");
-  cmd->callback([s, budget_percent, &env] {
+  cmd->callback([s, budget_percent, shard, &env] {
     const Context ctx = env.context();
     SceneBakeSettings settings = *s;
     settings.error_budget = *budget_percent / 100.0;
+    if (!shard->empty()) {
+      const ShardSpec spec = parse_shard_spec(*shard);
+      settings.shard_index = spec.index;
+      settings.shard_count = spec.count;
+    }
     const SceneBakeSummary summary = run_scene_bake(settings, ctx);
+    if (settings.shard_count > 1) {
+      ctx.info(
+          format("shard %s: %zu objects, %zu baked (%zu from the cache), %zu broken, %zu "
+                 "over budget; run without --shard over the same cache to write the outputs",
+                 shard->c_str(), summary.objects, summary.baked, summary.from_cache, summary.broken,
+                 summary.over_budget));
+      if (summary.failed() && settings.strict) env.exit_code = 1;
+      return;
+    }
     ctx.info(
         format("%zu objects: %zu baked (%zu from the cache), %zu broken, %zu over budget; "
                "%zu bytes; wrote %s/scene.json and report.json",

@@ -318,6 +318,7 @@ std::unique_ptr<ObjectBaker> bake_object(const SceneBakeSettings& settings, cons
                                    : "no candidate meets the budget: the fewest bytes within 5 % "
                                      "of the smallest error";
   }
+  if (settings.shard_count > 1) return baker;  // a shard writes the cache only
   result->blob_file = object.name + ".prtk";
   write_file_atomic(settings.out_dir + "/" + result->blob_file,
                     std::string(blob.begin(), blob.end()));
@@ -412,6 +413,8 @@ SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Scene& sce
     throw Error("--error-budget: must be a positive fraction, e.g. 0.02 for 2 %");
   if (settings.ref_spp < 2) throw Error("--ref-spp: must be >= 2");
   if (settings.bounces < 0) throw Error("--bounces: must be >= 0");
+  if (settings.shard_count < 1 || settings.shard_index >= settings.shard_count)
+    throw Error("--shard: expected i/N with 0 <= i < N");
   if (settings.cache_dir.empty()) settings.cache_dir = settings.out_dir + "/.cache";
   fs::create_directories(settings.out_dir);
   fs::create_directories(settings.cache_dir);
@@ -420,12 +423,21 @@ SceneBakeSummary run_scene_bake(const SceneBakeSettings& input, const Scene& sce
   const std::vector<SceneObject> objects = scene_objects(scene);
   std::vector<ObjectResult> results(objects.size());
   std::vector<std::unique_ptr<ObjectBaker>> bakers(objects.size());
+  const bool shard = settings.shard_count > 1;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     results[i].object = &objects[i];
+    if (shard && i % settings.shard_count != settings.shard_index) continue;
     results[i].problems = objects[i].problems;
     bakers[i] = bake_object(settings, scene, lights, &results[i], ctx);
     for (const std::string& problem : results[i].problems)
       ctx.warn(objects[i].name + ": " + problem);
+  }
+  if (shard) {
+    // A shard fills the cache only; the run without --shard writes every output from it.
+    std::vector<ObjectResult> own;
+    for (std::size_t i = settings.shard_index; i < results.size(); i += settings.shard_count)
+      own.push_back(results[i]);
+    return summarise(own);
   }
   SceneBakeSummary summary = summarise(results);
   std::vector<SingleTechnique> singles;

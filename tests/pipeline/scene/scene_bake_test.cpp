@@ -214,6 +214,36 @@ TEST_F(SceneBake, ReRunsBakeOnlyWhatChangedAndMatchAFreshBake) {
             prt_test::read_bytes(dir_->file("out/box.prtk")));
 }
 
+// --shard i/N: each shard bakes its objects into the shared cache and writes nothing else; the
+// run without it then bakes nothing anew and writes the bytes of a whole bake.
+TEST_F(SceneBake, ShardsFillTheCacheAndTheWholeRunWritesTheSameBytes) {
+  const std::string out = dir_->file("sharded");
+  SceneBakeSettings s = settings_for(dir_->file("small.glb"), out);
+  s.shard_count = 2;
+  const SceneBakeSummary first = run_scene_bake(s, quiet());
+  EXPECT_EQ(first.objects, 2u);  // objects 0 and 2: the ground and the box
+  EXPECT_EQ(first.baked, 2u);
+  EXPECT_EQ(first.from_cache, 0u);
+  EXPECT_FALSE(fs::exists(out + "/scene.json"));
+  EXPECT_FALSE(fs::exists(out + "/ground.prtk"));
+  s.shard_index = 1;
+  EXPECT_EQ(run_scene_bake(s, quiet()).baked, 1u);
+
+  s.shard_index = 0;
+  s.shard_count = 1;
+  const SceneBakeSummary whole = run_scene_bake(s, quiet());
+  EXPECT_EQ(whole.baked, 3u);
+  EXPECT_EQ(whole.from_cache, 3u);
+  for (const char* file : {"ground.prtk", "sphere.prtk", "box.prtk", "scene.json"}) {
+    EXPECT_EQ(prt_test::read_bytes(out + "/" + file),
+              prt_test::read_bytes(dir_->file("out/") + file))
+        << file;
+  }
+  s.shard_index = 2;
+  s.shard_count = 2;
+  EXPECT_THROW(run_scene_bake(s, quiet()), Error);
+}
+
 TEST_F(SceneBake, AnOverrideForcesTheTechniqueAndSettings) {
   SceneBakeSettings s = settings_for(dir_->file("small.glb"), dir_->file("forced"));
   s.cache_dir = dir_->file("out/.cache");

@@ -6,7 +6,9 @@
 # with SIGKILL in the middle of its bake. Passes when the merged blob is byte for byte the blob of
 # the same bake run whole on this machine, task 2 ran twice (requeued by shard.sbatch) and every
 # other task once, and `prt-bake merge` refuses a set with a shard missing or with a shard of
-# another bake (another seed), saying so.
+# another bake (another seed), saying so. Then `prt-bake scene --shard {task}/2` bakes the demo
+# scene's objects into a shared cache as an array of 2, and a job after it writes the outputs,
+# which must be the bytes of the same scene bake run here.
 #   farm_bake.sh SOURCE_DIR PRT_BAKE      (ctest: pipeline.slurm.farm_bake, label "slurm")
 # The cluster is stopped and its folder removed on any exit, and by a watchdog should the test be
 # killed outright (SIGKILL, as ctest does at its timeout).
@@ -107,21 +109,24 @@ merge=$(sbatch --parsable --dependency="afterok:$array" --kill-on-invalid-dep=ye
 merge=${merge%%;*}
 echo "farm_bake: shards are job array $array, the merge job $merge"
 
-# The merge's state until it ends (no accounting database: scontrol keeps ended jobs MinJobAge).
-deadline=$((SECONDS + wait_seconds))
-state=
-while :; do
-  state=$(scontrol show job -o "$merge" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p')
-  case "$state" in
-    COMPLETED) break ;;
-    FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | PREEMPTED | BOOT_FAIL | DEADLINE)
-      report "the merge job $merge ended $state" ;;
-  esac
-  [ "$SECONDS" -lt "$deadline" ] ||
-    report "the merge job $merge is still ${state:-unknown} after $wait_seconds s"
-  sleep 0.5
-done
-echo "farm_bake: merge done $((SECONDS - started)) s after the start"
+# Waits for job $1 (named $2 in messages) to complete (no accounting database: scontrol keeps
+# ended jobs MinJobAge).
+wait_for_job() {
+  local job=$1 what=$2 state= deadline=$((SECONDS + wait_seconds))
+  while :; do
+    state=$(scontrol show job -o "$job" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p')
+    case "$state" in
+      COMPLETED) break ;;
+      FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | PREEMPTED | BOOT_FAIL | DEADLINE)
+        report "the $what job $job ended $state" ;;
+    esac
+    [ "$SECONDS" -lt "$deadline" ] ||
+      report "the $what job $job is still ${state:-unknown} after $wait_seconds s"
+    sleep 0.5
+  done
+  echo "farm_bake: $what done $((SECONDS - started)) s after the start"
+}
+wait_for_job "$merge" merge
 
 [ -f merged.prtk ] || report "the merge wrote no blob"
 cmp -s merged.prtk whole.prtk ||
@@ -150,5 +155,29 @@ refused "shard 2/4 is missing" part0.shard part1.shard part3.shard
   report "the foreign shard's bake failed"
 refused "foreign.shard: belongs to another bake than part0.shard (other settings)" \
   part0.shard part1.shard foreign.shard part3.shard
+
+# A whole scene on the farm: each task of an array bakes every other object into the cache they
+# share (prt-bake scene --shard), and a job after them writes the outputs from it. They must be
+# the bytes of the same scene bake run here, and the last job must have baked nothing anew.
+scene=(scene demo_scene.glb --error-budget 10 --bounces 0 --ref-spp 64 --probe-vertices 32)
+"$prt_bake" --quiet "${scene[@]}" -o scene-local || report "the local scene bake failed"
+scene_array=$(sbatch --parsable --array=0-1 --output="$work/scene-%A_%a.out" \
+  "$farm/shard.sbatch" "$prt_bake" --quiet "${scene[@]}" -o scene-farm --shard '{task}/2') ||
+  report "sbatch of the scene shards failed"
+array=${scene_array%%;*}
+scene_final=$(sbatch --parsable --dependency="afterok:$array" --kill-on-invalid-dep=yes \
+  --output="$work/scene-final-%j.out" "$farm/merge.sbatch" \
+  "$prt_bake" --quiet "${scene[@]}" -o scene-farm) || report "sbatch of the scene's last job failed"
+merge=${scene_final%%;*}
+wait_for_job "$merge" "scene's last"
+for file in scene-local/*.prtk scene-local/scene.json; do
+  cmp -s "$file" "scene-farm/${file#scene-local/}" ||
+    report "scene-farm/${file#scene-local/} differs from the local scene bake's"
+done
+python3 -c 'import json, sys
+s = json.load(open(sys.argv[1]))["summary"]
+sys.exit(0 if s["baked"] == s["from_cache"] == 4 else 1)' scene-farm/report.json ||
+  report "the scene's last job baked objects anew: $(grep -A8 '"summary"' scene-farm/report.json)"
 echo "farm_bake: passed in $((SECONDS - started)) s: 4 shards merged into the whole bake's" \
-  "bytes, task 2 retried once, a missing and a foreign shard refused"
+  "bytes, task 2 retried once, a missing and a foreign shard refused; a scene baked by 2" \
+  "tasks into a shared cache gave the local scene bake's bytes"

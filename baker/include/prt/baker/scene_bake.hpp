@@ -64,6 +64,10 @@ struct SceneBakeSettings {
   // Also bake every object with each technique that suits them all, at the settings the hardest
   // object needs, for the report's comparison (more bakes; the cache keeps them).
   bool compare_single = false;
+  // --shard i/N: bake only objects i, i + N, i + 2N, ... (in node order) into the cache and
+  // write nothing else; a run without it over the same cache then bakes nothing anew and
+  // writes every output (docs/farm.md). N = 1: the whole scene.
+  std::size_t shard_index = 0, shard_count = 1;
 };
 
 struct SceneBakeSummary {
