@@ -44,7 +44,9 @@ class PoseBake final : public TechniqueBake {
     PoseTrainingSettings& t = training_settings_;
     PoseModelSettings& m = model_settings_;
     OptionList list;
-    list.add("--clips", &t.clips, "Clips to train on (comma-separated names); default: all");
+    list.add("--clips", &t.clips,
+             "Clips to train on (comma-separated names); default: every clip that moves the "
+             "skin's joints");
     list.add("--rate", &t.rate, "Training frames per second of clip time").range(0.01, 1000.0);
     list.add("--order", &t.transfer.order, "SH order n (n*n coefficients)")
         .range(1, PRT_BLOB_PSTR_MAX_ORDER);
@@ -91,7 +93,11 @@ class PoseBake final : public TechniqueBake {
     model_settings_.kind = parse_model_kind(model_kind_);
     model_settings_.cv = parse_cv(cv_);
     model_settings_.clamp = !no_clamp_;
-    training_ = bake_pose_training(scene, training_settings_, ctx);
+    // A clip that moves nothing of the character would only add copies of its rest pose (and,
+    // in a scene bake, make the blob depend on other objects' animation).
+    PoseTrainingSettings training_settings = training_settings_;
+    if (training_settings.clips.empty()) training_settings.clips = pose_clips_moving_skin(scene);
+    training_ = bake_pose_training(scene, training_settings, ctx);
     if (!ground_truth_.empty()) write_pose_ground_truth(ground_truth_, training_);
     model_ = fit_pose_model(training_, model_settings_, ctx);
   }
@@ -168,6 +174,10 @@ class PoseTechnique final : public Technique {
   }
   std::unique_ptr<TechniqueBake> make_bake() const override { return std::make_unique<PoseBake>(); }
   std::unique_ptr<TechniqueTrade> make_trade() const override { return make_pose_trade(); }
+
+  ObjectFit fit(const Scene& scene, int node) const override { return pose_scene_fit(scene, node); }
+  std::vector<Rung> ladder(int bounces) const override { return pose_scene_ladder(bounces); }
+  ObjectMeasureFactory measure() const override { return &make_pose_scene_measure; }
 };
 
 }  // namespace

@@ -40,4 +40,14 @@ void write_pose_bake_report(const std::string& path, const BakeInput& input, con
 
 std::unique_ptr<TechniqueTrade> make_pose_trade();
 
+// prt-bake scene (pose_scene.cpp): whether a node suits pose (skinned, moved by a clip), the
+// settings ladder, and the measurement on frames of the clips against the posed character's
+// reference.
+ObjectFit pose_scene_fit(const Scene& scene, int node);
+// The names of the clips that move a joint of the scene's one skin (a channel on a joint or a node
+// above one), in file order; empty when the scene has no skin or several.
+std::vector<std::string> pose_clips_moving_skin(const Scene& scene);
+std::vector<Rung> pose_scene_ladder(int bounces);
+std::unique_ptr<ObjectMeasure> make_pose_scene_measure(const ObjectMeasureInput& input);
+
 }  // namespace prt::bake
