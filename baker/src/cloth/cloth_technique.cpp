@@ -36,13 +36,17 @@ std::vector<ClothFabricSource> cloth_fabric_sources(const std::vector<std::strin
 
 namespace {
 
+// --fabric's name for the fabric the scene's cloth material names (cloth_scene_fabric).
+constexpr const char* kSceneFabric = "scene";
+
 class ClothBake final : public TechniqueBake {
  public:
   OptionList options() override {
     ClothGrid& g = options_.grid;
     OptionList list;
     list.add("--fabric", &fabrics_,
-             "Fabrics to bake, presets by name (comma-separated or repeated), or all")
+             "Fabrics to bake, presets by name (comma-separated or repeated), all, or scene "
+             "(the preset the scene's cloth material is named after, else linen_plain)")
         .choices(fabric_choices());
     list.add("--xi-size", &g.xi_size, "Lobe-direction nodes per side of the octahedral grid")
         .range(2, 256);
@@ -59,8 +63,10 @@ class ClothBake final : public TechniqueBake {
   }
 
   void bake(const Scene& scene, const BakeInput&, const Context& ctx) override {
-    (void)scene;
-    bake_ = bake_cloth_tables(cloth_fabric_sources(fabrics_), options_, ctx);
+    std::vector<std::string> names = fabrics_;
+    for (std::string& name : names)
+      if (name == kSceneFabric) name = cloth_scene_fabric(scene).name;
+    bake_ = bake_cloth_tables(cloth_fabric_sources(names), options_, ctx);
   }
 
   void quantize() override {
@@ -108,6 +114,7 @@ class ClothBake final : public TechniqueBake {
   static std::vector<std::string> fabric_choices() {
     std::vector<std::string> names = cloth_fabric_names();
     names.push_back("all");
+    names.push_back(kSceneFabric);
     return names;
   }
 
@@ -135,6 +142,12 @@ class ClothTechnique final : public Technique {
     return std::make_unique<ClothBake>();
   }
   std::unique_ptr<TechniqueTrade> make_trade() const override { return make_cloth_trade(); }
+
+  ObjectFit fit(const Scene& scene, int node) const override {
+    return cloth_scene_fit(scene, node);
+  }
+  std::vector<Rung> ladder(int bounces) const override { return cloth_scene_ladder(bounces); }
+  ObjectMeasureFactory measure() const override { return make_cloth_measure; }
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "prt/baker/cloth/cloth_blob.hpp"
 #include "prt/baker/cloth/cloth_tables.hpp"
+#include "prt/baker/cloth/fabrics.hpp"
 #include "prt/baker/scene.hpp"
 #include "prt/baker/technique.hpp"
 
@@ -52,5 +53,19 @@ void write_cloth_bake_report(const std::string& path, const BakeInput& input,
                              const ClothBlobCheck& check);
 
 std::unique_ptr<TechniqueTrade> make_cloth_trade();
+
+// --- prt-bake scene (cloth_scene.cpp; docs/cloth/trade.md, "In a scene bake").
+// The fabric of a scene's cloth: the preset its first cloth material (KHR_materials_sheen or
+// extras.prt.cloth) that is named after one names, else linen_plain. What `--fabric scene`
+// bakes and what the scene measurement's reference shades.
+const ClothPreset& cloth_scene_fabric(const Scene& scene);
+// Suits a node with a cloth material that no skin places; a moving node is fine.
+ObjectFit cloth_scene_fit(const Scene& scene, int node);
+// The tables' grid, rank (by energy) and bits, cheapest first; the same for any `bounces`
+// (cloth has no interreflection).
+std::vector<Rung> cloth_scene_ladder(int bounces);
+// The runtime's shading of the blob's vertex frames from a few views per vertex under each
+// light's static SG fit, against the brute-force reference of the scene's fabric.
+std::unique_ptr<ObjectMeasure> make_cloth_measure(const ObjectMeasureInput& input);
 
 }  // namespace prt::bake
