@@ -229,6 +229,12 @@ class ShadowfieldTechnique final : public Technique {
     return std::make_unique<ShadowfieldBake>();
   }
   std::unique_ptr<TechniqueTrade> make_trade() const override { return make_shadowfield_trade(); }
+
+  ObjectFit fit(const Scene& scene, int node) const override {
+    return shadowfield_scene_fit(scene, node);
+  }
+  std::vector<Rung> ladder(int bounces) const override { return shadowfield_scene_ladder(bounces); }
+  ObjectMeasureFactory measure() const override { return &make_shadowfield_object_measure; }
 };
 
 }  // namespace

@@ -21,6 +21,12 @@ namespace prt::bake {
 // prt-bake trade shadowfield (shadowfield_trade.cpp).
 std::unique_ptr<TechniqueTrade> make_shadowfield_trade();
 
+// prt-bake scene (shadowfield_scene.cpp): rigid objects that move; the settings ladder; the
+// object measured above a floor it shadows, at placements of its own motion.
+ObjectFit shadowfield_scene_fit(const Scene& scene, int node);
+std::vector<Rung> shadowfield_scene_ladder(int bounces);
+std::unique_ptr<ObjectMeasure> make_shadowfield_object_measure(const ObjectMeasureInput& input);
+
 // The --brdf flag's text ("lambert", "phong:N[,ks[,kd]]", "ggx:A[,F0]") parsed and checked;
 // every Error names the flag.
 SurfaceBrdf parse_brdf_option(const std::string& text);
