@@ -112,6 +112,9 @@ void hash_object_scene(ContentHash& hash, const Scene& scene, int node) {
   hash_motion(hash, scene, node);
   hash.value(scene.meshes.size());
   for (const Mesh& mesh : scene.meshes) hash_mesh(hash, mesh);
+  hash.value(scene.occluders.size());
+  for (const Mesh& occluder : scene.occluders)
+    hash.values(occluder.positions).values(occluder.indices);
   hash.value(scene.materials.size());
   for (const Material& material : scene.materials) hash_material(hash, material);
   hash.value(scene.images.size());

@@ -40,7 +40,8 @@ class ContentHash {
   void* state_;
 };
 
-// Everything of an object's scene that a bake reads: meshes (every attribute), materials and the
+// Everything of an object's scene that a bake reads: meshes (every attribute), the occluders
+// around it (positions and triangles), materials and the
 // images they use, the node's own facts (transform, skin, hints), and what places, poses and
 // moves it: its ancestors, its skin's joints and theirs, and the animation channels of those.
 void hash_object_scene(ContentHash& hash, const Scene& scene, int node);

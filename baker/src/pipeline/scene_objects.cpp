@@ -57,6 +57,28 @@ Scene cut_out(const Scene& scene, int node) {
   return object;
 }
 
+// Whether the node stays where the file puts it: no skin poses it and it does not move.
+bool stays_put(const Scene& scene, int node) {
+  const NodeKind kind = node_kind(scene, node);
+  return !kind.skinned && !kind.moves;
+}
+
+// The meshes of every other node that stays put, as occluders of `node`'s bake: positions and
+// triangles only (rays stop on them; nothing is shaded on them).
+std::vector<Mesh> static_surroundings(const Scene& scene, int node) {
+  std::vector<Mesh> occluders;
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.node < 0 || mesh.node == node || !stays_put(scene, mesh.node)) continue;
+    Mesh occluder;
+    occluder.name = mesh.name;
+    occluder.node = mesh.node;
+    occluder.positions = mesh.positions;
+    occluder.indices = mesh.indices;
+    occluders.push_back(std::move(occluder));
+  }
+  return occluders;
+}
+
 std::vector<std::string> problems_of(const Scene& object) {
   std::vector<std::string> problems;
   std::size_t triangles = 0, degenerate = 0;
@@ -124,6 +146,9 @@ std::vector<SceneObject> scene_objects(const Scene& scene) {
       object.name = base + "-" + std::to_string(k);
     object.skipped = node.hints.skip;
     object.scene = cut_out(scene, int(n));
+    // A static object is baked in its static surroundings, which shadow it; what moves is left
+    // out, since it is not there in every frame.
+    if (stays_put(scene, int(n))) object.scene.occluders = static_surroundings(scene, int(n));
     object.problems = import_problems(scene, int(n));
     for (std::string& problem : problems_of(object.scene)) {
       // Meshes the import dropped leave no triangles: its problems already say why.

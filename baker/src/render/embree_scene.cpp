@@ -49,8 +49,10 @@ EmbreeScene::EmbreeScene(const Scene& scene, const Context& ctx) : impl_(std::ma
 
   lo_ = glm::vec3(std::numeric_limits<float>::max());
   hi_ = glm::vec3(-std::numeric_limits<float>::max());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
+  // The occluders follow the meshes, numbered on from them (RayHit::mesh).
+  const std::size_t meshes = scene.meshes.size();
+  for (std::size_t m = 0; m < meshes + scene.occluders.size(); ++m) {
+    const Mesh& mesh = m < meshes ? scene.meshes[m] : scene.occluders[m - meshes];
     std::vector<std::uint32_t> kept;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
       if (is_degenerate_triangle(mesh, t)) {

@@ -124,6 +124,7 @@ PathEstimator::Step PathEstimator::lambert_step(const SurfacePoint& x, const Sam
     *radiance += escaped();
     return Step::Stop;
   }
+  if (hit.mesh >= scene_.meshes.size()) return Step::Stop;  // an occluder: black
   *throughput *= x.albedo;
   if (*throughput == glm::vec3(0.0f)) return Step::Stop;  // a black surface ends the path
   *next = surface_at(hit, w);
@@ -187,6 +188,7 @@ PathEstimator::Step PathEstimator::glossy_step(const SurfacePoint& x, const Samp
     *radiance += escaped();
     return Step::Stop;
   }
+  if (hit.mesh >= scene_.meshes.size()) return Step::Stop;  // an occluder: black
   // Light from other surfaces has only these two strategies: the path goes on with the density
   // of the direction whichever strategy picked it (their balance heuristic).
   *throughput *= x.albedo * static_cast<float>(f * cos_w / d.sum());

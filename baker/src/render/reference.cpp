@@ -223,6 +223,7 @@ io::LinearImage ReferenceRenderer::render_image(const io::Camera& camera, int wi
             RayHit hit;
             if (impl_->rays.intersect(camera.eye, dir, &hit)) {
               ++hits;
+              if (hit.mesh >= impl_->scene.meshes.size()) continue;  // an occluder: black
               const render::SurfacePoint point = estimator.surface_at(hit, dir);
               sum += glm::dvec3(estimator.sample(point, stream, i, 1, &row_rays[y]));
             } else {

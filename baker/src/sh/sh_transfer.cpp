@@ -171,9 +171,10 @@ class TransferBaker {
   }
 
   // Adds the barycentric interpolation of `previous` at the hit to sum (RGB x coefficients),
-  // unless the ray arrived at the back of the surface.
+  // unless the ray arrived at the back of the surface or at an occluder.
   void gather(const RayHit& hit, const glm::vec3& w, const std::vector<float>& previous,
               std::vector<double>* sum) const {
+    if (hit.mesh >= scene_.meshes.size()) return;  // an occluder reflects nothing
     const Mesh& mesh = scene_.meshes[hit.mesh];
     const std::size_t first = vertices_.first_of_mesh[hit.mesh];
     const std::size_t corner[3] = {first + mesh.indices[3 * hit.triangle],

@@ -385,6 +385,7 @@ std::uint64_t gather_bounce(std::uint32_t v, const WaveletTransfer& previous,
   for (std::size_t k = 0; k < directions.size(); ++k) {
     if (!found[k]) continue;
     const RayHit& hit = found_hits[k];
+    if (hit.mesh >= scene.meshes.size()) continue;  // an occluder reflects nothing
     const Mesh& mesh = scene.meshes[hit.mesh];
     const std::size_t first = vertices.first_of_mesh[hit.mesh];
     const float bary[3] = {1.0f - hit.u - hit.v, hit.u, hit.v};

@@ -85,12 +85,13 @@ void budget_table(const Scene& scene, const std::string& light, const std::strin
     const SceneBakeSummary summary = run_scene_bake(s, scene, ctx);
     const double wall = seconds_since(start);
     std::string objects;
-    for (const json& o : read_json(out + "/report.json")["objects"]) {
+    const json report = read_json(out + "/report.json");
+    for (const json& o : report["objects"]) {
+      char figures[96];
+      std::snprintf(figures, sizeof figures, ", %.2f %%, %zu B%s", 100 * o["error"].get<double>(),
+                    o["bytes"].get<std::size_t>(), o["meets_budget"].get<bool>() ? "" : " (over)");
       objects += (objects.empty() ? "" : "; ") + o["name"].get<std::string>() + ": " +
-                 o["technique"].get<std::string>() + ", " +
-                 std::to_string(100 * o["error"].get<double>()).substr(0, 4) + " %, " +
-                 std::to_string(o["bytes"].get<std::size_t>()) +
-                 (o["meets_budget"].get<bool>() ? "" : " (over)");
+                 o["technique"].get<std::string>() + figures;
     }
     std::printf(
         "| %.0f %% | %s | %zu | %s | %.0f |\n", percent, objects.c_str(), summary.bytes,

@@ -27,7 +27,8 @@ namespace prt::bake {
 
 struct RayHit {
   float t = 0.0f;
-  std::uint32_t mesh = 0;      // index into Scene::meshes
+  // Index into Scene::meshes; meshes.size() + k for Scene::occluders[k].
+  std::uint32_t mesh = 0;
   std::uint32_t triangle = 0;  // triangle index within that mesh (indices[3*triangle ...])
   float u = 0.0f, v = 0.0f;    // barycentrics: p = (1-u-v) p0 + u p1 + v p2
 };

@@ -151,6 +151,11 @@ struct ImportOptions {
 struct Scene {
   std::string source;  // the file it came from
   std::vector<Mesh> meshes;
+  // World-space meshes that only block light: rays stop on them (shadows, and a bounce ends
+  // there, as on a black surface), but they have no vertices of their own and nothing is baked
+  // or rendered for them. prt-bake scene puts an object's static surroundings here. Every count,
+  // bound and per-vertex output (vertex_count, bounds, ...) is about `meshes` only.
+  std::vector<Mesh> occluders;
   std::vector<Material> materials;
   std::vector<Image> images;
   std::vector<Node> nodes;
