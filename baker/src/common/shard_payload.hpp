@@ -57,6 +57,7 @@ class ShardPayloadReader {
   template <typename T>
   void get_array(T* values, std::size_t n) {
     static_assert(std::is_trivially_copyable_v<T>);
+    if (n == 0) return;  // an empty range: `values` may be null, which memcpy must not see
     if (n > (bytes_.size() - at_) / sizeof(T)) throw Error(who_ + ": the payload is truncated");
     std::memcpy(static_cast<void*>(values), bytes_.data() + at_, n * sizeof(T));
     at_ += n * sizeof(T);
