@@ -2,6 +2,8 @@
 // Technique `pose` for prt-bake: `bake pose CHARACTER.glb -o OUT.prtk` samples the character's
 // clips, bakes each frame's SH transfer (prt/baker/pose/pose_training.hpp), fits the learned
 // model (prt/baker/pose/pose_model.hpp), writes the blob and checks it through the runtime.
+// `bake pose --shard i/N` bakes the transfer of a range of the frames; merge_shards joins them
+// and fits the model (pose_shards.cpp).
 #include <prt/format/pose_layout.h>
 
 #include <memory>
@@ -82,24 +84,28 @@ class PoseBake final : public TechniqueBake {
   }
 
   void bake(const Scene& imported, const BakeInput& input, const Context& ctx) override {
-    if (subdivide_to_ > 0) subdivided_ = subdivide_scene(imported, subdivide_to_);
-    const Scene& scene = scene_of(imported);
-    ShTransferSettings& s = training_settings_.transfer;
-    s.seed = input.seed;
-    s.kind = parse_sh_transfer_kind(kind_.c_str());
-    s.override_albedo = true;
-    s.albedo = glm::vec3(1.0f);
-    if (!input.albedo.empty()) s.albedo = parse_albedo(input.albedo);
-    model_settings_.kind = parse_model_kind(model_kind_);
-    model_settings_.cv = parse_cv(cv_);
-    model_settings_.clamp = !no_clamp_;
-    // A clip that moves nothing of the character would only add copies of its rest pose (and,
-    // in a scene bake, make the blob depend on other objects' animation).
-    PoseTrainingSettings training_settings = training_settings_;
-    if (training_settings.clips.empty()) training_settings.clips = pose_clips_moving_skin(scene);
-    training_ = bake_pose_training(scene, training_settings, ctx);
-    if (!ground_truth_.empty()) write_pose_ground_truth(ground_truth_, training_);
-    model_ = fit_pose_model(training_, model_settings_, ctx);
+    const Scene& scene = prepare_scene(imported);
+    training_ = bake_pose_training(scene, resolve(scene, input).training, ctx);
+    fit_model(ctx);
+  }
+
+  // A shard bakes the transfer of a range of the training frames (pose_shards.cpp).
+  const char* shard_unit() const override { return "frames"; }
+  std::size_t shard_units(const Scene& imported) const override {
+    return sample_pose_training(imported, chosen_training(imported)).frames.size();
+  }
+  std::vector<std::uint8_t> bake_shard(const Scene& imported, const BakeInput& input,
+                                       std::size_t first, std::size_t count,
+                                       const Context& ctx) override {
+    const Scene& scene = prepare_scene(imported);
+    return bake_pose_shard(scene, resolve(scene, input), first, count, ctx);
+  }
+  void merge_shards(const Scene& imported, const BakeInput& input,
+                    const std::vector<std::vector<std::uint8_t>>& parts,
+                    const Context& ctx) override {
+    const Scene& scene = prepare_scene(imported);
+    training_ = merge_pose_shards(scene, resolve(scene, input), parts, ctx);
+    fit_model(ctx);
   }
 
   // The fit quantises the vertex basis as the blob stores it; what is left is measuring the
@@ -145,6 +151,34 @@ class PoseBake final : public TechniqueBake {
   // The scene every step bakes and writes: the subdivided one when --subdivide-to asks for it.
   const Scene& scene_of(const Scene& imported) const {
     return subdivide_to_ > 0 ? subdivided_ : imported;
+  }
+  const Scene& prepare_scene(const Scene& imported) {
+    if (subdivide_to_ > 0) subdivided_ = subdivide_scene(imported, subdivide_to_);
+    return scene_of(imported);
+  }
+  // The settings as every bake step takes them: from the options and the shared flags.
+  PoseBakeSettings resolve(const Scene& scene, const BakeInput& input) {
+    ShTransferSettings& s = training_settings_.transfer;
+    s.seed = input.seed;
+    s.kind = parse_sh_transfer_kind(kind_.c_str());
+    s.override_albedo = true;
+    s.albedo = glm::vec3(1.0f);
+    if (!input.albedo.empty()) s.albedo = parse_albedo(input.albedo);
+    model_settings_.kind = parse_model_kind(model_kind_);
+    model_settings_.cv = parse_cv(cv_);
+    model_settings_.clamp = !no_clamp_;
+    return {chosen_training(scene), model_settings_, subdivide_to_};
+  }
+  // A clip that moves nothing of the character would only add copies of its rest pose (and,
+  // in a scene bake, make the blob depend on other objects' animation).
+  PoseTrainingSettings chosen_training(const Scene& scene) const {
+    PoseTrainingSettings training = training_settings_;
+    if (training.clips.empty()) training.clips = pose_clips_moving_skin(scene);
+    return training;
+  }
+  void fit_model(const Context& ctx) {
+    if (!ground_truth_.empty()) write_pose_ground_truth(ground_truth_, training_);
+    model_ = fit_pose_model(training_, model_settings_, ctx);
   }
   const char* model_name() const {
     return model_.kind == PoseModelKind::Direct ? "direct" : "residual";

@@ -40,6 +40,25 @@ void write_pose_bake_report(const std::string& path, const BakeInput& input, con
 
 std::unique_ptr<TechniqueTrade> make_pose_trade();
 
+// Shards of a pose bake (pose_shards.cpp, docs/farm.md): the unit is the training frame.
+// The settings of a bake as its options and the shared flags resolve them; `training.clips`
+// names the clips it samples (the default chosen: those that move the skin).
+struct PoseBakeSettings {
+  PoseTrainingSettings training;
+  PoseModelSettings model;
+  std::uint32_t subdivide_to = 0;
+};
+// The payload of frames [first, first + count) of `scene` (the baked one, subdivided when
+// --subdivide-to asks): a header of the settings, the scene and the range, then their transfer.
+std::vector<std::uint8_t> bake_pose_shard(const Scene& scene, const PoseBakeSettings& settings,
+                                          std::size_t first, std::size_t count, const Context& ctx);
+// The training set bake_pose_training gives (bitwise but for `seconds`, the parts' summed) from
+// every part's payload in frame order; Error naming the part and what differs when one is not of
+// this bake, or is damaged.
+PoseTrainingSet merge_pose_shards(const Scene& scene, const PoseBakeSettings& settings,
+                                  const std::vector<std::vector<std::uint8_t>>& parts,
+                                  const Context& ctx);
+
 // prt-bake scene (pose_scene.cpp): whether a node suits pose (skinned, moved by a clip), the
 // settings ladder, and the measurement on frames of the clips against the posed character's
 // reference.

@@ -89,86 +89,118 @@ void into_model_frame(const ModelFrame& m, Scene& posed) {
   }
 }
 
-}  // namespace
-
-PoseTrainingSet bake_pose_training(const Scene& scene, const PoseTrainingSettings& settings,
-                                   const Context& ctx) {
-  const auto start = std::chrono::steady_clock::now();
-  PoseTrainingSet out;
-  out.skeleton = pose_skeleton(scene);
-  const std::vector<std::size_t> clips = chosen_clips(scene, settings.clips);
-
-  // The transfer of every frame: grey, one albedo for every vertex (the first component of the
-  // settings' albedo), computed for one channel's worth and read from channel 0.
-  ShTransferSettings transfer = settings.transfer;
-  transfer.override_albedo = true;
-  transfer.albedo = glm::vec3(settings.transfer.albedo.r);
-  out.order = transfer.order;
-  out.albedo = transfer.albedo.r;
-  out.kind = transfer.kind;
-  out.bounces = transfer.kind == ShTransferKind::Interreflected ? transfer.bounces : 0;
-  out.vertex_count = scene.vertex_count();
-
-  // What posing needs, without the images and clips every posed copy would otherwise carry.
+// What posing needs of `scene`, without the images and clips every posed copy would otherwise
+// carry.
+Scene pose_posing_shape(const Scene& scene) {
   Scene shape;
   shape.source = scene.source;
   shape.meshes = scene.meshes;
   shape.materials = scene.materials;
   shape.nodes = scene.nodes;
   shape.skins = scene.skins;
-  const std::vector<int>& joint_nodes = scene.skins[0].joints;
+  return shape;
+}
 
-  struct Sample {
-    std::size_t clip;
-    float time;
-  };
-  std::vector<Sample> samples;
+// The transfer of every frame: grey, one albedo for every vertex (the first component of the
+// settings' albedo), computed for one channel's worth and read from channel 0.
+ShTransferSettings pose_grey_transfer_settings(const PoseTrainingSettings& settings) {
+  ShTransferSettings transfer = settings.transfer;
+  transfer.override_albedo = true;
+  transfer.albedo = glm::vec3(settings.transfer.albedo.r);
+  return transfer;
+}
+
+}  // namespace
+
+PoseTrainingSet sample_pose_training(const Scene& scene, const PoseTrainingSettings& settings) {
+  PoseTrainingSet out;
+  out.skeleton = pose_skeleton(scene);
+  const std::vector<std::size_t> clips = chosen_clips(scene, settings.clips);
+  const ShTransferSettings transfer = pose_grey_transfer_settings(settings);
+  out.order = transfer.order;
+  out.albedo = transfer.albedo.r;
+  out.kind = transfer.kind;
+  out.bounces = transfer.kind == ShTransferKind::Interreflected ? transfer.bounces : 0;
+  out.vertex_count = scene.vertex_count();
+
+  const Scene shape = pose_posing_shape(scene);
+  const std::vector<int>& joint_nodes = scene.skins[0].joints;
   for (std::size_t c = 0; c < clips.size(); ++c) {
     out.clip_names.push_back(clip_name(scene, clips[c]));
-    for (float t : clip_times(scene.animations[clips[c]], settings.rate)) samples.push_back({c, t});
+    for (float t : clip_times(scene.animations[clips[c]], settings.rate)) {
+      ScenePose pose(shape);
+      pose.apply(scene.animations[clips[c]], t);
+      PoseFrame frame;
+      frame.clip = static_cast<std::uint32_t>(c);
+      frame.time = t;
+      for (int node : joint_nodes)
+        frame.rotations.push_back(pose.local(static_cast<std::size_t>(node)).rotation);
+      frame.features = pose_features(out.skeleton, frame.rotations);
+      const std::vector<float> normals = skinned_model_normals(out.skeleton, frame.rotations);
+      out.normals.insert(out.normals.end(), normals.begin(), normals.end());
+      out.frames.push_back(std::move(frame));
+    }
   }
+  return out;
+}
 
-  const std::size_t coefficients = out.coefficient_count();
-  out.transfer.reserve(samples.size() * out.vertex_count * coefficients);
-  out.normals.reserve(samples.size() * out.vertex_count * 3);
-  const double total = static_cast<double>(samples.size());
-  for (std::size_t f = 0; f < samples.size(); ++f) {
-    if (ctx.progress && !ctx.progress(static_cast<double>(f) / total, "pose training")) {
+PoseFramesTransfer bake_pose_frames(const Scene& scene, const PoseTrainingSettings& settings,
+                                    const PoseTrainingSet& sampled, std::size_t first,
+                                    std::size_t count, const Context& ctx) {
+  const auto start = std::chrono::steady_clock::now();
+  if (first > sampled.frames.size() || count > sampled.frames.size() - first) {
+    throw Error("pose training: frames [" + std::to_string(first) + ", " +
+                std::to_string(first + count) + ") are beyond the " +
+                std::to_string(sampled.frames.size()) + " frames of the clips");
+  }
+  const std::vector<std::size_t> clips = chosen_clips(scene, settings.clips);
+  const ShTransferSettings transfer = pose_grey_transfer_settings(settings);
+  const Scene shape = pose_posing_shape(scene);
+  const std::vector<int>& joint_nodes = scene.skins[0].joints;
+  const std::size_t coefficients = sampled.coefficient_count();
+
+  PoseFramesTransfer out;
+  out.transfer.reserve(count * sampled.vertex_count * coefficients);
+  const double total = static_cast<double>(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (ctx.progress && !ctx.progress(static_cast<double>(i) / total, "pose training")) {
       throw Error("cancelled");
     }
-    const Sample& sample = samples[f];
+    const PoseFrame& frame = sampled.frames[first + i];
     ScenePose pose(shape);
-    pose.apply(scene.animations[clips[sample.clip]], sample.time);
-
-    PoseFrame frame;
-    frame.clip = static_cast<std::uint32_t>(sample.clip);
-    frame.time = sample.time;
-    for (int node : joint_nodes)
-      frame.rotations.push_back(pose.local(static_cast<std::size_t>(node)).rotation);
-    frame.features = pose_features(out.skeleton, frame.rotations);
-
+    pose.apply(scene.animations[clips[frame.clip]], frame.time);
     Scene posed = posed_scene(shape, pose);
-    const std::vector<glm::mat4> g = joint_globals(out.skeleton, joint_nodes, pose);
-    into_model_frame(model_frame(g[out.skeleton.model_joint]), posed);
+    const std::vector<glm::mat4> g = joint_globals(sampled.skeleton, joint_nodes, pose);
+    into_model_frame(model_frame(g[sampled.skeleton.model_joint]), posed);
 
     // The frame's own progress is a share of the whole; a cancel inside it ends the bake.
     Context frame_ctx = ctx;
     if (ctx.progress) {
-      frame_ctx.progress = [&ctx, f, total](double fraction, const std::string&) {
-        return ctx.progress((static_cast<double>(f) + fraction) / total, "pose training");
+      frame_ctx.progress = [&ctx, i, total](double fraction, const std::string&) {
+        return ctx.progress((static_cast<double>(i) + fraction) / total, "pose training");
       };
     }
+    // Every frame traces the same directions per vertex (from the seed and the vertex): a
+    // frame's transfer is a function of its pose alone, whichever frames are baked with it.
     const ShTransfer t = compute_sh_transfer(posed, nullptr, transfer, frame_ctx);
     out.rays_traced += t.rays_traced;
     for (std::size_t v = 0; v < t.vertex_count; ++v) {
       const float* grey = t.vertex_channel(v, 0);
       out.transfer.insert(out.transfer.end(), grey, grey + coefficients);
     }
-    const std::vector<float> normals = skinned_model_normals(out.skeleton, frame.rotations);
-    out.normals.insert(out.normals.end(), normals.begin(), normals.end());
-    out.frames.push_back(std::move(frame));
   }
   if (ctx.progress && !ctx.progress(1.0, "pose training")) throw Error("cancelled");
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+PoseTrainingSet bake_pose_training(const Scene& scene, const PoseTrainingSettings& settings,
+                                   const Context& ctx) {
+  const auto start = std::chrono::steady_clock::now();
+  PoseTrainingSet out = sample_pose_training(scene, settings);
+  PoseFramesTransfer frames = bake_pose_frames(scene, settings, out, 0, out.frames.size(), ctx);
+  out.transfer = std::move(frames.transfer);
+  out.rays_traced = frames.rays_traced;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

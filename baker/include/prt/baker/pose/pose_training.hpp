@@ -104,6 +104,24 @@ std::vector<float> pose_features(const PoseSkeleton& skeleton,
 std::vector<float> skinned_model_normals(const PoseSkeleton& skeleton,
                                          const std::vector<glm::quat>& rotations);
 
+// A bake in parts (a farm's shards, docs/farm.md): the training set without its transfer, which
+// is cheap (no rays), and the transfer of a range of its frames, which is the cost.
+// sample_pose_training: the skeleton, the clip names, every sampled frame's pose and skinned
+// normals; `transfer` empty, `rays_traced` and `seconds` 0. Errors as bake_pose_training's.
+PoseTrainingSet sample_pose_training(const Scene& scene, const PoseTrainingSettings& settings);
+struct PoseFramesTransfer {
+  std::vector<float> transfer;  // count x vertices x order^2, as PoseTrainingSet::transfer
+  std::uint64_t rays_traced = 0;
+  double seconds = 0.0;
+};
+// The transfer of frames [first, first + count) of `sampled` (sample_pose_training's of the same
+// scene and settings), bitwise the rows bake_pose_training gives them: a frame's transfer depends
+// on its own pose only, never on which frames are baked with it. Progress and cancel as
+// bake_pose_training's; Error when the range is beyond the frames.
+PoseFramesTransfer bake_pose_frames(const Scene& scene, const PoseTrainingSettings& settings,
+                                    const PoseTrainingSet& sampled, std::size_t first,
+                                    std::size_t count, const Context& ctx);
+
 // Samples the clips and bakes every frame on ctx.thread_count() threads; progress through ctx
 // ("pose training"), Error("cancelled") when the callback returns false, Error for an unknown
 // clip name or a scene without animation. Bitwise deterministic for any thread count.
