@@ -772,18 +772,22 @@ std::vector<Vec3> polar_directions(const TableMaps& maps, const ClothSampling& s
   return dirs;
 }
 
+// The tables' columns [first_view, first_view + view_count) (all of them in a whole bake): every
+// step of a column reads its own view only, so a column is the same whichever others it is
+// computed with.
 class Batch {
  public:
-  Batch(const ClothGrid& grid, const ClothSampling& sampling, const Context& ctx)
+  Batch(const ClothGrid& grid, const ClothSampling& sampling, std::uint64_t first_view,
+        std::uint64_t view_count, const Context& ctx)
       : grid_(grid), sampling_(sampling), ctx_(ctx), hemi_(sampling.map_size), polar_(sampling) {
     const std::uint32_t n = grid.xi_size;
     for (std::uint32_t j = 0; j < n; ++j)
       for (std::uint32_t i = 0; i < n; ++i) axes_.push_back(lobe_axis(n, i, j));
     for (std::uint32_t l = 0; l < grid.lambda_levels; ++l)
       lambdas_.push_back(lobe_sharpness(grid, l));
-    for (std::uint32_t a = 0; a < grid.view_theta; ++a)
-      for (std::uint32_t b = 0; b < grid.view_phi; ++b)
-        views_.push_back(view_direction(grid, a, b));
+    for (std::uint64_t v = first_view; v < first_view + view_count; ++v)
+      views_.push_back(
+          view_direction(grid, std::uint32_t(v / grid.view_phi), std::uint32_t(v % grid.view_phi)));
     for (std::uint32_t j = 0; j < hemi_.side(); ++j)
       for (std::uint32_t i = 0; i < hemi_.side(); ++i) hemi_dirs_.push_back(hemi_.direction(i, j));
   }
@@ -913,8 +917,19 @@ std::vector<ClothTableSamples> sample_cloth_tables(const std::vector<ClothTableK
                                                    const ClothSampling& sampling,
                                                    const Context& ctx) {
   check_grid(grid);
+  return sample_cloth_table_views(keys, grid, sampling, 0, grid.columns(), ctx);
+}
+
+std::vector<ClothTableSamples> sample_cloth_table_views(
+    const std::vector<ClothTableKey>& keys, const ClothGrid& grid, const ClothSampling& sampling,
+    std::uint64_t first_view, std::uint64_t view_count, const Context& ctx) {
+  check_grid(grid);
   check_sampling(sampling);
   for (const ClothTableKey& key : keys) check_key(key);
+  if (first_view > grid.columns() || view_count > grid.columns() - first_view)
+    throw Error("cloth tables: views [" + std::to_string(first_view) + ", " +
+                std::to_string(first_view + view_count) + ") are beyond the grid's " +
+                std::to_string(grid.columns()));
   // Tables of one multiset share their W calls: group them, groups in order of first key.
   std::vector<std::vector<std::size_t>> groups;
   for (std::size_t k = 0; k < keys.size(); ++k) {
@@ -928,7 +943,8 @@ std::vector<ClothTableSamples> sample_cloth_tables(const std::vector<ClothTableK
       it->push_back(k);
   }
   std::vector<ClothTableSamples> out(keys.size());
-  Batch batch(grid, sampling, ctx);
+  if (view_count == 0) return out;  // no columns: nothing to sample
+  Batch batch(grid, sampling, first_view, view_count, ctx);
   for (const auto& group : groups) batch.run(keys, group, out);
   return out;
 }

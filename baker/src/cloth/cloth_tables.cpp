@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <utility>
 
 #include "../common/numbers.hpp"
@@ -133,8 +134,18 @@ ClothTablePlan plan_cloth_tables(const std::vector<prt_cloth_weave>& weaves) {
   return plan;
 }
 
-ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
-                                  const ClothTablesOptions& options, const Context& ctx) {
+namespace {
+
+// The tables of one multiset sampled: group holds their indices in the plan, keys their keys.
+using ClothGroupSampler = std::function<std::vector<ClothTableSamples>(
+    const std::vector<std::size_t>& group, const std::vector<ClothTableKey>& keys)>;
+
+// The section of the fabrics and its reports, each multiset's tables sampled by `sample_group`
+// (a whole bake's sampling, or a merge's shards joined) and factored.
+ClothTablesBake cloth_tables_by_multiset(const std::vector<ClothFabricSource>& fabrics,
+                                         const ClothTablesOptions& options,
+                                         const ClothGroupSampler& sample_group,
+                                         const Context& ctx) {
   check_fabrics(fabrics);
   std::vector<prt_cloth_weave> weaves;
   for (const ClothFabricSource& f : fabrics) weaves.push_back(f.weave);
@@ -159,8 +170,7 @@ ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
     std::vector<ClothTableKey> keys;
     for (const std::size_t t : group) keys.push_back(plan.tables[t]);
     auto start = std::chrono::steady_clock::now();
-    const std::vector<ClothTableSamples> samples =
-        sample_cloth_tables(keys, options.grid, options.sampling, ctx);
+    const std::vector<ClothTableSamples> samples = sample_group(group, keys);
     bake.sample_seconds += seconds_since(start);
     start = std::chrono::steady_clock::now();
     factor_tables(samples, group, options, ctx, bake);
@@ -176,6 +186,56 @@ ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
     ctx.info("cloth table " + std::to_string(t) + ": rank " + std::to_string(report.full.rank) +
              " (T), " + std::to_string(report.cone.rank) + " (T_c)");
   }
+  return bake;
+}
+
+}  // namespace
+
+ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
+                                  const ClothTablesOptions& options, const Context& ctx) {
+  const auto sample = [&](const std::vector<std::size_t>&, const std::vector<ClothTableKey>& keys) {
+    return sample_cloth_tables(keys, options.grid, options.sampling, ctx);
+  };
+  return cloth_tables_by_multiset(fabrics, options, sample, ctx);
+}
+
+std::vector<ClothTableSamples> sample_cloth_tables_of(const std::vector<ClothFabricSource>& fabrics,
+                                                      const ClothTablesOptions& options,
+                                                      std::uint64_t first_view,
+                                                      std::uint64_t view_count,
+                                                      const Context& ctx) {
+  check_fabrics(fabrics);
+  std::vector<prt_cloth_weave> weaves;
+  for (const ClothFabricSource& f : fabrics) weaves.push_back(f.weave);
+  const ClothTablePlan plan = plan_cloth_tables(weaves);
+  std::vector<ClothTableSamples> out(plan.tables.size());
+  // By multiset, as bake_cloth_tables samples them.
+  for (const std::vector<std::size_t>& group : multiset_groups(plan.tables)) {
+    std::vector<ClothTableKey> keys;
+    for (const std::size_t t : group) keys.push_back(plan.tables[t]);
+    std::vector<ClothTableSamples> samples =
+        sample_cloth_table_views(keys, options.grid, options.sampling, first_view, view_count, ctx);
+    for (std::size_t k = 0; k < group.size(); ++k) out[group[k]] = std::move(samples[k]);
+  }
+  return out;
+}
+
+ClothTablesBake factor_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
+                                    const ClothTablesOptions& options,
+                                    std::vector<ClothTableSamples> samples, const Context& ctx) {
+  const std::uint64_t size = options.grid.rows() * options.grid.columns();
+  const auto take = [&](const std::vector<std::size_t>& group, const std::vector<ClothTableKey>&) {
+    std::vector<ClothTableSamples> taken;
+    for (const std::size_t t : group) {
+      if (t >= samples.size() || samples[t].full.size() != size || samples[t].cone.size() != size)
+        throw Error("cloth tables: table " + std::to_string(t) +
+                    "'s samples do not match the fabrics and grid");
+      taken.push_back(std::move(samples[t]));
+    }
+    return taken;
+  };
+  ClothTablesBake bake = cloth_tables_by_multiset(fabrics, options, take, ctx);
+  bake.sample_seconds = 0.0;
   return bake;
 }
 

@@ -63,10 +63,20 @@ class ClothBake final : public TechniqueBake {
   }
 
   void bake(const Scene& scene, const BakeInput&, const Context& ctx) override {
-    std::vector<std::string> names = fabrics_;
-    for (std::string& name : names)
-      if (name == kSceneFabric) name = cloth_scene_fabric(scene).name;
-    bake_ = bake_cloth_tables(cloth_fabric_sources(names), options_, ctx);
+    bake_ = bake_cloth_tables(fabric_sources(scene), options_, ctx);
+  }
+
+  // Shards take views of the tables' grid (cloth_shards.cpp).
+  const char* shard_unit() const override { return "views"; }
+  std::size_t shard_units(const Scene&) const override { return options_.grid.columns(); }
+  std::vector<std::uint8_t> bake_shard(const Scene& scene, const BakeInput&, std::size_t first,
+                                       std::size_t count, const Context& ctx) override {
+    return bake_cloth_shard(scene, shard_settings(scene), first, count, ctx);
+  }
+  void merge_shards(const Scene& scene, const BakeInput&,
+                    const std::vector<std::vector<std::uint8_t>>& parts,
+                    const Context& ctx) override {
+    bake_ = merge_cloth_shards(scene, shard_settings(scene), parts, ctx);
   }
 
   void quantize() override {
@@ -111,6 +121,18 @@ class ClothBake final : public TechniqueBake {
   }
 
  private:
+  // The fabrics --fabric names, "scene" as the scene's cloth material names it.
+  std::vector<ClothFabricSource> fabric_sources(const Scene& scene) const {
+    std::vector<std::string> names = fabrics_;
+    for (std::string& name : names)
+      if (name == kSceneFabric) name = cloth_scene_fabric(scene).name;
+    return cloth_fabric_sources(names);
+  }
+
+  ClothShardSettings shard_settings(const Scene& scene) const {
+    return {fabrics_, fabric_sources(scene), options_, bits_};
+  }
+
   static std::vector<std::string> fabric_choices() {
     std::vector<std::string> names = cloth_fabric_names();
     names.push_back("all");

@@ -54,6 +54,27 @@ void write_cloth_bake_report(const std::string& path, const BakeInput& input,
 
 std::unique_ptr<TechniqueTrade> make_cloth_trade();
 
+// --- Shards (cloth_shards.cpp; docs/farm.md). A shard takes a range of the tables' views (the
+// grid's columns): every table's W maps, T and T_c for its views. The merge joins the views and
+// factors the tables (bake_cloth_tables in two steps, prt/baker/cloth/cloth_tables.hpp).
+struct ClothShardSettings {
+  std::vector<std::string> fabric_names;   // --fabric as given ("scene" among them or not)
+  std::vector<ClothFabricSource> fabrics;  // what they name in this scene
+  ClothTablesOptions options;
+  int bits = 16;
+};
+// A shard's payload: views [first, first + count) of every table. Throws Error for a range
+// beyond the grid's views, or as bake_cloth_tables.
+std::vector<std::uint8_t> bake_cloth_shard(const Scene& scene, const ClothShardSettings& settings,
+                                           std::size_t first, std::size_t count,
+                                           const Context& ctx);
+// Every shard's payload in view order joined and factored: what bake_cloth_tables returns for
+// the same settings. Throws Error naming the part for one of another bake, a damaged payload or
+// ranges that do not cover the views once.
+ClothTablesBake merge_cloth_shards(const Scene& scene, const ClothShardSettings& settings,
+                                   const std::vector<std::vector<std::uint8_t>>& parts,
+                                   const Context& ctx);
+
 // --- prt-bake scene (cloth_scene.cpp; docs/cloth/trade.md, "In a scene bake").
 // The fabric of a scene's cloth: the preset its first cloth material (KHR_materials_sheen or
 // extras.prt.cloth) that is named after one names, else linen_plain. What `--fabric scene`

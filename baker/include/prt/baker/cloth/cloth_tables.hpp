@@ -100,6 +100,13 @@ std::vector<ClothTableSamples> sample_cloth_tables(const std::vector<ClothTableK
                                                    const ClothSampling& sampling,
                                                    const Context& ctx);
 
+// Columns [first_view, first_view + view_count) of every table (a shard of a bake, docs/farm.md):
+// rows() x view_count each, column c bit for bit column first_view + c of sample_cloth_tables.
+// Throws as sample_cloth_tables, or Error when the views are beyond the grid's columns().
+std::vector<ClothTableSamples> sample_cloth_table_views(
+    const std::vector<ClothTableKey>& keys, const ClothGrid& grid, const ClothSampling& sampling,
+    std::uint64_t first_view, std::uint64_t view_count, const Context& ctx);
+
 // T and T_c of one table for one view at any lobe, by the quadrature the bake uses (tests and
 // tools). `view` is unit, in the canonical frame, above the cloth (z > 0).
 class ClothTableProbe {
@@ -174,5 +181,18 @@ struct ClothTablesBake {
 // 64 fabrics, or as sample_cloth_tables.
 ClothTablesBake bake_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
                                   const ClothTablesOptions& options, const Context& ctx);
+
+// bake_cloth_tables in two steps, for a bake split into shards (docs/farm.md): a shard samples
+// views [first_view, first_view + view_count) of every table the fabrics need (in the order of
+// plan_cloth_tables), and the merge factors the tables joined from every shard's views (whole,
+// in the same order) into what bake_cloth_tables returns, bit for bit (sample_seconds 0). Throw
+// as bake_cloth_tables, or Error when a table's size does not match the grid.
+std::vector<ClothTableSamples> sample_cloth_tables_of(const std::vector<ClothFabricSource>& fabrics,
+                                                      const ClothTablesOptions& options,
+                                                      std::uint64_t first_view,
+                                                      std::uint64_t view_count, const Context& ctx);
+ClothTablesBake factor_cloth_tables(const std::vector<ClothFabricSource>& fabrics,
+                                    const ClothTablesOptions& options,
+                                    std::vector<ClothTableSamples> samples, const Context& ctx);
 
 }  // namespace prt::bake
