@@ -8,11 +8,7 @@
 #include "prt/baker/embree_scene.hpp"
 
 namespace prt::bake {
-namespace {
-
-// The object alone as one mesh, so every stage sees the same triangles and the SRF's "mesh 0
-// glows" holds for an object made of several meshes.
-Scene object_rays_scene(const ShadowfieldObject& object) {
+Scene shadowfield_rays_scene(const ShadowfieldObject& object) {
   Mesh mesh;
   mesh.name = "shadowfield object";
   mesh.positions = object.positions;
@@ -22,8 +18,6 @@ Scene object_rays_scene(const ShadowfieldObject& object) {
   scene.meshes.push_back(std::move(mesh));
   return scene;
 }
-
-}  // namespace
 
 void check_shadowfield_bake_settings(const ShadowfieldBakeSettings& settings) {
   check_shadowfield_field_settings(settings.fields);
@@ -59,7 +53,7 @@ ShadowfieldBakeResult bake_shadowfield_object(const Scene& scene,
   check_shadowfield_bake_settings(settings);
   ShadowfieldBakeResult result;
   result.object = make_shadowfield_object(scene, material, settings.fields.order);
-  const EmbreeScene rays(object_rays_scene(result.object), ctx);
+  const EmbreeScene rays(shadowfield_rays_scene(result.object), ctx);
 
   auto start = std::chrono::steady_clock::now();
   bake_occlusion_field(result.object, rays, settings.fields, ctx);

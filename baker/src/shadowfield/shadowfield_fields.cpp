@@ -252,8 +252,8 @@ std::vector<glm::vec3> occlusion_field_directions(std::uint32_t count, std::uint
   return directions;
 }
 
-void bake_occlusion_field(ShadowfieldObject& object, const EmbreeScene& rays,
-                          const ShadowfieldFieldSettings& settings, const Context& ctx) {
+prt_sf_shells occlusion_field_grid(const ShadowfieldObject& object,
+                                   const ShadowfieldFieldSettings& settings) {
   check_object(object, settings);
   const BoundingSphere sphere = bounding_sphere(object.positions);
   prt_sf_shells grid{};
@@ -263,9 +263,22 @@ void bake_occlusion_field(ShadowfieldObject& object, const EmbreeScene& rays,
   grid.outer = settings.oof_shells == 1 ? settings.inner : settings.outer;
   grid.shells = settings.oof_shells;
   grid.face_size = settings.oof_face_size;
+  return grid;
+}
 
+std::vector<float> bake_occlusion_shells(const ShadowfieldObject& object, const EmbreeScene& rays,
+                                         const ShadowfieldFieldSettings& settings,
+                                         std::uint32_t first_shell, std::uint32_t shell_count,
+                                         const Context& ctx) {
+  const prt_sf_shells grid = occlusion_field_grid(object, settings);
+  if (first_shell > grid.shells || shell_count > grid.shells - first_shell) {
+    throw Error("shadowfield fields: occlusion shells [" + std::to_string(first_shell) + ", " +
+                std::to_string(std::uint64_t(first_shell) + shell_count) + ") are beyond the " +
+                std::to_string(grid.shells) + " of the grid");
+  }
   const std::size_t coeffs = coefficient_count(settings.order);
-  const auto points = static_cast<std::size_t>(prt_sf_point_count(&grid));
+  const auto per_shell = static_cast<std::size_t>(prt_sf_points_per_shell(&grid));
+  const std::size_t first = first_shell * per_shell, points = shell_count * per_shell;
   const FieldDirections directions(settings.order, settings.field_directions, settings.seed);
   std::vector<float> field(points * coeffs);
   const std::size_t tasks = (points + kFieldPointsPerTask - 1) / kFieldPointsPerTask;
@@ -276,30 +289,49 @@ void bake_occlusion_field(ShadowfieldObject& object, const EmbreeScene& rays,
     const std::size_t end = std::min(points, (task + 1) * kFieldPointsPerTask);
     for (std::size_t p = task * kFieldPointsPerTask; p < end; ++p) {
       glm::vec3 origin;
-      prt_sf_point_position(&grid, p, &origin.x);
+      prt_sf_point_position(&grid, first + p, &origin.x);
       directions.cast(rays, batch, origin, flags, escaped);
       directions.project(escaped, sum, field.data() + p * coeffs);
     }
   });
-  object.oof_shells = grid;
-  object.oof = std::move(field);
+  return field;
+}
+
+void bake_occlusion_field(ShadowfieldObject& object, const EmbreeScene& rays,
+                          const ShadowfieldFieldSettings& settings, const Context& ctx) {
+  object.oof = bake_occlusion_shells(object, rays, settings, 0, settings.oof_shells, ctx);
+  object.oof_shells = occlusion_field_grid(object, settings);
+}
+
+std::size_t bake_self_transfer_range(const ShadowfieldObject& object, const EmbreeScene& rays,
+                                     const ShadowfieldFieldSettings& settings, std::size_t first,
+                                     std::size_t count, std::vector<float>* transfer,
+                                     const Context& ctx) {
+  check_object(object, settings);
+  const std::size_t vertices = object.positions.size();
+  if (first > vertices || count > vertices - first) {
+    throw Error("shadowfield fields: transfer vertices [" + std::to_string(first) + ", " +
+                std::to_string(first + count) + ") are beyond the object's " +
+                std::to_string(vertices));
+  }
+  const std::size_t stride = object.material.terms() * coefficient_count(object.order);
+  transfer->assign(count * stride, 0.0f);
+  std::vector<unsigned char> bad(count, 0);
+  const std::size_t tasks = (count + kFieldVerticesPerTask - 1) / kFieldVerticesPerTask;
+  render::parallel_tasks(tasks, ctx, "shadowfield: transfer", [&](std::size_t task) {
+    TransferSampler sampler(object, rays, settings);
+    const std::size_t end = std::min(count, (task + 1) * kFieldVerticesPerTask);
+    for (std::size_t v = task * kFieldVerticesPerTask; v < end; ++v)
+      bad[v] = sampler.vertex(first + v, transfer->data() + v * stride) ? 0 : 1;
+  });
+  return static_cast<std::size_t>(std::count(bad.begin(), bad.end(), 1));
 }
 
 std::size_t bake_self_transfer(ShadowfieldObject& object, const EmbreeScene& rays,
                                const ShadowfieldFieldSettings& settings, const Context& ctx) {
-  check_object(object, settings);
-  const std::size_t vertices = object.positions.size();
-  const std::size_t stride = object.material.terms() * coefficient_count(object.order);
-  std::vector<float> transfer(vertices * stride);
-  std::vector<unsigned char> bad(vertices, 0);
-  const std::size_t tasks = (vertices + kFieldVerticesPerTask - 1) / kFieldVerticesPerTask;
-  render::parallel_tasks(tasks, ctx, "shadowfield: transfer", [&](std::size_t task) {
-    TransferSampler sampler(object, rays, settings);
-    const std::size_t end = std::min(vertices, (task + 1) * kFieldVerticesPerTask);
-    for (std::size_t v = task * kFieldVerticesPerTask; v < end; ++v)
-      bad[v] = sampler.vertex(v, transfer.data() + v * stride) ? 0 : 1;
-  });
-  const auto without_normal = static_cast<std::size_t>(std::count(bad.begin(), bad.end(), 1));
+  std::vector<float> transfer;
+  const std::size_t without_normal =
+      bake_self_transfer_range(object, rays, settings, 0, object.positions.size(), &transfer, ctx);
   if (without_normal > 0) {
     ctx.warn("shadowfield: " + std::to_string(without_normal) +
              " vertices have no usable normal (zero or non-finite) or position; their transfer "

@@ -391,9 +391,8 @@ ShadowfieldBasisReport bake_surface_basis(ShadowfieldObject& object, const Embre
   return report;
 }
 
-SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeScene& scene,
-                                      const SrfSettings& settings, const Context& ctx) {
-  const auto start = std::chrono::steady_clock::now();
+prt_sf_shells source_radiance_field_grid(const ShadowfieldObject& object,
+                                         const SrfSettings& settings) {
   check_srf_settings(settings);
   check_srf_object(object);
   const Sphere sphere = object_sphere(object, "srf");
@@ -404,14 +403,30 @@ SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeSce
   shells.outer = settings.shells == 1 ? settings.inner : settings.outer;
   shells.shells = settings.shells;
   shells.face_size = settings.face_size;
-
-  const std::uint32_t terms = object.material.terms();
-  const std::size_t fields = std::size_t(object.basis_size) * terms;
+  const std::size_t fields = std::size_t(object.basis_size) * object.material.terms();
   const std::size_t coefficients = std::size_t(object.order) * object.order;
   const std::uint64_t points = prt_sf_point_count(&shells);
   if (double(fields) * double(points) * double(coefficients) > double(kMaxSrfFloats))
     throw Error("shadowfield srf: " + std::to_string(fields) + " fields of " +
                 std::to_string(points) + " points exceed the size limit");
+  return shells;
+}
+
+std::vector<float> bake_source_radiance_shells(const ShadowfieldObject& object,
+                                               const EmbreeScene& scene,
+                                               const SrfSettings& settings,
+                                               std::uint32_t first_shell, std::uint32_t shell_count,
+                                               const Context& ctx) {
+  const prt_sf_shells shells = source_radiance_field_grid(object, settings);
+  if (first_shell > shells.shells || shell_count > shells.shells - first_shell)
+    throw Error("shadowfield srf: shells [" + std::to_string(first_shell) + ", " +
+                std::to_string(std::uint64_t(first_shell) + shell_count) + ") are beyond the " +
+                std::to_string(shells.shells) + " of the grid");
+  const std::uint32_t terms = object.material.terms();
+  const std::size_t fields = std::size_t(object.basis_size) * terms;
+  const std::size_t coefficients = std::size_t(object.order) * object.order;
+  const std::uint64_t first = first_shell * prt_sf_points_per_shell(&shells);
+  const std::uint64_t points = shell_count * prt_sf_points_per_shell(&shells);
 
   const std::vector<glm::vec3> directions = sphere_directions(settings.directions, settings.seed);
   Eigen::MatrixXd sh(Eigen::Index(directions.size()), Eigen::Index(coefficients));
@@ -431,7 +446,7 @@ SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeSce
     const std::uint64_t end = std::min<std::uint64_t>(points, (task + 1) * kRadiancePointsPerTask);
     for (std::uint64_t point = task * kRadiancePointsPerTask; point < end; ++point) {
       float position[3];
-      prt_sf_point_position(&shells, point, position);
+      prt_sf_point_position(&shells, first + point, position);
       const Eigen::MatrixXd field =
           sampler.sample(glm::vec3(position[0], position[1], position[2])).transpose() * sh *
           weight;
@@ -441,13 +456,19 @@ SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeSce
               static_cast<float>(field(Eigen::Index(f), Eigen::Index(c)));
     }
   });
+  return srf;
+}
 
+SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeScene& scene,
+                                      const SrfSettings& settings, const Context& ctx) {
+  const auto start = std::chrono::steady_clock::now();
+  const prt_sf_shells shells = source_radiance_field_grid(object, settings);
+  object.srf = bake_source_radiance_shells(object, scene, settings, 0, shells.shells, ctx);
   object.srf_shells = shells;
-  object.srf = std::move(srf);
   SrfReport report;
-  report.points = points;
+  report.points = prt_sf_point_count(&shells);
   report.floats = object.srf.size();
-  report.rays_traced = points * directions.size();
+  report.rays_traced = report.points * settings.directions;
   report.seconds = seconds_since(start);
   return report;
 }

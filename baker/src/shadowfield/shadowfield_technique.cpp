@@ -87,23 +87,43 @@ class ShadowfieldBake final : public TechniqueBake {
   }
 
   void bake(const Scene& scene, const BakeInput& input, const Context& ctx) override {
-    settings_.fields.inner = settings_.srf.inner = static_cast<float>(inner_);
-    settings_.fields.outer = settings_.srf.outer = static_cast<float>(outer_);
-    settings_.fields.seed = settings_.srf.seed = input.seed;
-    check_shells_options(inner_, outer_);
-    check_shadowfield_bake_settings(settings_);
-    surface_ = parse_brdf_option(brdf_);
     const auto start = std::chrono::steady_clock::now();
-    const ShadowfieldMaterial material = shadowfield_material_of(surface_, settings_.brdf);
+    resolve(input);
     seconds_brdf_ = seconds_since(start);
     result_ = input.albedo.empty()
-                  ? bake_shadowfield_object(scene, material, settings_, ctx)
+                  ? bake_shadowfield_object(scene, material_, settings_, ctx)
                   : bake_shadowfield_object(with_albedo(scene, parse_albedo(input.albedo)),
-                                            material, settings_, ctx);
-    seconds_ = seconds_since(start);
-    if (result_.vertices_without_transfer > 0)
-      ctx.warn(std::to_string(result_.vertices_without_transfer) +
-               " vertices without a usable normal get zero transfer");
+                                            material_, settings_, ctx);
+    end_bake(start, ctx);
+  }
+
+  // Shards (shadowfield_shards.cpp): the fields' shells and the transfer's vertex blocks.
+  const char* shard_unit() const override { return kShadowfieldShardUnit; }
+  std::size_t shard_units(const Scene& scene) const override {
+    return shadowfield_shard_units(scene, settings_);
+  }
+
+  std::vector<std::uint8_t> bake_shard(const Scene& scene, const BakeInput& input,
+                                       std::size_t first, std::size_t count,
+                                       const Context& ctx) override {
+    resolve(input);
+    return input.albedo.empty()
+               ? bake_shadowfield_shard(scene, material_, shard_bake(input), first, count, ctx)
+               : bake_shadowfield_shard(with_albedo(scene, parse_albedo(input.albedo)), material_,
+                                        shard_bake(input), first, count, ctx);
+  }
+
+  void merge_shards(const Scene& scene, const BakeInput& input,
+                    const std::vector<std::vector<std::uint8_t>>& parts,
+                    const Context& ctx) override {
+    const auto start = std::chrono::steady_clock::now();
+    resolve(input);
+    seconds_brdf_ = seconds_since(start);
+    result_ = input.albedo.empty()
+                  ? merge_shadowfield_shards(scene, material_, shard_bake(input), parts, ctx)
+                  : merge_shadowfield_shards(with_albedo(scene, parse_albedo(input.albedo)),
+                                             material_, shard_bake(input), parts, ctx);
+    end_bake(start, ctx);
   }
 
   void quantize() override { quantized_ = quantize_shadowfield(result_.object, settings_.bits); }
@@ -139,6 +159,32 @@ class ShadowfieldBake final : public TechniqueBake {
   }
 
  private:
+  // The settings and material every bake step takes, from the options and the shared flags.
+  void resolve(const BakeInput& input) {
+    settings_.fields.inner = settings_.srf.inner = static_cast<float>(inner_);
+    settings_.fields.outer = settings_.srf.outer = static_cast<float>(outer_);
+    settings_.fields.seed = settings_.srf.seed = input.seed;
+    check_shells_options(inner_, outer_);
+    check_shadowfield_bake_settings(settings_);
+    surface_ = parse_brdf_option(brdf_);
+    material_ = shadowfield_material_of(surface_, settings_.brdf);
+  }
+
+  ShadowfieldShardBake shard_bake(const BakeInput& input) const {
+    ShadowfieldShardBake bake{settings_, surface_brdf_name(surface_), inner_, outer_};
+    bake.override_albedo = !input.albedo.empty();
+    if (bake.override_albedo) bake.albedo = parse_albedo(input.albedo);
+    return bake;
+  }
+
+  // The bake's time and its warning, after bake() or merge_shards().
+  void end_bake(std::chrono::steady_clock::time_point start, const Context& ctx) {
+    seconds_ = seconds_since(start);
+    if (result_.vertices_without_transfer > 0)
+      ctx.warn(std::to_string(result_.vertices_without_transfer) +
+               " vertices without a usable normal get zero transfer");
+  }
+
   nlohmann::json report_json(const BakeInput& input, const BakeFacts& facts) const {
     const ShadowfieldBakeSettings& s = settings_;
     const ShadowfieldObject& o = result_.object;
@@ -207,6 +253,7 @@ class ShadowfieldBake final : public TechniqueBake {
   std::string brdf_ = "lambert";
   double inner_ = 0.2, outer_ = 8.0;
   SurfaceBrdf surface_;
+  ShadowfieldMaterial material_;
   ShadowfieldBakeResult result_;
   double seconds_ = 0.0, seconds_brdf_ = 0.0;  // the whole bake, the BRDF's separation
   QuantizedShadowfield quantized_;

@@ -70,6 +70,43 @@ std::vector<double> shade_float_shadowfield(const ShadowfieldObject& object,
                                             const QuantizedShadowfield* quantized,
                                             std::vector<double>* bound);
 
+// ---- Shards (shadowfield_shards.cpp, docs/farm.md) ---------------------------------------------
+// A bake's units, numbered as one list: the occlusion field's shells, then the source radiance
+// fields' shells, then the self transfer's vertex blocks (as many vertices as an occlusion shell
+// has points, the last block shorter), so a unit of each kind traces about as many rays at the
+// default settings. Every shell point and every vertex is sampled on its own, so a unit's values
+// do not depend on the units baked with it.
+inline constexpr const char* kShadowfieldShardUnit = "shells and vertex blocks";
+
+// What a shard and the merge know of the bake besides the scene: its settings as bake() resolves
+// them (inner, outer and seed set) and the options the settings do not hold.
+struct ShadowfieldShardBake {
+  const ShadowfieldBakeSettings& settings;
+  std::string brdf;  // surface_brdf_name of --brdf
+  double inner = 0.0, outer = 0.0;
+  bool override_albedo = false;  // --albedo given
+  glm::vec3 albedo{0.0f};
+};
+
+// How many units the bake of `scene` (its vertex count) with `settings` has.
+std::size_t shadowfield_shard_units(const Scene& scene, const ShadowfieldBakeSettings& settings);
+
+// Bakes units [first, first + count) of the object `scene` holds (--albedo applied) into a shard
+// payload.
+std::vector<std::uint8_t> bake_shadowfield_shard(const Scene& scene,
+                                                 const ShadowfieldMaterial& material,
+                                                 const ShadowfieldShardBake& bake,
+                                                 std::size_t first, std::size_t count,
+                                                 const Context& ctx);
+
+// Joins every part's payload, in unit order, into the result bake_shadowfield_object gives for
+// the whole object; Error naming the part and what does not fit.
+ShadowfieldBakeResult merge_shadowfield_shards(const Scene& scene,
+                                               const ShadowfieldMaterial& material,
+                                               const ShadowfieldShardBake& bake,
+                                               const std::vector<std::vector<std::uint8_t>>& parts,
+                                               const Context& ctx);
+
 // The bake's self-check: the blob loaded at full validation, its SFLD header against the bake,
 // and the object shaded alone by the runtime under a few lights and eyes against
 // shade_float_shadowfield, each vertex within its quantisation bound.

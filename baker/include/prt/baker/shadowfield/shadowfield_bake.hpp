@@ -42,6 +42,10 @@ struct ShadowfieldBakeResult {
   double seconds_fields = 0.0, seconds_transfer = 0.0;
 };
 
+// The scene every stage casts rays into: the object alone as one mesh, so every stage sees the
+// same triangles and the SRF's "mesh 0 glows" holds for an object made of several meshes.
+Scene shadowfield_rays_scene(const ShadowfieldObject& object);
+
 // Bakes the object `scene` holds (its meshes joined, make_shadowfield_object) with `material`.
 // The SRF's shells are centred on the OOF's bounding sphere. Progress and cancellation through
 // ctx; throws Error for bad settings or an object the stages refuse.

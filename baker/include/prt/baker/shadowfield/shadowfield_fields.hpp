@@ -78,6 +78,25 @@ void bake_occlusion_field(ShadowfieldObject& object, const EmbreeScene& rays,
 std::size_t bake_self_transfer(ShadowfieldObject& object, const EmbreeScene& rays,
                                const ShadowfieldFieldSettings& settings, const Context& ctx);
 
+// Ranges of the two bakes above, for a bake split into shards (docs/farm.md). Every shell point
+// and every vertex is sampled on its own (a direction set per seed, a stream per vertex), so a
+// range is, bit for bit, the whole bake's values for it, however the work is split.
+// The grid bake_occlusion_field stores in object.oof_shells.
+prt_sf_shells occlusion_field_grid(const ShadowfieldObject& object,
+                                   const ShadowfieldFieldSettings& settings);
+// The occlusion field of shells [first_shell, first_shell + shell_count): shell_count x 6 F^2
+// points x n^2, from the first shell's first point. Error for shells beyond the grid.
+std::vector<float> bake_occlusion_shells(const ShadowfieldObject& object, const EmbreeScene& rays,
+                                         const ShadowfieldFieldSettings& settings,
+                                         std::uint32_t first_shell, std::uint32_t shell_count,
+                                         const Context& ctx);
+// The transfer of vertices [first, first + count) into `transfer` (count x term x n^2); returns
+// how many of them get zero transfer. Error for vertices beyond the object.
+std::size_t bake_self_transfer_range(const ShadowfieldObject& object, const EmbreeScene& rays,
+                                     const ShadowfieldFieldSettings& settings, std::size_t first,
+                                     std::size_t count, std::vector<float>* transfer,
+                                     const Context& ctx);
+
 // The OOF's direction set (see above): M unit directions for a seed.
 std::vector<glm::vec3> occlusion_field_directions(std::uint32_t count, std::uint32_t seed);
 

@@ -123,4 +123,18 @@ struct SrfReport {
 SrfReport bake_source_radiance_fields(ShadowfieldObject& object, const EmbreeScene& scene,
                                       const SrfSettings& settings, const Context& ctx);
 
+// The same bake by shells, for a bake split into shards (docs/farm.md): every point is sampled on
+// its own, so a range is, bit for bit, the whole bake's values there. The grid the bake stores
+// in srf_shells (after the same checks, size limit included):
+prt_sf_shells source_radiance_field_grid(const ShadowfieldObject& object,
+                                         const SrfSettings& settings);
+// The fields at the points of shells [first_shell, first_shell + shell_count), laid out as
+// object.srf over those points only: srf[(f * P + p) * n^2 + c], f = i K + k, P = shell_count x
+// 6 F^2, p from the first shell's first point. Error for shells beyond the grid.
+std::vector<float> bake_source_radiance_shells(const ShadowfieldObject& object,
+                                               const EmbreeScene& scene,
+                                               const SrfSettings& settings,
+                                               std::uint32_t first_shell, std::uint32_t shell_count,
+                                               const Context& ctx);
+
 }  // namespace prt::bake
