@@ -86,16 +86,17 @@ bake=(bake sh demo_scene.glb --order 4 --rays 64)
 "$prt_bake" --quiet "${bake[@]}" -o whole.prtk || report "the whole bake failed"
 
 # Each task notes its attempt (SLURM_RESTART_COUNT) and bakes its shard; task 2's first attempt
-# is killed mid-bake. shard.sbatch puts the task's index for {task}.
+# is killed mid-bake, and fails as a killed task does (137) even when the bake was quicker than
+# the kill. shard.sbatch puts the task's index for {task}.
 # shellcheck disable=SC2016 # expanded by the task's sh
 shard_command='echo "${SLURM_RESTART_COUNT:-0}" >>attempts.{task}
 if [ {task} = 2 ] && [ ! -e killed.2 ]; then
   : >killed.2
   "$0" --quiet "$@" &
   sleep 0.1
-  kill -KILL $!
+  kill -KILL $! 2>/dev/null
   wait $!
-  exit $?
+  exit 137
 fi
 exec "$0" --quiet "$@"'
 array=$(sbatch --parsable --array=0-3 --output="$work/shard-%A_%a.out" \
