@@ -151,5 +151,64 @@ TEST(PrtBakeMerge, ShardsMergeIntoTheWholeBakesBytes) {
   EXPECT_NE(no_report.output.find("give it to `prt-bake merge`"), std::string::npos);
 }
 
+// Every technique through the command: 3 shards, given in another order, merge into the bytes
+// of the whole bake, each technique at settings cheap enough for a test.
+struct CommandShardCase {
+  const char* technique;
+  const char* scene;  // "two" (the ground and sphere written here) or a golden scene's file
+  const char* options;
+};
+
+class PrtBakeMergeEveryTechnique : public ::testing::TestWithParam<CommandShardCase> {};
+
+TEST_P(PrtBakeMergeEveryTechnique, ShardsMergeIntoTheWholeBakesBytes) {
+  const CommandShardCase& c = GetParam();
+  prt_test::TempDir dir(std::string("prt_bake_merge_") + c.technique);
+  std::string scene = std::string(PRT_GOLDEN_DIR) + "/scenes/" + c.scene;
+  if (std::string(c.scene) == "two") {
+    Scene two;
+    two.materials.resize(1);
+    two.meshes.push_back(make_plane_mesh("ground", 0, 1.0f, 1.0f, 4, 4));
+    two.meshes.push_back(make_sphere_mesh(0, {0.0f, 0.3f, 0.0f}, 0.3f, 6, 12));
+    scene = dir.file("two.glb");
+    write_glb(two, scene);
+  }
+  const auto prt_bake = [&](const std::string& args, const std::string& log) {
+    return prt_test::run_command(PRT_BAKE_EXE, "--threads 2 " + args, dir.file(log));
+  };
+  const std::string bake =
+      std::string("bake ") + c.technique + " " + prt_test::shell_quote(scene) + " " + c.options;
+  const auto whole = prt_bake(bake + " -o " + dir.file("whole.prtk"), "whole.log");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  std::string parts;
+  for (const char* i : {"1", "2", "0"}) {
+    const auto r = prt_bake(bake + " --shard " + i + "/3 -o " + dir.file(std::string(i) + ".shard"),
+                            std::string("shard") + i + ".log");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    parts += " " + dir.file(std::string(i) + ".shard");
+  }
+  const auto merged = prt_bake("merge -o " + dir.file("merged.prtk") + parts, "merge.log");
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+  const std::string whole_bytes = prt_test::read_bytes(dir.file("whole.prtk"));
+  ASSERT_FALSE(whole_bytes.empty());
+  EXPECT_EQ(prt_test::read_bytes(dir.file("merged.prtk")), whole_bytes);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Techniques, PrtBakeMergeEveryTechnique,
+    ::testing::Values(
+        CommandShardCase{"sh", "two", "--order 3 --rays 16"},
+        CommandShardCase{"wavelet", "two", "--keep 16 --cube 16 --bounces 1"},
+        CommandShardCase{"pose", "hinge.gltf", "--order 3 --rays 16 --rate 4 --basis-dims 2"},
+        CommandShardCase{"cloth", "two",
+                         "--xi-size 4 --levels 2 --view-theta 3 --view-phi 2 --bits 8"},
+        CommandShardCase{"shadowfield", "two",
+                         "--order 2 --shells 3 --face-size 2 --srf-shells 2 --srf-face-size 2 "
+                         "--basis 3 --lights 12 --field-rays 32 --transfer-rays 16 --srf-rays 32 "
+                         "--brdf-grid 8"}),
+    [](const ::testing::TestParamInfo<CommandShardCase>& info) {
+      return std::string(info.param.technique);
+    });
+
 }  // namespace
 }  // namespace prt::bake
