@@ -9,6 +9,7 @@
 #include <prt/format/cloth_layout.h>
 #include <prt/format/mesh_layout.h>
 #include <prt/format/pose_layout.h>
+#include <prt/format/scene_layout.h>
 #include <prt/format/sh_layout.h>
 #include <prt/format/shadowfield_layout.h>
 #include <prt/format/wavelet_layout.h>
@@ -17,6 +18,7 @@
 #include "mesh/mesh_sections.h"
 #include "pose/pose_section.h"
 #include "reader_internal.h"
+#include "scene/scene_section.h"
 #include "sh/sh_section.h"
 #include "shadowfield/shadowfield_section.h"
 #include "wavelet/wavelet_section.h"
@@ -56,6 +58,9 @@ static const prt_blob_kind kKinds[] = {
     {PRT_BLOB_TAG_SFLD, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_OBJECT, 1,
      0u, {PRT_BLOB_TAG_VPOS, PRT_BLOB_TAG_VNRM},
      "shadowfield object (element = object)", "objects", prt_blob_check_sfld},
+    {PRT_BLOB_TAG_SCNE, PRT_BLOB_LAYOUT_VERSION_1, PRT_BLOB_DOMAIN_NONE, 0,
+     0u, {0},
+     "scene manifest (element = object)", "objects", prt_blob_check_scne},
 };
 /* clang-format on */
 

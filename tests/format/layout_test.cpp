@@ -274,6 +274,7 @@ TEST(SectionKinds, TableIsTheSpecs) {
       {PRT_BLOB_TAG('P', 'S', 'T', 'R'), 0, PRT_BLOB_DOMAIN_VERTEX},
       {PRT_BLOB_TAG('C', 'L', 'T', 'H'), 0, PRT_BLOB_DOMAIN_MATERIAL},
       {PRT_BLOB_TAG('S', 'F', 'L', 'D'), 0, PRT_BLOB_DOMAIN_OBJECT},
+      {PRT_BLOB_TAG('S', 'C', 'N', 'E'), 0, PRT_BLOB_DOMAIN_NONE},
   };
   EXPECT_EQ(prt_blob_kind_count(), sizeof spec / sizeof spec[0]);
   for (const Row& row : spec) {
@@ -295,6 +296,10 @@ TEST(SectionKinds, TableIsTheSpecs) {
   EXPECT_EQ(sfld->depends_on[0], PRT_BLOB_TAG_VPOS);
   EXPECT_EQ(sfld->depends_on[1], PRT_BLOB_TAG_VNRM);
   EXPECT_EQ(sfld->depends_on[2], 0u);
+  // The scene manifest needs nothing and counts nothing: it holds no mesh.
+  const prt_blob_kind* scne = prt_blob_find_kind(PRT_BLOB_TAG('S', 'C', 'N', 'E'), 1);
+  EXPECT_EQ(scne->depends_on[0], 0u);
+  EXPECT_EQ(scne->counts_domain, 0u);
 }
 
 // Properties every future row must keep too.

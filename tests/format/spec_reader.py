@@ -3,7 +3,7 @@
 """A second, independent reader of prtkit blobs written from formats/SPEC.md alone (no code shared
 with the C reader), used as a cross-check: it validates a blob by the rules of SPEC.md §8 (quick
 checks, checksums, padding, contents of uncompressed known kinds including the SHTR (§7.1), WVLT
-(§7.2), PSTR (§7.3), CLTH (§7.4) and SFLD (§7.5) layouts; zstd frames are not decoded, the standard library has no zstd) and
+(§7.2), PSTR (§7.3), CLTH (§7.4), SFLD (§7.5) and SCNE (§7.6) layouts; zstd frames are not decoded, the standard library has no zstd) and
 prints the section table and the technique headers. It also holds a blob to the rules SPEC.md
 states for writers where a reader need not check them (PSTR: every vertex's weights sum to 65535,
 or are all 0), since what it reads are the writer's golden blobs; such failures say "WRITER".
@@ -17,7 +17,7 @@ import sys
 # (tag, layout version) -> element size; None = variable, the exact size is in the layout (§7).
 KINDS = {(b"INFO", 1): 1, (b"VPOS", 1): 12, (b"VNRM", 1): 12, (b"VTAN", 1): 12, (b"TRIS", 1): 12,
          (b"SHTR", 1): None, (b"WVLT", 1): None, (b"PSTR", 1): None, (b"CLTH", 1): None,
-         (b"SFLD", 1): None}
+         (b"SFLD", 1): None, (b"SCNE", 1): None}
 # One element per VPOS vertex (§7 relations); CLTH counts its own domain and needs nothing, SFLD
 # counts its own and needs VPOS and VNRM.
 PER_VERTEX = (b"VNRM", b"VTAN", b"SHTR", b"WVLT", b"PSTR")
@@ -401,6 +401,53 @@ def read_sfld(data, element_count, vertex_count):
                 bits=bits, oof_points=p_oof, srf_points=p_srf)
 
 
+def utf8(data):
+    try:
+        data.decode("utf-8", errors="strict")
+        return True
+    except UnicodeDecodeError:
+        return False
+
+
+def read_scne(data, element_count):
+    """SCNE, SPEC.md §7.6: header fields, exact size, each record, its strings and rest matrix."""
+    require(len(data) >= 16, "CORRUPT: SCNE header")
+    objects, record_size, string_size, reserved = struct.unpack_from("<4I", data)
+    require(objects <= 65536, "CORRUPT: SCNE object count")
+    require(record_size >= 96 and record_size % 16 == 0, "CORRUPT: SCNE record size")
+    require(reserved == 0, "CORRUPT: SCNE reserved")
+    strings = 16 + objects * record_size
+    require(len(data) == strings + string_size, "CORRUPT: SCNE size")
+    require(element_count == objects, "CORRUPT: SCNE element count")
+    table = data[strings:]
+    for i in range(objects):
+        at = 16 + i * record_size
+        (technique, flags, name_offset, name_size, blob_offset, blob_size, node,
+         reserved) = struct.unpack_from("<8I", data, at)
+        rest = struct.unpack_from("<16f", data, at + 32)
+        what = f"SCNE object {i}"
+        require(all(0x20 <= (technique >> shift) & 0xFF <= 0x7E for shift in (0, 8, 16, 24)),
+                f"CORRUPT: {what} technique tag")
+        require(flags == 0, f"CORRUPT: {what} flags")
+        require(reserved == 0, f"CORRUPT: {what} reserved")
+        require(1 <= name_size <= 255, f"CORRUPT: {what} name size")
+        require(name_offset + name_size <= string_size, f"CORRUPT: {what} name range")
+        require(1 <= blob_size <= 1024, f"CORRUPT: {what} blob size")
+        require(blob_offset + blob_size <= string_size, f"CORRUPT: {what} blob range")
+        name = table[name_offset:name_offset + name_size]
+        path = table[blob_offset:blob_offset + blob_size]
+        require(b"\0" not in name and utf8(name), f"CORRUPT: {what} name")
+        require(b"\0" not in path and utf8(path), f"CORRUPT: {what} blob path")
+        require(b"\\" not in path and b":" not in path, f"CORRUPT: {what} blob path separator")
+        require(not path.startswith(b"/"), f"CORRUPT: {what} blob path is absolute")
+        require(all(c not in (b"", b".", b"..") for c in path.split(b"/")),
+                f"CORRUPT: {what} blob path component")
+        require(all(finite(x) for x in rest), f"NON_FINITE: {what} rest")
+        require(rest[3] == 0 and rest[7] == 0 and rest[11] == 0 and rest[15] == 1,
+                f"CORRUPT: {what} rest last row")
+    return dict(objects=objects, record_size=record_size, string_size=string_size)
+
+
 def read(blob):
     size = len(blob)
     require(size >= 4, "TRUNCATED: fewer than 4 bytes")
@@ -487,6 +534,8 @@ def read(blob):
             s["header"] = read_clth(data, s["elements"])
         elif s["tag"] == b"SFLD":
             s["header"] = read_sfld(data, s["elements"], by_tag[b"VPOS"]["elements"])
+        elif s["tag"] == b"SCNE":
+            s["header"] = read_scne(data, s["elements"])
     require(blob[end:total] == bytes(total - end), "CORRUPT: final padding")
     return (major, minor), sections
 

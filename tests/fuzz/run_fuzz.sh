@@ -34,7 +34,7 @@ log="$build_dir/fuzz/coverage.txt"
 seeds_log="$build_dir/fuzz/coverage_seeds.txt"
 rm -rf "$seeds"
 mkdir -p "$corpus" "$seeds" "$artifacts"
-find "$source_dir/formats/golden" -name '*.prtk' -exec cp {} "$corpus/" \; -exec cp {} "$seeds/" \;
+find "$source_dir/formats/golden" \( -name '*.prtk' -o -name '*.prts' \) -exec cp {} "$corpus/" \; -exec cp {} "$seeds/" \;
 # What the golden blobs alone reach, for comparison with the run.
 "$fuzzer" -runs=0 -print_coverage=1 "$seeds" >"$seeds_log" 2>&1
 echo "run_fuzz: $fuzzer for ${seconds}s, corpus $corpus"
