@@ -28,6 +28,8 @@ typedef struct prt_technique_entry {
   /* Optional: frees what attach added; called on every view before it is freed (views start
    * zeroed, so a view attach never saw holds nothing to free). */
   void (*release)(const prt_allocator* allocator, void* view);
+  /* Its part in a loaded scene (scene/scene_internal.h); NULL: a scene refuses its objects. */
+  const struct prt_scene_hooks* scene;
 } prt_technique_entry;
 
 /* The entry of `technique`, NULL when this runtime does not implement it. */

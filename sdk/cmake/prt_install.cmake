@@ -79,6 +79,7 @@ if(TARGET prt_baker)
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/prt)
   if(TARGET prt_formats_writer)
     install(FILES ${PROJECT_SOURCE_DIR}/formats/include/prt/format/blob_writer.hpp
+      ${PROJECT_SOURCE_DIR}/formats/include/prt/format/scene_writer.hpp
       DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/prt/format)
   endif()
   install(EXPORT prtkitBakerTargets NAMESPACE prtkit:: DESTINATION ${PRT_INSTALL_CMAKEDIR})

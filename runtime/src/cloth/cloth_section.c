@@ -281,6 +281,15 @@ static prt_result open_clth(const prt_asset_section* section, void* out, char* m
   return PRT_OK;
 }
 
+extern const struct prt_scene_hooks prt_cloth_scene_hooks; /* cloth/cloth_scene_hooks.c */
+
 const prt_technique_entry prt_cloth_technique_entry = {
-    PRT_TECHNIQUE_CLOTH, "cloth", PRT_BLOB_TAG_CLTH, sizeof(prt_cloth_view), open_clth, NULL, NULL,
+    PRT_TECHNIQUE_CLOTH,
+    "cloth",
+    PRT_BLOB_TAG_CLTH,
+    sizeof(prt_cloth_view),
+    open_clth,
+    NULL,
+    NULL,
+    &prt_cloth_scene_hooks,
 };

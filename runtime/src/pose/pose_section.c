@@ -159,6 +159,15 @@ static prt_result open_pstr(const prt_asset_section* section, void* out, char* m
   return PRT_OK;
 }
 
+extern const struct prt_scene_hooks prt_pose_scene_hooks;
+
 const prt_technique_entry prt_pose_technique_entry = {
-    PRT_TECHNIQUE_POSE, "pose", PRT_BLOB_TAG_PSTR, sizeof(prt_pose_view), open_pstr, NULL, NULL,
+    PRT_TECHNIQUE_POSE,
+    "pose",
+    PRT_BLOB_TAG_PSTR,
+    sizeof(prt_pose_view),
+    open_pstr,
+    NULL,                  /* attach */
+    NULL,                  /* release */
+    &prt_pose_scene_hooks, /* pose_scene_hooks.c */
 };

@@ -78,6 +78,9 @@ static prt_result open_shtr(const prt_asset_section* section, void* out, char* m
   return PRT_OK;
 }
 
+extern const struct prt_scene_hooks prt_sh_scene_hooks; /* sh/sh_scene_hooks.c */
+
 const prt_technique_entry prt_sh_technique_entry = {
-    PRT_TECHNIQUE_SH, "sh", PRT_BLOB_TAG_SHTR, sizeof(prt_sh_view), open_shtr, NULL, NULL,
+    PRT_TECHNIQUE_SH,    "sh", PRT_BLOB_TAG_SHTR, sizeof(prt_sh_view), open_shtr, NULL, NULL,
+    &prt_sh_scene_hooks,
 };

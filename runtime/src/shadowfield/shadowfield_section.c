@@ -46,6 +46,8 @@ static prt_result open_sfld(const prt_asset_section* section, void* out, char* m
   return PRT_OK;
 }
 
+extern const struct prt_scene_hooks prt_shadowfield_scene_hooks; /* shadowfield_scene_hooks.c */
+
 const prt_technique_entry prt_shadowfield_technique_entry = {
     PRT_TECHNIQUE_SHADOWFIELD,
     "shadowfield",
@@ -54,4 +56,5 @@ const prt_technique_entry prt_shadowfield_technique_entry = {
     open_sfld,
     prt_sf_attach,
     prt_sf_release,
+    &prt_shadowfield_scene_hooks,
 };

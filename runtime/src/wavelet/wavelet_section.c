@@ -99,8 +99,15 @@ static prt_result open_wvlt(const prt_asset_section* section, void* out, char* m
   return PRT_OK;
 }
 
+extern const struct prt_scene_hooks prt_wavelet_scene_hooks; /* wavelet/wavelet_scene_hooks.c */
+
 const prt_technique_entry prt_wavelet_technique_entry = {
-    PRT_TECHNIQUE_WAVELET,     "wavelet", PRT_BLOB_TAG_WVLT,
-    sizeof(prt_wavelet_view),  open_wvlt, prt_wavelet_attach_tiles,
+    PRT_TECHNIQUE_WAVELET,
+    "wavelet",
+    PRT_BLOB_TAG_WVLT,
+    sizeof(prt_wavelet_view),
+    open_wvlt,
+    prt_wavelet_attach_tiles,
     prt_wavelet_release_tiles,
+    &prt_wavelet_scene_hooks,
 };

@@ -15,6 +15,7 @@
 #include <prt/prt_env.h>
 #include <prt/prt_gl.h>
 #include <prt/prt_pose_asset.h>
+#include <prt/prt_scene.h>
 #include <prt/prt_sh.h>
 #include <prt/prt_sh_asset.h>
 #include <prt/prt_shadowfield.h>

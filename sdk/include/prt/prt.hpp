@@ -40,12 +40,16 @@ struct GlWaveletShaderDeleter {
 struct WaveletSourceDeleter {
   void operator()(prt_wavelet_source* source) const noexcept { prt_wavelet_source_destroy(source); }
 };
+struct SceneDeleter {
+  void operator()(prt_scene* scene) const noexcept { prt_scene_destroy(scene); }
+};
 
 using ContextPtr = std::unique_ptr<prt_context, ContextDeleter>;
 using AssetPtr = std::unique_ptr<prt_asset, AssetDeleter>;
 using GlShShaderPtr = std::unique_ptr<prt_gl_sh_shader, GlShShaderDeleter>;
 using GlWaveletShaderPtr = std::unique_ptr<prt_gl_wavelet_shader, GlWaveletShaderDeleter>;
 using WaveletSourcePtr = std::unique_ptr<prt_wavelet_source, WaveletSourceDeleter>;
+using ScenePtr = std::unique_ptr<prt_scene, SceneDeleter>;
 
 // A handle and the result of the call that made it (the handle is empty unless result is PRT_OK).
 // Binds to `auto [handle, result] = ...`.
@@ -117,6 +121,14 @@ inline Made<AssetPtr> load_asset_file(prt_context* context, const char* path,
   prt_asset* asset = nullptr;
   const prt_result result = prt_asset_load_file(context, path, validation, &asset);
   return {AssetPtr(asset), result};
+}
+
+// prt_scene_load_file; desc may be nullptr (defaults).
+inline Made<ScenePtr> load_scene_file(prt_context* context, const char* path,
+                                      const prt_scene_desc* desc = nullptr) noexcept {
+  prt_scene* scene = nullptr;
+  const prt_result result = prt_scene_load_file(context, path, desc, &scene);
+  return {ScenePtr(scene), result};
 }
 
 // prt_gl_sh_create (the GL context current on this thread).
