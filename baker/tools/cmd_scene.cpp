@@ -19,7 +19,8 @@ void add_scene_command(CLI::App& app, CommandEnv& env) {
       "Bake a whole scene: each object with the cheapest technique and settings that "
       "meet an error budget against the reference renderer");
   cmd->add_option("scene", s->scene, "The scene (.gltf, .glb, .obj)")->required();
-  cmd->add_option("-o,--out-dir", s->out_dir, "Output folder: blobs, scene.json, report.json")
+  cmd->add_option("-o,--out-dir", s->out_dir,
+                  "Output folder: blobs, scene.prts, scene.json, report.json")
       ->required();
   cmd->add_option("--error-budget", *budget_percent,
                   "E, in percent: the largest relative RMSE against the reference, per object")
@@ -72,7 +73,7 @@ void add_scene_command(CLI::App& app, CommandEnv& env) {
     }
     ctx.info(
         format("%zu objects: %zu baked (%zu from the cache), %zu broken, %zu over budget; "
-               "%zu bytes; wrote %s/scene.json and report.json",
+               "%zu bytes; wrote %s/scene.prts, scene.json and report.json",
                summary.objects, summary.baked, summary.from_cache, summary.broken,
                summary.over_budget, summary.bytes, settings.out_dir.c_str()));
     if (summary.single_bytes > 0) {

@@ -59,7 +59,8 @@ struct SingleTechnique {
   bool meets = true;  // false: some object does not meet E even at the ladder's top
 };
 
-// OUT_DIR/scene.json: the objects that were baked, their blobs, techniques and placement.
+// OUT_DIR/scene.json and OUT_DIR/scene.prts (formats/SPEC.md §7.6, what the runtime loads): the
+// objects that were baked, their blobs, techniques and placement.
 void write_manifest(const SceneBakeSettings& settings, const std::vector<ObjectResult>& results);
 // OUT_DIR/report.json: the settings, lights, and per object what was chosen and why, with every
 // candidate tried and its figures.

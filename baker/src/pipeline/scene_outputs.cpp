@@ -1,18 +1,26 @@
 // SPDX-License-Identifier: MIT
-// The content pipeline's files: blobs written whole or not at all, the scene manifest and the
-// report (scene_bake_detail.hpp; docs/pipeline.md describes both JSON files).
+// The content pipeline's files: blobs written whole or not at all, the scene manifests (JSON, and
+// the binary one the runtime loads) and the report (scene_bake_detail.hpp; docs/pipeline.md
+// describes them).
+#include <prt/prt_technique.h>
 #include <prt/prt_version.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
 #include "../common/atomic_file.hpp"
+#include "prt/baker/context.hpp"
+#include "prt/format/scene_writer.hpp"
 #include "scene_bake_detail.hpp"
 
 namespace prt::bake::pipeline {
@@ -81,6 +89,51 @@ void write_json(const std::string& path, const ordered_json& j) {
   write_file_atomic(path, j.dump(2) + "\n");
 }
 
+// The tag of the section a technique's blobs hold, from the runtime's table (the baker names
+// techniques as the runtime does).
+std::uint32_t technique_section_tag(const std::string& technique) {
+  for (int t = 1; t < 32; ++t) {
+    prt_technique_info info;
+    std::memset(&info, 0, sizeof info);
+    info.struct_size = sizeof info;
+    if (prt_technique_get_info(static_cast<prt_technique>(t), &info) == PRT_OK && info.name &&
+        technique == info.name)
+      return info.section_tag;
+  }
+  throw Error("scene manifest: the runtime has no technique '" + technique + "'");
+}
+
+// OUT/scene.prts (formats/SPEC.md §7.6): the objects of scene.json, in the same order.
+std::vector<std::uint8_t> binary_manifest(const SceneBakeSettings& settings,
+                                          const std::vector<ObjectResult>& results,
+                                          const std::string& path) {
+  std::vector<prt::format::SceneManifestObject> objects;
+  for (const ObjectResult& r : results) {
+    const Candidate* c = r.choice();
+    if (!c) continue;
+    prt::format::SceneManifestObject o;
+    o.technique_tag = technique_section_tag(c->technique);
+    o.name = r.object->name;
+    o.blob = r.blob_file;
+    const int node = r.object->node;
+    if (node >= 0) {
+      o.node = static_cast<std::uint32_t>(node);
+      // Where the blob was baked: the node's world matrix at rest, column-major as glm stores it.
+      const glm::mat4& world = r.object->scene.nodes.at(static_cast<std::size_t>(node)).world;
+      std::memcpy(o.rest.data(), glm::value_ptr(world), sizeof(float) * 16);
+    }
+    objects.push_back(std::move(o));
+  }
+  prt::format::SceneManifestOptions options;
+  options.producer = "prtkit " PRT_VERSION_STRING;
+  options.info = "prtkit scene manifest: " + fs::path(settings.scene).filename().string();
+  try {
+    return prt::format::write_scene_manifest(objects, options);
+  } catch (const std::invalid_argument& e) {  // objects are listed as in scene.json
+    throw Error(path + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 void write_manifest(const SceneBakeSettings& settings, const std::vector<ObjectResult>& results) {
@@ -100,7 +153,12 @@ void write_manifest(const SceneBakeSettings& settings, const std::vector<ObjectR
     objects.push_back(o);
   }
   j["objects"] = objects;
+  // The binary manifest is made first: it is the one that can refuse an object (then neither file
+  // is written).
+  const std::string binary_path = settings.out_dir + "/scene.prts";
+  const std::vector<std::uint8_t> binary = binary_manifest(settings, results, binary_path);
   write_json(settings.out_dir + "/scene.json", j);
+  write_file_atomic(binary_path, binary);
 }
 
 void write_report(const SceneBakeSettings& settings, const std::vector<LightInfo>& lights,
