@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "prt/io/demo_sky.hpp"
+
 namespace prt::sample {
 namespace {
 
@@ -31,7 +33,9 @@ std::vector<float> latlong_texels(const prt::io::EnvMap& map, int width, int hei
 }  // namespace
 
 void Environments::add(const std::string& path, const std::string& mapping) {
-  prt::io::EnvMap map = prt::io::load_envmap(path, prt::io::parse_env_mapping(mapping));
+  prt::io::EnvMap map = path == kBuiltinSky
+                            ? prt::io::make_demo_sky()
+                            : prt::io::load_envmap(path, prt::io::parse_env_mapping(mapping));
   maps_.push_back(std::make_unique<Entry>(Entry{path, std::move(map), GlTexture()}));
   select(maps_.size() - 1);
 }

@@ -15,10 +15,13 @@
 
 namespace prt::sample {
 
+// The name of the built-in sky (prt/io/demo_sky.hpp), for runs without a map of their own.
+inline constexpr const char* kBuiltinSky = "builtin:sky";
+
 class Environments {
  public:
-  // Loads `path` (prt_io: .hdr lat-long, cross or probe, `mapping` "auto" detects it) and makes
-  // it current. Throws prt::io::Error naming the file.
+  // Loads `path` (prt_io: .hdr lat-long, cross or probe, `mapping` "auto" detects it; kBuiltinSky
+  // is the built-in sky) and makes it current. Throws prt::io::Error naming the file.
   void add(const std::string& path, const std::string& mapping = "auto");
   void select(std::size_t index);
 

@@ -96,7 +96,8 @@ void add_host_options(CLI::App& app, HostOptions& o) {
   const std::string look = "Light and picture";
   // One map per --env, so a blob named after it is not taken for another map.
   app.add_option("--env", o.envs,
-                 "Environment map (.hdr; lat-long, vertical cross or probe); repeat for more")
+                 "Environment map (.hdr; lat-long, vertical cross or probe, or builtin:sky); "
+                 "repeat for more (none: the built-in sky)")
       ->allow_extra_args(false)
       ->group(look);
   app.add_option("--env-mapping", o.env_mapping, "auto|latlong|cross|probe")
@@ -433,7 +434,10 @@ int Host::run() {
   int status = 0;
   try {
     for (const std::string& env : options_.envs) environments_.add(env, options_.env_mapping);
-    if (environments_.empty()) throw std::runtime_error("no environment map: give --env MAP.hdr");
+    if (environments_.empty()) {
+      std::printf("%s: no --env MAP.hdr: lit by the built-in sky\n", name_);
+      environments_.add(kBuiltinSky);
+    }
     environments_.select(0);
     environments_.set_rotation_degrees(options_.rotate_degrees);
     environments_.spin_degrees_per_second = options_.spin_degrees_per_second;

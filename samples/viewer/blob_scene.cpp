@@ -16,7 +16,7 @@ BlobScene::BlobScene(const std::string& path) : path_(path) {
     throw ViewerError(path + ": " + message);
   }
   try {
-    read_mesh();
+    mesh_ = read_blob_mesh(asset_, path_);
   } catch (...) {
     prt_asset_destroy(asset_);
     prt_context_destroy(context_);
@@ -33,27 +33,30 @@ void BlobScene::fail(const std::string& what) const {
   throw ViewerError(path_ + ": " + what);
 }
 
-void BlobScene::read_mesh() {
+BlobMesh read_blob_mesh(const prt_asset* asset, const std::string& path) {
+  const auto fail = [&path](const std::string& what) { throw ViewerError(path + ": " + what); };
   const void* positions = nullptr;
   const void* indices = nullptr;
   std::size_t position_bytes = 0, index_bytes = 0;
-  if (prt_asset_section_data(asset_, PRT_SECTION_VPOS, &positions, &position_bytes) != PRT_OK) {
+  if (prt_asset_section_data(asset, PRT_SECTION_VPOS, &positions, &position_bytes) != PRT_OK) {
     fail("no VPOS section (vertex positions)");
   }
-  if (prt_asset_section_data(asset_, PRT_SECTION_TRIS, &indices, &index_bytes) != PRT_OK) {
+  if (prt_asset_section_data(asset, PRT_SECTION_TRIS, &indices, &index_bytes) != PRT_OK) {
     fail("no TRIS section (triangles)");
   }
   if (position_bytes % (3 * sizeof(float)) != 0 || index_bytes % (3 * sizeof(std::uint32_t)) != 0) {
     fail("VPOS/TRIS sizes are not whole vertices/triangles");
   }
-  mesh_.positions = static_cast<const float*>(positions);
-  mesh_.vertex_count = static_cast<std::uint32_t>(position_bytes / (3 * sizeof(float)));
-  mesh_.indices = static_cast<const std::uint32_t*>(indices);
-  mesh_.triangle_count = static_cast<std::uint32_t>(index_bytes / (3 * sizeof(std::uint32_t)));
+  BlobMesh mesh;
+  mesh.positions = static_cast<const float*>(positions);
+  mesh.vertex_count = static_cast<std::uint32_t>(position_bytes / (3 * sizeof(float)));
+  mesh.indices = static_cast<const std::uint32_t*>(indices);
+  mesh.triangle_count = static_cast<std::uint32_t>(index_bytes / (3 * sizeof(std::uint32_t)));
   // Full validation checks index ranges already; the rasteriser relies on it, so say so here.
-  for (std::size_t i = 0; i < 3u * mesh_.triangle_count; ++i) {
-    if (mesh_.indices[i] >= mesh_.vertex_count) fail("TRIS index out of range");
+  for (std::size_t i = 0; i < 3u * mesh.triangle_count; ++i) {
+    if (mesh.indices[i] >= mesh.vertex_count) fail("TRIS index out of range");
   }
+  return mesh;
 }
 
 void BlobScene::check_shaded_vertices(std::uint32_t section_tag, std::uint32_t shaded) const {

@@ -26,6 +26,11 @@ struct BlobMesh {
   std::uint32_t triangle_count = 0;
 };
 
+// The mesh of a loaded asset (its VPOS/TRIS sections), borrowed from it. Throws ViewerError
+// "<path>: <what>" when a section is missing, is not whole vertices or triangles, or a triangle
+// names a vertex past VPOS's.
+BlobMesh read_blob_mesh(const prt_asset* asset, const std::string& path);
+
 class BlobScene {
  public:
   // Creates a context (messages recorded, not printed; backend limits from the PRT_BACKEND /
@@ -55,8 +60,6 @@ class BlobScene {
   prt_context* context_ = nullptr;
   prt_asset* asset_ = nullptr;
   BlobMesh mesh_;
-
-  void read_mesh();
 };
 
 }  // namespace prt::view

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // prt-viewer: blobs of any technique in techniques.cpp, lit by environment maps and shaded by
 // the runtime every frame, in a window (or headless) on the sample framework: one blob, two side
-// by side or in a split screen, or one beside its error against a reference. Each technique's
-// live parameters are controls; blobs and maps dropped on the window are opened. README.md says
-// how to run it and its keys.
+// by side or in a split screen, or one beside its error against a reference; or a baked scene
+// (a .prts manifest, scene_view.hpp). Each technique's live parameters are controls; blobs and
+// maps dropped on the window are opened. README.md says how to run it and its keys.
 #include <imgui.h>
 #include <CLI/CLI.hpp>
 
@@ -16,6 +16,7 @@
 
 #include "live_parameter_panel.hpp"
 #include "sample_app.hpp"
+#include "scene_view.hpp"
 #include "viewer_compare.hpp"
 #include "viewer_slot.hpp"
 
@@ -39,7 +40,9 @@ std::string file_name(const std::string& path) {
 class ViewerApp : public prt::sample::SampleApp {
  public:
   void add_options(CLI::App& app) override {
-    app.add_option("BLOB", blob_paths_, "One blob (.prtk), or two to compare")
+    cli_ = &app;
+    app.add_option("BLOB", blob_paths_,
+                   "One blob (.prtk), or two to compare; or a scene manifest (.prts)")
         ->required()
         ->expected(1, 2);
     app.add_option("--compare", compare_,
@@ -58,11 +61,22 @@ class ViewerApp : public prt::sample::SampleApp {
         ->capture_default_str();
     app.footer("Techniques: " + chooser_.names() +
                ". Keys: left-drag orbit, right-drag turn the light, wheel zoom, F frame, P or F12 "
-               "screenshot, H overlay, Esc quit; drop a .prtk to open it, an .hdr to add the map.");
+               "screenshot, H overlay, Esc quit; drop a .prtk to open it, an .hdr to add the map. "
+               "A scene (prt-bake scene's OUT/scene.prts) is shaded with prt_scene_shade.");
     chooser_.add_options(app);
   }
 
   void check_options() override {
+    if (std::any_of(blob_paths_.begin(), blob_paths_.end(), is_scene_manifest)) {
+      if (blob_paths_.size() != 1 || !compare_.empty() || !reference_.empty())
+        throw CLI::ValidationError(
+            "BLOB", "a scene (.prts) is shown alone: no second blob, --compare or --reference");
+      const CLI::Option* option = cli_->get_option("--backend");
+      const std::string backend =
+          option->count() ? option->as<std::string>() : option->get_default_str();
+      scene_ = std::make_unique<SceneView>(blob_paths_[0], backend);
+      return;
+    }
     if (compare_.empty())
       compare_ = !reference_.empty() ? "error" : blob_paths_.size() == 2 ? "side" : "single";
     mode_ = parse_compare_mode(compare_);
@@ -74,12 +88,14 @@ class ViewerApp : public prt::sample::SampleApp {
   }
 
   void start(prt::sample::Sample& sample) override {
+    if (scene_) return scene_->start(sample);
     for (const std::string& path : blob_paths_) open_blob(sample, path, slots_.size());
     if (!reference_.empty()) open_reference();
   }
 
   std::vector<prt::sample::View> frame(prt::sample::Sample& sample) override {
     using prt::sample::View;
+    if (scene_) return scene_->frame(sample);
     std::vector<View> views;
     const bool error = mode_ == CompareMode::Error && error_view_;
     const GLuint a = slots_[0]->shade(sample, error);
@@ -112,6 +128,7 @@ class ViewerApp : public prt::sample::SampleApp {
   }
 
   void panel(prt::sample::Sample& sample) override {
+    if (scene_) return scene_->panel(sample);
     int mode = static_cast<int>(mode_);
     const char* modes[] = {"one blob", "side by side", "split screen", "error vs reference"};
     if (ImGui::Combo("compare", &mode, modes, 4)) {
@@ -158,6 +175,9 @@ class ViewerApp : public prt::sample::SampleApp {
           sample.environments().add(path);
           sample.meter_exposure();
           std::printf("prt-viewer: added the map %s\n", path.c_str());
+        } else if (scene_) {
+          scene_->open(sample, path);
+          std::printf("prt-viewer: opened %s\n", path.c_str());
         } else {
           open_blob(sample, path, 0);
           std::printf("prt-viewer: opened %s\n", path.c_str());
@@ -169,6 +189,7 @@ class ViewerApp : public prt::sample::SampleApp {
   }
 
   void stop(prt::sample::Sample&) override {
+    if (scene_) scene_->release_gl();
     if (error_view_) {
       std::printf("error vs %s: relative RMSE %.5f (%.2f %%)\n",
                   error_view_->reference_path().c_str(), rmse_, 100.0 * rmse_);
@@ -187,6 +208,8 @@ class ViewerApp : public prt::sample::SampleApp {
   double rmse_ = 0.0;
   std::vector<std::unique_ptr<ViewerSlot>> slots_;
   std::unique_ptr<ErrorView> error_view_;
+  CLI::App* cli_ = nullptr;           // for the framework's --backend, which a scene reads
+  std::unique_ptr<SceneView> scene_;  // the scene mode, instead of the slots
 
   static prt::sample::View view(const ViewerSlot& slot, GLuint colours,
                                 const prt::sample::FrameRect& viewport,
