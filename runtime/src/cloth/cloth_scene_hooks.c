@@ -32,20 +32,6 @@ static size_t vectors_bytes(uint32_t vertex_count) {
   return (size_t)vertex_count * 3u * sizeof(float);
 }
 
-static prt_result failed(const prt_scene_object* object, const char* function, prt_result r,
-                         char* msg, size_t capacity) {
-  snprintf(msg, capacity, "object '%s': %s failed: %s", object->name, function,
-           prt_result_string(r));
-  return r;
-}
-
-static prt_result out_of_memory(const prt_scene_object* object, const char* what, size_t bytes,
-                                char* msg, size_t capacity) {
-  snprintf(msg, capacity, "object '%s': out of memory for the cloth %s (%zu bytes)", object->name,
-           what, bytes);
-  return PRT_ERROR_OUT_OF_MEMORY;
-}
-
 /* A mesh section of one float x,y,z per vertex of the object, or PRT_ERROR_CORRUPT. */
 static prt_result mesh_vectors(const prt_scene_object* object, uint32_t tag, const char* name,
                                const float** out, char* msg, size_t capacity) {
@@ -69,7 +55,7 @@ static prt_result open_object(const prt_allocator* allocator, cloth_object* entr
                               size_t capacity) {
   const prt_scene_object* object = entry->object;
   prt_result r = prt_cloth_get_fabric(object->asset, 0, NULL, NULL, NULL, NULL);
-  if (r != PRT_OK) return failed(object, "prt_cloth_get_fabric", r, msg, capacity);
+  if (r != PRT_OK) return prt_scene_hook_failed(object, "prt_cloth_get_fabric", r, msg, capacity);
   r = mesh_vectors(object, PRT_SECTION_VPOS, "VPOS", &entry->positions, msg, capacity);
   if (r == PRT_OK)
     r = mesh_vectors(object, PRT_SECTION_VNRM, "VNRM", &entry->normals, msg, capacity);
@@ -77,7 +63,8 @@ static prt_result open_object(const prt_allocator* allocator, cloth_object* entr
   if (r != PRT_OK) return r;
   entry->views_bytes = vectors_bytes(object->vertex_count);
   entry->views = (float*)prt_internal_alloc(allocator, entry->views_bytes, 64);
-  if (!entry->views) return out_of_memory(object, "views", entry->views_bytes, msg, capacity);
+  if (!entry->views)
+    return prt_scene_hook_out_of_memory(object, "views", entry->views_bytes, msg, capacity);
   return PRT_OK;
 }
 
@@ -96,7 +83,8 @@ static prt_result cloth_open(prt_context* context, const prt_allocator* allocato
     return PRT_ERROR_INVALID_ARGUMENT;
   }
   group->objects = (cloth_object*)prt_internal_alloc(allocator, object_bytes, 16);
-  if (!group->objects) return out_of_memory(objects[0], "object list", object_bytes, msg, capacity);
+  if (!group->objects)
+    return prt_scene_hook_out_of_memory(objects[0], "object list", object_bytes, msg, capacity);
   memset(group->objects, 0, object_bytes);
   group->count = count;
   for (i = 0; i < count; ++i) {
@@ -108,8 +96,8 @@ static prt_result cloth_open(prt_context* context, const prt_allocator* allocato
   group->lobes = (prt_cloth_lobe*)prt_internal_alloc(
       allocator, (size_t)group->lobe_count * sizeof *group->lobes, 16);
   if (!group->lobes)
-    return out_of_memory(objects[0], "lobes", (size_t)group->lobe_count * sizeof *group->lobes, msg,
-                         capacity);
+    return prt_scene_hook_out_of_memory(
+        objects[0], "lobes", (size_t)group->lobe_count * sizeof *group->lobes, msg, capacity);
   return PRT_OK;
 }
 
@@ -133,7 +121,8 @@ static prt_result cloth_light(prt_context* context, void* state, const prt_env_i
   desc.lobe_count = group->lobe_count;
   r = prt_cloth_fit_light(context, env, &desc, group->lobes, NULL);
   return r == PRT_OK ? r
-                     : failed(group->objects[0].object, "prt_cloth_fit_light", r, msg, capacity);
+                     : prt_scene_hook_failed(group->objects[0].object, "prt_cloth_fit_light", r,
+                                             msg, capacity);
 }
 
 /* views[v] = normalize(eye - position[v]), the zero vector where the eye is on the vertex. */
@@ -174,8 +163,8 @@ static prt_result cloth_shade(void* state, const prt_scene_frame* frame, char* m
                        : prt_cloth_shade(object->asset, frame->backend, 0, NULL, &light, NULL,
                                          &pixels, 0, object->vertex_count, object->radiance);
     if (r != PRT_OK)
-      return failed(object, frame->workers ? "prt_cloth_shade_workers" : "prt_cloth_shade", r, msg,
-                    capacity);
+      return prt_scene_hook_failed(
+          object, frame->workers ? "prt_cloth_shade_workers" : "prt_cloth_shade", r, msg, capacity);
   }
   return PRT_OK;
 }

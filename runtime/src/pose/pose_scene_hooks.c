@@ -32,20 +32,13 @@ typedef struct pose_group {
   pose_character* characters; /* count of them, in the scene's order */
 } pose_group;
 
-static prt_result failed(char* msg, size_t capacity, const prt_scene_object* object,
-                         const char* function, prt_result result) {
-  snprintf(msg, capacity, "pose object '%s': %s failed (%s)", object->name, function,
-           prt_result_string(result));
-  return result;
-}
-
 /* Reads the character's PSTR header and starts it at its bind pose, unturned. */
 static prt_result open_character(const prt_allocator* allocator, prt_scene_object* object,
                                  pose_character* c, char* msg, size_t capacity) {
   prt_pose_info info;
   info.struct_size = sizeof info;
   prt_result r = prt_pose_get_info(object->asset, &info);
-  if (r != PRT_OK) return failed(msg, capacity, object, "prt_pose_get_info", r);
+  if (r != PRT_OK) return prt_scene_hook_failed(object, "prt_pose_get_info", r, msg, capacity);
   if (info.vertex_count != object->vertex_count) {
     snprintf(msg, capacity, "pose object '%s': PSTR has %" PRIu32 " vertices, its mesh %" PRIu32,
              object->name, info.vertex_count, object->vertex_count);
@@ -67,7 +60,7 @@ static prt_result open_character(const prt_allocator* allocator, prt_scene_objec
   c->joint_count = info.joint_count;
   for (int e = 0; e < 9; ++e) c->rotation[e] = e % 4 == 0 ? 1.0f : 0.0f;
   r = prt_pose_bind_pose(object->asset, c->joint_rotations, c->joint_translations, c->joint_scales);
-  if (r != PRT_OK) return failed(msg, capacity, object, "prt_pose_bind_pose", r);
+  if (r != PRT_OK) return prt_scene_hook_failed(object, "prt_pose_bind_pose", r, msg, capacity);
   object->state = c;
   return PRT_OK;
 }
@@ -121,7 +114,7 @@ static prt_result pose_light(prt_context* context, void* group, const prt_env_im
       continue;
     }
     const prt_result r = prt_sh_project(c->order, env, c->light);
-    if (r != PRT_OK) return failed(msg, capacity, c->object, "prt_sh_project", r);
+    if (r != PRT_OK) return prt_scene_hook_failed(c->object, "prt_sh_project", r, msg, capacity);
   }
   return PRT_OK;
 }
@@ -199,8 +192,9 @@ static prt_result pose_shade(void* group, const prt_scene_frame* frame, char* ms
   for (uint32_t i = 0; i < g->count; ++i) {
     const prt_result r = shade_character(&g->characters[i], frame);
     if (r != PRT_OK)
-      return failed(msg, capacity, g->characters[i].object,
-                    frame->workers ? "prt_pose_shade_workers" : "prt_pose_shade", r);
+      return prt_scene_hook_failed(g->characters[i].object,
+                                   frame->workers ? "prt_pose_shade_workers" : "prt_pose_shade", r,
+                                   msg, capacity);
   }
   return PRT_OK;
 }

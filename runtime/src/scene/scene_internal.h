@@ -61,6 +61,14 @@ typedef struct prt_scene_hooks {
   prt_result (*shade)(void* group, const prt_scene_frame* frame, char* msg, size_t capacity);
 } prt_scene_hooks;
 
+/* The hooks' messages: "object 'NAME': FUNCTION failed: RESULT" into msg, returning r; and
+ * "object 'NAME': out of memory for the TECHNIQUE WHAT (BYTES bytes)", returning
+ * PRT_ERROR_OUT_OF_MEMORY. */
+prt_result prt_scene_hook_failed(const prt_scene_object* object, const char* function, prt_result r,
+                                 char* msg, size_t capacity);
+prt_result prt_scene_hook_out_of_memory(const prt_scene_object* object, const char* what,
+                                        size_t bytes, char* msg, size_t capacity);
+
 /* ---- Shared scene code only (scene_load.c, scene_frame.c) ---------------------------------- */
 
 /* The scene's objects of one technique and that technique's state for them. */

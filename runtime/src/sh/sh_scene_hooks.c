@@ -21,20 +21,6 @@ static size_t light_bytes(uint32_t order) {
   return (size_t)order * order * 3u * sizeof(float);
 }
 
-static prt_result failed(const prt_scene_object* object, const char* function, prt_result r,
-                         char* msg, size_t capacity) {
-  snprintf(msg, capacity, "object '%s': %s failed: %s", object->name, function,
-           prt_result_string(r));
-  return r;
-}
-
-static prt_result out_of_memory(const prt_scene_object* object, const char* what, size_t bytes,
-                                char* msg, size_t capacity) {
-  snprintf(msg, capacity, "object '%s': out of memory for the sh %s (%zu bytes)", object->name,
-           what, bytes);
-  return PRT_ERROR_OUT_OF_MEMORY;
-}
-
 /* Each object's order (its SHTR header), checked against the vertices the scene shades. */
 static prt_result read_orders(sh_group* group, char* msg, size_t capacity) {
   uint32_t i;
@@ -44,7 +30,7 @@ static prt_result read_orders(sh_group* group, char* msg, size_t capacity) {
     prt_result r;
     info.struct_size = sizeof info;
     r = prt_sh_get_info(object->asset, &info);
-    if (r != PRT_OK) return failed(object, "prt_sh_get_info", r, msg, capacity);
+    if (r != PRT_OK) return prt_scene_hook_failed(object, "prt_sh_get_info", r, msg, capacity);
     if (info.vertex_count != object->vertex_count) {
       snprintf(msg, capacity, "object '%s': SHTR has %u vertices, VPOS %u", object->name,
                (unsigned)info.vertex_count, (unsigned)object->vertex_count);
@@ -64,14 +50,16 @@ static prt_result sh_open(prt_context* context, const prt_allocator* allocator,
   prt_result r;
   (void)context, (void)options;
   group->objects = (prt_scene_object**)prt_internal_alloc(allocator, list_bytes, 16);
-  if (!group->objects) return out_of_memory(objects[0], "object list", list_bytes, msg, capacity);
+  if (!group->objects)
+    return prt_scene_hook_out_of_memory(objects[0], "object list", list_bytes, msg, capacity);
   memcpy(group->objects, objects, list_bytes);
   group->count = count;
   r = read_orders(group, msg, capacity);
   if (r != PRT_OK) return r;
   group->light = (float*)prt_internal_alloc(allocator, light_bytes(group->max_order), 64);
   if (!group->light)
-    return out_of_memory(objects[0], "light", light_bytes(group->max_order), msg, capacity);
+    return prt_scene_hook_out_of_memory(objects[0], "light", light_bytes(group->max_order), msg,
+                                        capacity);
   return PRT_OK;
 }
 
@@ -87,7 +75,8 @@ static prt_result sh_light(prt_context* context, void* state, const prt_env_imag
   sh_group* group = (sh_group*)state;
   const prt_result r = prt_sh_project(group->max_order, env, group->light);
   (void)context;
-  return r == PRT_OK ? r : failed(group->objects[0], "prt_sh_project", r, msg, capacity);
+  return r == PRT_OK ? r
+                     : prt_scene_hook_failed(group->objects[0], "prt_sh_project", r, msg, capacity);
 }
 
 static prt_result sh_shade(void* state, const prt_scene_frame* frame, char* msg, size_t capacity) {
@@ -102,8 +91,8 @@ static prt_result sh_shade(void* state, const prt_scene_frame* frame, char* msg,
             : prt_sh_shade(object->asset, frame->backend, group->light, 0, object->vertex_count,
                            object->radiance);
     if (r != PRT_OK)
-      return failed(object, frame->workers ? "prt_sh_shade_workers" : "prt_sh_shade", r, msg,
-                    capacity);
+      return prt_scene_hook_failed(object, frame->workers ? "prt_sh_shade_workers" : "prt_sh_shade",
+                                   r, msg, capacity);
   }
   return PRT_OK;
 }

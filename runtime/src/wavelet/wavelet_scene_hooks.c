@@ -39,20 +39,6 @@ static size_t rgba_bytes(uint32_t coefficient_count) {
   return (size_t)coefficient_count * 4u * sizeof(float);
 }
 
-static prt_result failed(const prt_scene_object* object, const char* function, prt_result r,
-                         char* msg, size_t capacity) {
-  snprintf(msg, capacity, "object '%s': %s failed: %s", object->name, function,
-           prt_result_string(r));
-  return r;
-}
-
-static prt_result out_of_memory(const prt_scene_object* object, const char* what, size_t bytes,
-                                char* msg, size_t capacity) {
-  snprintf(msg, capacity, "object '%s': out of memory for the wavelet %s (%zu bytes)", object->name,
-           what, bytes);
-  return PRT_ERROR_OUT_OF_MEMORY;
-}
-
 /* The group's light of (param, size), added (without its buffer) when it is new. */
 static uint32_t light_of(wavelet_group* group, const prt_wavelet_info* info) {
   uint32_t i;
@@ -73,7 +59,7 @@ static prt_result open_object(const prt_allocator* allocator, wavelet_group* gro
   prt_result r;
   info.struct_size = sizeof info;
   r = prt_wavelet_get_info(object->asset, &info);
-  if (r != PRT_OK) return failed(object, "prt_wavelet_get_info", r, msg, capacity);
+  if (r != PRT_OK) return prt_scene_hook_failed(object, "prt_wavelet_get_info", r, msg, capacity);
   if (info.vertex_count != object->vertex_count) {
     snprintf(msg, capacity, "object '%s': WVLT has %u vertices, VPOS %u", object->name,
              (unsigned)info.vertex_count, (unsigned)object->vertex_count);
@@ -84,11 +70,11 @@ static prt_result open_object(const prt_allocator* allocator, wavelet_group* gro
   state->block_count = info.block_count;
   state->prepared = (float*)prt_internal_alloc(allocator, rgba_bytes(info.coefficient_count), 64);
   if (!state->prepared)
-    return out_of_memory(object, "prepared light", rgba_bytes(info.coefficient_count), msg,
-                         capacity);
+    return prt_scene_hook_out_of_memory(object, "prepared light",
+                                        rgba_bytes(info.coefficient_count), msg, capacity);
   state->zero_blocks = (uint8_t*)prt_internal_alloc(allocator, info.block_count, 16);
   if (!state->zero_blocks)
-    return out_of_memory(object, "zero-block mask", info.block_count, msg, capacity);
+    return prt_scene_hook_out_of_memory(object, "zero-block mask", info.block_count, msg, capacity);
   return PRT_OK;
 }
 
@@ -107,8 +93,8 @@ static prt_result open_lights(const prt_allocator* allocator, wavelet_group* gro
     wavelet_light* light = &group->lights[i];
     light->rgba = (float*)prt_internal_alloc(allocator, rgba_bytes(light->coefficient_count), 64);
     if (!light->rgba)
-      return out_of_memory(first_user(group, i), "light", rgba_bytes(light->coefficient_count), msg,
-                           capacity);
+      return prt_scene_hook_out_of_memory(first_user(group, i), "light",
+                                          rgba_bytes(light->coefficient_count), msg, capacity);
   }
   return PRT_OK;
 }
@@ -124,11 +110,13 @@ static prt_result wavelet_open(prt_context* context, const prt_allocator* alloca
   prt_result r;
   (void)context, (void)options;
   group->objects = (wavelet_object*)prt_internal_alloc(allocator, object_bytes, 16);
-  if (!group->objects) return out_of_memory(objects[0], "object list", object_bytes, msg, capacity);
+  if (!group->objects)
+    return prt_scene_hook_out_of_memory(objects[0], "object list", object_bytes, msg, capacity);
   memset(group->objects, 0, object_bytes);
   group->count = count;
   group->lights = (wavelet_light*)prt_internal_alloc(allocator, light_bytes, 16);
-  if (!group->lights) return out_of_memory(objects[0], "light list", light_bytes, msg, capacity);
+  if (!group->lights)
+    return prt_scene_hook_out_of_memory(objects[0], "light list", light_bytes, msg, capacity);
   memset(group->lights, 0, light_bytes);
   for (i = 0; i < count; ++i) {
     group->objects[i].object = objects[i];
@@ -164,7 +152,8 @@ static prt_result make_light(const wavelet_group* group, uint32_t index, const p
     function = "prt_wavelet_transform_light";
     r = prt_wavelet_transform_light(light->param, light->size, light->rgba);
   }
-  return r == PRT_OK ? r : failed(first_user(group, index), function, r, msg, capacity);
+  return r == PRT_OK ? r
+                     : prt_scene_hook_failed(first_user(group, index), function, r, msg, capacity);
 }
 
 static prt_result wavelet_light_hook(prt_context* context, void* state, const prt_env_image* env,
@@ -181,7 +170,8 @@ static prt_result wavelet_light_hook(prt_context* context, void* state, const pr
     const prt_result r =
         prt_wavelet_prepare_light(object->object->asset, group->lights[object->light].rgba,
                                   object->prepared, object->zero_blocks);
-    if (r != PRT_OK) return failed(object->object, "prt_wavelet_prepare_light", r, msg, capacity);
+    if (r != PRT_OK)
+      return prt_scene_hook_failed(object->object, "prt_wavelet_prepare_light", r, msg, capacity);
   }
   return PRT_OK;
 }
@@ -201,8 +191,9 @@ static prt_result wavelet_shade(void* state, const prt_scene_frame* frame, char*
             : prt_wavelet_shade(object->asset, frame->backend, entry->prepared, entry->zero_blocks,
                                 0, object->vertex_count, object->radiance);
     if (r != PRT_OK)
-      return failed(object, frame->workers ? "prt_wavelet_shade_workers" : "prt_wavelet_shade", r,
-                    msg, capacity);
+      return prt_scene_hook_failed(
+          object, frame->workers ? "prt_wavelet_shade_workers" : "prt_wavelet_shade", r, msg,
+          capacity);
   }
   return PRT_OK;
 }
