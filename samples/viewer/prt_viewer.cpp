@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "live_parameter_panel.hpp"
+#include "path_names.hpp"
 #include "sample_app.hpp"
 #include "scene_view.hpp"
 #include "viewer_compare.hpp"
@@ -22,20 +23,6 @@
 
 namespace prt::view {
 namespace {
-
-bool has_extension(const std::string& path, const char* extension) {
-  const std::string ext(extension);
-  if (path.size() < ext.size()) return false;
-  std::string tail = path.substr(path.size() - ext.size());
-  std::transform(tail.begin(), tail.end(), tail.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return tail == ext;
-}
-
-std::string file_name(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
 
 class ViewerApp : public prt::sample::SampleApp {
  public:

@@ -5,31 +5,17 @@
 #include <prt/prt.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "blob_scene.hpp"
 #include "env_image.hpp"
+#include "path_names.hpp"
 #include "prt/io/envmap.hpp"
 
 namespace prt::view {
 namespace {
-
-bool ends_with_prts(const std::string& path) {
-  const std::string ext = ".prts";
-  if (path.size() < ext.size()) return false;
-  std::string tail = path.substr(path.size() - ext.size());
-  std::transform(tail.begin(), tail.end(), tail.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return tail == ext;
-}
-
-std::string file_name(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
 
 std::string last_message(prt_context* context, prt_result result) {
   const char* message = prt_context_last_message(context);
@@ -44,7 +30,7 @@ std::string technique_name(prt_technique technique) {
 }  // namespace
 
 bool is_scene_manifest(const std::string& path) {
-  if (ends_with_prts(path)) return true;
+  if (has_extension(path, ".prts")) return true;
   // Any other name: a manifest is a blob, so load it (quick validation: its table, no section
   // decoded) and look for the SCNE section.
   auto [context, made] = prt::create_context();
