@@ -24,6 +24,7 @@
 #include "prt/baker/options.hpp"
 #include "prt/baker/scene_bake.hpp"
 #include "prt/baker/technique.hpp"
+#include "support/checked_blob.hpp"
 #include "support/test_files.hpp"
 
 namespace prt::bake {
@@ -118,20 +119,6 @@ TEST(ClothScene, LadderRungsAreBakeOptionsAndIgnoreBounces) {
   }
 }
 
-std::vector<std::uint8_t> bake_blob(const Scene& object, const std::vector<std::string>& args,
-                                    const Context& ctx) {
-  const std::unique_ptr<TechniqueBake> bake = cloth().make_bake();
-  apply_option_args(bake->options(), args);
-  BakeInput input;
-  input.scene = "cloth scene test";
-  bake->bake(object, input, ctx);
-  bake->quantize();
-  std::vector<std::uint8_t> blob = bake->write(object, input);
-  const SelfCheck check = bake->self_check(blob);
-  EXPECT_TRUE(check.passed) << check.message;
-  return blob;
-}
-
 std::string blob_fabric_name(const std::vector<std::uint8_t>& blob) {
   auto [context, made] = prt::create_context();
   EXPECT_EQ(made, PRT_OK);
@@ -167,8 +154,10 @@ TEST(ClothScene, FinerRungsMeasureCloserAndAnotherFabricFarOff) {
   const std::unique_ptr<ObjectMeasure> measure = cloth().measure()(input);
 
   const std::vector<Rung> ladder = cloth().ladder(1);
-  const std::vector<std::uint8_t> coarse = bake_blob(object, ladder.front().args, ctx);
-  const std::vector<std::uint8_t> fine = bake_blob(object, ladder.back().args, ctx);
+  const std::vector<std::uint8_t> coarse =
+      prt_test::checked_blob("cloth", ladder.front().args, object, "cloth scene test", ctx);
+  const std::vector<std::uint8_t> fine =
+      prt_test::checked_blob("cloth", ladder.back().args, object, "cloth scene test", ctx);
   EXPECT_LT(coarse.size(), fine.size());
   EXPECT_EQ(blob_fabric_name(fine), "linen_plain");
   const Measurement m_coarse = measure->measure(cloth(), coarse, ctx);
@@ -185,8 +174,8 @@ TEST(ClothScene, FinerRungsMeasureCloserAndAnotherFabricFarOff) {
   EXPECT_LT(m_fine.error, 2.0 * 0.018);
 
   // The coarsest rung suffices: another fabric's weave is off by far more than any rung.
-  const std::vector<std::uint8_t> velvet =
-      bake_blob(object, with_fabric(ladder.front().args, "velvet"), ctx);
+  const std::vector<std::uint8_t> velvet = prt_test::checked_blob(
+      "cloth", with_fabric(ladder.front().args, "velvet"), object, "cloth scene test", ctx);
   const Measurement m_velvet = measure->measure(cloth(), velvet, ctx);
   std::printf("velvet blob: error %.4f\n", m_velvet.error);
   EXPECT_GT(m_velvet.error, 5.0 * m_coarse.error);

@@ -23,6 +23,7 @@
 #include "prt/baker/options.hpp"
 #include "prt/baker/scene_bake.hpp"
 #include "prt/baker/technique.hpp"
+#include "support/checked_blob.hpp"
 #include "support/test_files.hpp"
 
 namespace prt::bake {
@@ -48,19 +49,6 @@ const SceneObject& skinned_object(const std::vector<SceneObject>& objects, const
     if (node_kind(scene, object.node).skinned) return object;
   }
   throw std::runtime_error("no skinned object");
-}
-
-std::vector<std::uint8_t> bake_rung(const Scene& object, const Rung& rung, const Context& ctx) {
-  std::unique_ptr<TechniqueBake> bake = pose().make_bake();
-  apply_option_args(bake->options(), rung.args);
-  BakeInput input;
-  input.scene = "RiggedSimple";
-  bake->bake(object, input, ctx);
-  bake->quantize();
-  std::vector<std::uint8_t> blob = bake->write(object, input);
-  const SelfCheck check = bake->self_check(blob);
-  EXPECT_TRUE(check.passed) << check.message;
-  return blob;
 }
 
 // The character with its root node turned a quarter turn about +X: the skin's joints and so the
@@ -162,7 +150,8 @@ TEST_F(PoseScene, AClipThatMovesNothingOfTheCharacterLeavesTheBlobAsItWas) {
   for (AnimationChannel& channel : other.channels) channel.node = character.node;
   with_other_clip.animations.push_back(other);
   const Rung cheapest = pose().ladder(0).front();
-  EXPECT_EQ(bake_rung(with_other_clip, cheapest, ctx), bake_rung(character.scene, cheapest, ctx));
+  EXPECT_EQ(prt_test::checked_blob("pose", cheapest.args, with_other_clip, "RiggedSimple", ctx),
+            prt_test::checked_blob("pose", cheapest.args, character.scene, "RiggedSimple", ctx));
 }
 
 TEST_F(PoseScene, EveryRungIsAValidBake) {
@@ -216,7 +205,7 @@ TEST_F(PoseScene, TheErrorFallsUpTheLadderAsTheShOrderPredictsAndSeesTheLightsFr
   std::vector<std::size_t> bytes;
   std::vector<std::uint8_t> top;
   for (const Rung& rung : ladder) {
-    top = bake_rung(character.scene, rung, ctx);
+    top = prt_test::checked_blob("pose", rung.args, character.scene, "RiggedSimple", ctx);
     errors.push_back(measure->measure(pose(), top, ctx));
     bytes.push_back(top.size());
     std::printf("rung %zu: %zu bytes, error %.4f (reference noise %.4f)\n", errors.size(),

@@ -22,6 +22,7 @@
 #include "prt/baker/options.hpp"
 #include "prt/baker/scene_bake.hpp"
 #include "prt/baker/technique.hpp"
+#include "support/checked_blob.hpp"
 #include "support/test_files.hpp"
 
 namespace prt::bake {
@@ -84,19 +85,6 @@ Scene animated_box(float half = 0.2f) {
   scene.animations.push_back(clip);
   scene.nodes[0].animated = true;
   return scene;
-}
-
-std::vector<std::uint8_t> bake_blob(const Scene& scene, const std::vector<std::string>& args) {
-  std::unique_ptr<TechniqueBake> bake = shadowfield().make_bake();
-  apply_option_args(bake->options(), args);
-  BakeInput input;
-  input.scene = "test object";
-  bake->bake(scene, input, two_threads());
-  bake->quantize();
-  std::vector<std::uint8_t> blob = bake->write(scene, input);
-  const SelfCheck check = bake->self_check(blob);
-  if (!check.passed) throw std::runtime_error("self-check: " + check.message);
-  return blob;
 }
 
 TEST(ShadowfieldSceneFit, SuitsRigidMovingNodesOnly) {
@@ -170,7 +158,8 @@ TEST(ShadowfieldSceneMeasure, ErrorsFallAlongTheLadderAndAWrongBlobMeasuresFarOf
   std::vector<Measurement> rungs;
   std::vector<std::size_t> bytes;
   for (const Rung& rung : ladder) {
-    const std::vector<std::uint8_t> blob = bake_blob(object, rung.args);
+    const std::vector<std::uint8_t> blob =
+        prt_test::checked_blob("shadowfield", rung.args, object, "test object", two_threads());
     rungs.push_back(measure->measure(shadowfield(), blob, ctx));
     bytes.push_back(blob.size());
     std::printf("rung %zu: %zu bytes, error %.4f (reference noise %.4f)\n", rungs.size(),
@@ -192,7 +181,10 @@ TEST(ShadowfieldSceneMeasure, ErrorsFallAlongTheLadderAndAWrongBlobMeasuresFarOf
   // The same box at half its size, same vertices: its own shading is alike (flat faces), the
   // shadow it casts on the floor is not.
   const Measurement wrong =
-      measure->measure(shadowfield(), bake_blob(animated_box(0.1f), ladder.back().args), ctx);
+      measure->measure(shadowfield(),
+                       prt_test::checked_blob("shadowfield", ladder.back().args, animated_box(0.1f),
+                                              "test object", two_threads()),
+                       ctx);
   std::printf("wrong size: error %.4f\n", wrong.error);
   EXPECT_GT(wrong.error, 4.0 * top.error);
 }
@@ -211,8 +203,11 @@ TEST(ShadowfieldSceneMeasureInput, ABlobOfAnotherObjectIsRefused) {
   other.meshes[0] = make_box_mesh(0, kBoxCentre, 0.2f, 0.0f, 2);
   const std::vector<Rung> ladder = shadowfield().ladder(0);
   std::unique_ptr<ObjectMeasure> measure = shadowfield().measure()(input);
-  EXPECT_THROW(
-      measure->measure(shadowfield(), bake_blob(other, ladder.front().args), two_threads()), Error);
+  EXPECT_THROW(measure->measure(shadowfield(),
+                                prt_test::checked_blob("shadowfield", ladder.front().args, other,
+                                                       "test object", two_threads()),
+                                two_threads()),
+               Error);
 }
 
 // The pipeline end to end. write_glb writes static nodes only (no extras.prt.dynamic, no
