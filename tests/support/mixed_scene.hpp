@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: MIT
-// The mixed scene of issue 16, assembled in memory: a static ground and ring (a torus, which shadows itself), a cloth rug, a
-// crate that moves at run time (extras.prt.dynamic) and a character (a shared asset, appended),
-// each its own node: one object for each technique of prt-bake scene.
+// The mixed scene of issue 16, assembled in memory: a static ground and ring (a torus, which
+// shadows itself), a cloth rug, a crate that moves at run time (extras.prt.dynamic) and a character
+// (a shared asset, appended), each its own node: one object for each technique of prt-bake scene.
 #pragma once
 
+#include <string>
 #include <utility>
 
 #include "prt/baker/mesh_generators.hpp"
 #include "prt/baker/scene.hpp"
+#include "prt/baker/scene_bake.hpp"
 
 namespace prt_test {
 
@@ -38,9 +40,10 @@ inline prt::bake::Scene mixed_scene(const prt::bake::Scene& character) {
   using mixed_scene_detail::named_material;
   Scene scene;
   scene.source = "mixed scene";
-  scene.materials = {
-      named_material("ground", {0.6f, 0.6f, 0.6f}), named_material("ring", {0.7f, 0.4f, 0.3f}),
-      named_material("linen_plain", {0.5f, 0.1f, 0.1f}), named_material("crate", {0.6f, 0.5f, 0.3f})};
+  scene.materials = {named_material("ground", {0.6f, 0.6f, 0.6f}),
+                     named_material("ring", {0.7f, 0.4f, 0.3f}),
+                     named_material("linen_plain", {0.5f, 0.1f, 0.1f}),
+                     named_material("crate", {0.6f, 0.5f, 0.3f})};
   scene.materials[2].sheen = true;
   scene.materials[2].sheen_color = glm::vec3(0.6f, 0.1f, 0.1f);
   scene.materials[2].sheen_roughness = 0.5f;
@@ -54,6 +57,21 @@ inline prt::bake::Scene mixed_scene(const prt::bake::Scene& character) {
   scene.nodes.back().hints.dynamic = true;
   append_scene(scene, character);
   return scene;
+}
+
+// How the mixed-scene test and prt_scene_table bake it: under `light` alone, no bounce, 96
+// probe vertices against a 512-sample reference, the budget `budget` (a fraction).
+inline prt::bake::SceneBakeSettings mixed_scene_settings(const std::string& out, double budget,
+                                                         const std::string& light) {
+  prt::bake::SceneBakeSettings s;
+  s.scene = "mixed";
+  s.out_dir = out;
+  s.error_budget = budget;
+  s.envs = {light};
+  s.bounces = 0;
+  s.ref_spp = 512;
+  s.probe_vertices = 96;
+  return s;
 }
 
 }  // namespace prt_test

@@ -40,15 +40,8 @@ MixedSceneBake bake_mixed_scene(const std::string& character, const std::string&
                                 const std::string& out) {
   Context ctx;
   ctx.threads = 2;
-  SceneBakeSettings s;
-  s.scene = "mixed";
-  s.out_dir = out;
-  s.error_budget = kBudget;
-  s.bounces = 0;
-  s.ref_spp = 512;
-  s.probe_vertices = 96;
+  SceneBakeSettings s = prt_test::mixed_scene_settings(out, kBudget, light);
   s.compare_single = true;
-  s.envs = {light};
   MixedSceneBake bake;
   bake.summary = run_scene_bake(s, prt_test::mixed_scene(import_scene(character, ctx)), ctx);
   std::ifstream in(out + "/report.json");
