@@ -8,6 +8,7 @@
 #include <prt/format/scene_layout.h>
 #include <prt/format/scene_writer.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -562,6 +563,35 @@ TEST_F(Scene, ALoadThatFailsNamesTheObjectAndItsBlob) {
                     {"not a scene manifest"});
   expect_load_fails(ctx, fs::path(kGolden) / "no_such_scene.prts", PRT_ERROR_IO,
                     {"no_such_scene.prts"});
+}
+
+// Quick validation skips content checks, but a manifest's rules hold at both levels: a path that
+// leaves the manifest's folder is refused before any blob is read.
+TEST_F(Scene, AQuickLoadStillRefusesAPathOutOfTheFolder) {
+  std::vector<prt::format::SceneManifestObject> objects = golden_objects();
+  objects[0].blob = "xx/sh_quad.prtk";
+  std::vector<std::uint8_t> bytes = prt::format::write_scene_manifest(objects);
+  const std::string from = "xx/sh_quad.prtk", to = "../sh_quad.prtk";
+  const auto at = std::search(bytes.begin(), bytes.end(), from.begin(), from.end());
+  ASSERT_NE(at, bytes.end());
+  std::copy(to.begin(), to.end(), at);  // the checksums no longer match: quick does not look
+  int reads = 0;
+  prt_scene_desc desc = prt::sized<prt_scene_desc>();
+  desc.validation = PRT_VALIDATE_QUICK;
+  desc.load_blob = [](void* user, prt_context* context, const char* path, prt_validation v,
+                      prt_asset** out) {
+    ++*static_cast<int*>(user);
+    return prt_asset_load_file(context, (kGolden + "/" + path).c_str(), v, out);
+  };
+  desc.load_blob_user = &reads;
+  EXPECT_EQ(prt_scene_load_memory(ctx.ctx, bytes.data(), bytes.size(), &desc, &scene),
+            PRT_ERROR_CORRUPT);
+  EXPECT_EQ(scene, nullptr);
+  EXPECT_EQ(reads, 0);
+  EXPECT_NE(message().find(".."), std::string::npos) << message();
+  desc.validation = PRT_VALIDATE_FULL;
+  EXPECT_EQ(prt_scene_load_memory(ctx.ctx, bytes.data(), bytes.size(), &desc, &scene),
+            PRT_ERROR_CHECKSUM_MISMATCH);
 }
 
 TEST_F(Scene, EveryAllocationFailureIsReportedAndFreesEverything) {
